@@ -1,0 +1,41 @@
+"""Baxter: description (URDF), PyBullet body, gripper, kinematics (pinocchio) and reach."""
+
+from arteleop.robot.baxter import ArmControlConfig, Baxter
+from arteleop.robot.description import (
+    BaxterDescription,
+    BaxterDescriptionConfig,
+    find_baxter_urdf,
+    load_baxter_description,
+)
+from arteleop.robot.gripper import ElectricGripper, GripperConfig
+from arteleop.robot.joints import (
+    GRIPPER_FRAME,
+    LEFT_ARM_JOINTS,
+    REST_POSE,
+    RIGHT_ARM_JOINTS,
+    RIGHT_FINGER_JOINTS,
+    ArmPose,
+    JointLimits,
+)
+from arteleop.robot.kinematics import BaxterKinematics
+from arteleop.robot.reach import TopDownReach
+
+__all__ = [
+    "GRIPPER_FRAME",
+    "LEFT_ARM_JOINTS",
+    "REST_POSE",
+    "RIGHT_ARM_JOINTS",
+    "RIGHT_FINGER_JOINTS",
+    "ArmControlConfig",
+    "ArmPose",
+    "Baxter",
+    "BaxterDescription",
+    "BaxterDescriptionConfig",
+    "BaxterKinematics",
+    "ElectricGripper",
+    "GripperConfig",
+    "JointLimits",
+    "TopDownReach",
+    "find_baxter_urdf",
+    "load_baxter_description",
+]

@@ -1,0 +1,198 @@
+"""Find Baxter's URDF in the installed example-robot-data and write the URDF arteleop loads.
+
+example-robot-data ships no importable module: its wheel installs data under
+``<prefix>/share/example-robot-data/robots/baxter_description``. We locate that folder through
+the installed distribution's file list, never through a hard-coded path, and the repository holds
+no copy of the robot.
+
+The URDF we load differs from the installed one in three documented ways:
+
+1. ``package://`` mesh paths are resolved to the installed share folder.
+2. Visual meshes are replaced by decimated copies (see :mod:`arteleop.robot.render_meshes`),
+   because PyBullet's CPU renderer spends its time on triangles, and links that sit fixed behind
+   or below the head camera (torso, head, screen) lose their visuals: the camera never sees them
+   and they only cost render time. Collision geometry, kinematics and inertias are untouched.
+3. The gripper fingers sit 2 mm further in. With the URDF's finger placement the pads stop
+   4.5 mm apart, so they could never pinch a thin bowl wall; the real Rethink electric gripper
+   takes its fingers in several slots and the innermost one closes to about zero.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib.metadata
+import os
+import tempfile
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass
+from pathlib import Path
+
+import platformdirs
+
+from arteleop.errors import ConfigurationError, RobotDataNotFoundError
+from arteleop.robot.render_meshes import decimated_mesh
+
+DISTRIBUTION = "example-robot-data"
+BAXTER_URDF_SUFFIX = "example-robot-data/robots/baxter_description/urdf/baxter.urdf"
+PACKAGE_PREFIX = "package://"
+
+# Finger joint -> sign of the origin shift that moves the finger towards the gripper's centre.
+_FINGER_JOINTS = {
+    "r_gripper_l_finger_joint": -1.0,
+    "r_gripper_r_finger_joint": +1.0,
+    "l_gripper_l_finger_joint": -1.0,
+    "l_gripper_r_finger_joint": +1.0,
+}
+
+
+HEAD_CAMERA_BLIND_LINKS: tuple[str, ...] = (
+    "torso",
+    "head",
+    "screen",
+    "display",
+    "sonar_ring",
+    "collision_head_link_1",
+    "collision_head_link_2",
+)
+
+
+@dataclass(frozen=True)
+class BaxterDescriptionConfig:
+    """How to build the URDF arteleop loads.
+
+    Attributes:
+        render_triangles_per_mesh: Triangle budget of each decimated visual mesh; ``None`` keeps
+            the original COLLADA meshes (slow to render, about 270k triangles in all).
+        finger_slot_offset_m: How far each finger is moved towards the centre, in metres.
+            0.002 m leaves about 0.5 mm between the closed pads and 42 mm between the open ones
+            (0 m reproduces the URDF: 4.5 mm to 46 mm).
+        hidden_links: Links whose visuals are removed. The default lists the links fixed
+            behind or below the head camera, which it never sees (tests/robot checks this).
+        cache_dir: Where generated meshes and URDFs are kept; default: the user cache folder.
+    """
+
+    render_triangles_per_mesh: int | None = 1000
+    hidden_links: tuple[str, ...] = HEAD_CAMERA_BLIND_LINKS
+    finger_slot_offset_m: float = 0.002
+    cache_dir: Path | None = None
+
+    def __post_init__(self) -> None:
+        if self.render_triangles_per_mesh is not None and self.render_triangles_per_mesh < 50:
+            raise ConfigurationError(
+                f"render_triangles_per_mesh={self.render_triangles_per_mesh} is too coarse; "
+                "use at least 50, or None for the original meshes."
+            )
+        if not 0.0 <= self.finger_slot_offset_m <= 0.0022:
+            raise ConfigurationError(
+                f"finger_slot_offset_m={self.finger_slot_offset_m} is outside [0, 0.0022] m: "
+                "beyond 0.0022 m the closed pads would overlap."
+            )
+
+
+@dataclass(frozen=True)
+class BaxterDescription:
+    """Paths of the robot description.
+
+    Attributes:
+        urdf_path: The URDF arteleop loads (absolute mesh paths, render meshes, finger slot).
+        source_urdf_path: The URDF as installed by example-robot-data.
+        share_dir: The folder that ``package://`` URIs are resolved against.
+    """
+
+    urdf_path: Path
+    source_urdf_path: Path
+    share_dir: Path
+
+
+def find_baxter_urdf() -> tuple[Path, Path]:
+    """Return (installed Baxter URDF, share folder for ``package://`` URIs).
+
+    Raises:
+        RobotDataNotFoundError: example-robot-data is missing, or has no Baxter in it.
+    """
+    try:
+        dist = importlib.metadata.distribution(DISTRIBUTION)
+    except importlib.metadata.PackageNotFoundError:
+        raise RobotDataNotFoundError(
+            f"The Python package '{DISTRIBUTION}' is not installed, so Baxter's URDF can't be "
+            f"found. Install it with: pip install {DISTRIBUTION}==6.0.0"
+        ) from None
+    for file in dist.files or ():
+        if file.as_posix().endswith(BAXTER_URDF_SUFFIX):
+            urdf = Path(str(dist.locate_file(file)))
+            if urdf.is_file():
+                share = urdf.parents[4]
+                return urdf, share
+            raise RobotDataNotFoundError(
+                f"{DISTRIBUTION} {dist.version} lists {file} but the file is missing at {urdf}. "
+                f"Reinstall it: pip install --force-reinstall {DISTRIBUTION}==6.0.0"
+            )
+    raise RobotDataNotFoundError(
+        f"{DISTRIBUTION} {dist.version} is installed but holds no '{BAXTER_URDF_SUFFIX}'. "
+        f"arteleop expects {DISTRIBUTION}==6.0.0."
+    )
+
+
+def resolve_package_uri(uri: str, share_dir: Path) -> Path:
+    """Map ``package://example-robot-data/...`` onto the installed share folder."""
+    if not uri.startswith(PACKAGE_PREFIX):
+        return Path(uri)
+    path = share_dir / uri[len(PACKAGE_PREFIX) :]
+    if not path.is_file():
+        raise RobotDataNotFoundError(f"The URDF refers to {uri}, but {path} does not exist.")
+    return path
+
+
+def load_baxter_description(config: BaxterDescriptionConfig | None = None) -> BaxterDescription:
+    """Write (or reuse from the cache) the URDF arteleop loads, and return its paths."""
+    config = config or BaxterDescriptionConfig()
+    source, share = find_baxter_urdf()
+    version = importlib.metadata.version(DISTRIBUTION)
+    cache = config.cache_dir or platformdirs.user_cache_path("arteleop")
+    out_dir = cache / f"baxter-erd{version}"
+    out_dir.mkdir(parents=True, exist_ok=True)
+
+    key = hashlib.sha256(
+        f"{source}|{config.render_triangles_per_mesh}|{sorted(config.hidden_links)}|"
+        f"{config.finger_slot_offset_m}".encode()
+    ).hexdigest()[:16]
+    urdf_path = out_dir / f"baxter-{key}.urdf"
+    if not urdf_path.is_file():
+        text = _rewrite_urdf(source, share, config, out_dir)
+        _atomic_write(urdf_path, text)
+    return BaxterDescription(urdf_path=urdf_path, source_urdf_path=source, share_dir=share)
+
+
+def _rewrite_urdf(source: Path, share: Path, config: BaxterDescriptionConfig, out: Path) -> str:
+    root = ET.parse(source).getroot()
+    for link in root.iter("link"):
+        if link.attrib.get("name") in config.hidden_links:
+            for visual in link.findall("visual"):
+                link.remove(visual)
+    for visual in root.iter("visual"):
+        mesh = visual.find("geometry/mesh")
+        if mesh is None:
+            continue
+        path = resolve_package_uri(mesh.attrib["filename"], share)
+        if config.render_triangles_per_mesh is not None:
+            path = decimated_mesh(path, config.render_triangles_per_mesh, out)
+        mesh.attrib["filename"] = str(path)
+    for mesh in root.iter("mesh"):
+        mesh.attrib["filename"] = str(resolve_package_uri(mesh.attrib["filename"], share))
+    for joint in root.iter("joint"):
+        sign = _FINGER_JOINTS.get(joint.attrib.get("name", ""))
+        origin = joint.find("origin")
+        if sign is None or origin is None:
+            continue
+        xyz = [float(v) for v in origin.attrib["xyz"].split()]
+        xyz[1] += sign * config.finger_slot_offset_m
+        origin.attrib["xyz"] = " ".join(f"{v:.6f}" for v in xyz)
+    return ET.tostring(root, encoding="unicode")
+
+
+def _atomic_write(path: Path, text: str) -> None:
+    # Several processes (tests, benchmarks) may build the cache at once: write, then rename.
+    fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
+    with os.fdopen(fd, "w") as f:
+        f.write(text)
+    os.replace(tmp, path)

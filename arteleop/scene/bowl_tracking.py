@@ -1,0 +1,152 @@
+"""Find the bowl in one RGB-D frame: colour segmentation, then a fit of the bowl's shape.
+
+The bowl is radially symmetric and stands upright, so its pose reduces to the position of its
+bottom centre (x, y, z). Every segmented point should lie on the bowl's wall, whose cross-section
+in (radius, height) is known (:meth:`BowlSpec.profile`); a robust least-squares fit moves the
+bowl's axis until the points sit on that cross-section. The tracker answers "not found", with the
+reason, when too few bowl pixels are visible or when the fit does not explain them.
+"""
+
+from __future__ import annotations
+
+import colorsys
+from dataclasses import dataclass
+
+import cv2
+import numpy as np
+from numpy.typing import NDArray
+from scipy.optimize import least_squares
+
+from arteleop.errors import ConfigurationError
+from arteleop.scene.bowl import BowlSpec
+from arteleop.scene.camera import RGBDFrame
+from arteleop.scene.pointcloud import frame_to_point_cloud
+
+
+@dataclass(frozen=True)
+class BowlTrackerConfig:
+    """Settings of the bowl tracker.
+
+    Attributes:
+        hue_tolerance_deg: Accept pixels within this hue distance of the bowl's colour.
+        min_saturation: Minimum HSV saturation (0..1) of bowl pixels; the table is grey.
+        min_value: Minimum HSV value (0..1) of bowl pixels; the markers are black.
+        min_points: Fewest bowl points, at 640x480, for an answer (scaled with the image area).
+        max_rms_m: Largest RMS distance of inlier points to the fitted wall (m).
+        min_inlier_fraction: Fraction of points that must lie within 3 * max_rms_m of the wall.
+        stride: Use every stride-th pixel (1 = all).
+        max_fit_points: The fit uses at most this many points, evenly spread over the bowl.
+    """
+
+    hue_tolerance_deg: float = 15.0
+    min_saturation: float = 0.5
+    min_value: float = 0.25
+    min_points: int = 300
+    max_rms_m: float = 0.006
+    min_inlier_fraction: float = 0.7
+    stride: int = 1
+    max_fit_points: int = 800
+
+    def __post_init__(self) -> None:
+        if not 0 < self.hue_tolerance_deg < 180 or self.min_points < 3 or self.max_rms_m <= 0:
+            raise ConfigurationError(
+                "BowlTrackerConfig needs 0 < hue_tolerance_deg < 180, min_points >= 3 and "
+                f"max_rms_m > 0; got {self.hue_tolerance_deg}, {self.min_points}, {self.max_rms_m}"
+            )
+
+
+@dataclass(frozen=True)
+class BowlTrack:
+    """Result of tracking the bowl in one frame.
+
+    Attributes:
+        found: Whether the bowl was found. When False, ``position_m`` is None.
+        position_m: Bottom centre of the bowl in the base frame (m).
+        n_points: Bowl points used.
+        rms_m: RMS distance of inlier points to the fitted wall (m).
+        reason: Why the bowl was not found (empty when found).
+        timestamp_s: Timestamp of the frame.
+    """
+
+    found: bool
+    position_m: NDArray[np.float64] | None
+    n_points: int
+    rms_m: float
+    reason: str
+    timestamp_s: float
+
+
+class BowlTracker:
+    """Tracks an upright bowl of known shape and colour."""
+
+    def __init__(self, spec: BowlSpec, config: BowlTrackerConfig | None = None) -> None:
+        self.spec = spec
+        self.config = config or BowlTrackerConfig()
+        profile = spec.profile(12)
+        self._seg_a = profile[:-1]  # (M, 2) start of each cross-section segment, (r, h)
+        self._seg_d = np.diff(profile, axis=0)
+        self._hue_deg = 360.0 * colorsys.rgb_to_hsv(*spec.rgba[:3])[0]
+
+    def segment(self, frame: RGBDFrame) -> NDArray[np.bool_]:
+        """(H, W) mask of pixels whose colour matches the bowl's and whose depth is valid."""
+        c = self.config
+        hsv = cv2.cvtColor(frame.rgb, cv2.COLOR_RGB2HSV_FULL).astype(np.float64)
+        hue = hsv[..., 0] * 360.0 / 256.0
+        dhue = np.abs((hue - self._hue_deg + 180.0) % 360.0 - 180.0)
+        return (
+            (dhue <= c.hue_tolerance_deg)
+            & (hsv[..., 1] >= 255 * c.min_saturation)
+            & (hsv[..., 2] >= 255 * c.min_value)
+            & (frame.depth_m > 0)
+        )
+
+    def track(self, frame: RGBDFrame, table_top_z_m: float) -> BowlTrack:
+        """Estimate the bowl's position in ``frame``; the bowl is assumed upright."""
+        c = self.config
+        mask = self.segment(frame)
+        cloud = frame_to_point_cloud(frame, c.stride)
+        rows, cols = cloud.pixels[:, 0], cloud.pixels[:, 1]
+        pts = cloud.points_m[mask[rows, cols]]
+        area_scale = frame.depth_m.size / (640 * 480) / c.stride**2
+        needed = max(3, int(c.min_points * area_scale))
+        if len(pts) < needed:
+            return self._not_found(
+                frame,
+                len(pts),
+                f"only {len(pts)} bowl-coloured points in view, need {needed}: "
+                "the bowl is out of view or hidden",
+            )
+        fit_pts = pts[:: max(1, len(pts) // c.max_fit_points)]
+        x0 = np.array([*np.median(pts[:, :2], axis=0), table_top_z_m])
+        fit = least_squares(
+            self._residuals,
+            x0,
+            args=(fit_pts,),
+            loss="soft_l1",
+            f_scale=self.spec.wall_thickness_m,
+            x_scale=0.01,
+        )
+        r = np.abs(self._residuals(fit.x, pts))
+        inliers = r <= 3 * c.max_rms_m
+        rms = float(np.sqrt(np.mean(r[inliers] ** 2))) if inliers.any() else float("inf")
+        if inliers.mean() < c.min_inlier_fraction or rms > c.max_rms_m:
+            return self._not_found(
+                frame,
+                len(pts),
+                f"the bowl's shape does not fit the points (RMS {rms * 1000:.1f} mm, "
+                f"{inliers.mean():.0%} inliers): it may be tipped over, held or partly hidden",
+                rms,
+            )
+        return BowlTrack(True, fit.x, len(pts), rms, "", frame.timestamp_s)
+
+    def _residuals(self, x: NDArray[np.float64], pts: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Distance (m) of each point to the wall cross-section, for a bowl with bottom centre x."""
+        rh = np.column_stack([np.hypot(pts[:, 0] - x[0], pts[:, 1] - x[1]), pts[:, 2] - x[2]])
+        rel = rh[:, None, :] - self._seg_a[None, :, :]  # (N, M, 2)
+        t = np.clip((rel * self._seg_d).sum(-1) / (self._seg_d**2).sum(-1), 0.0, 1.0)
+        d = np.linalg.norm(rel - t[..., None] * self._seg_d, axis=-1)
+        return d.min(axis=1)
+
+    @staticmethod
+    def _not_found(frame: RGBDFrame, n: int, reason: str, rms: float = float("nan")) -> BowlTrack:
+        return BowlTrack(False, None, n, rms, reason, frame.timestamp_s)

@@ -1,0 +1,54 @@
+"""From RGB-D frames to coloured point clouds in Baxter's base frame."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import open3d as o3d
+from numpy.typing import NDArray
+
+from arteleop.scene.camera import CameraIntrinsics, RGBDFrame
+from arteleop.transforms import transform_points
+
+
+@dataclass(frozen=True)
+class PointCloud:
+    """Points (N, 3) in metres in the base frame, with (N, 3) uint8 colours and their pixels.
+
+    ``pixels`` (N, 2) holds each point's (row, column) in the frame it came from.
+    """
+
+    points_m: NDArray[np.float64]
+    colors: NDArray[np.uint8]
+    pixels: NDArray[np.int64]
+
+    def to_open3d(self) -> o3d.geometry.PointCloud:
+        cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(self.points_m))
+        cloud.colors = o3d.utility.Vector3dVector(self.colors.astype(np.float64) / 255.0)
+        return cloud
+
+
+def depth_to_camera_points(
+    depth_m: NDArray[np.floating], K: CameraIntrinsics
+) -> NDArray[np.float64]:
+    """Back-project a depth image to an (H, W, 3) grid of camera-frame points (m)."""
+    h, w = depth_m.shape
+    z = depth_m.astype(np.float64)
+    u = np.arange(w, dtype=np.float64)[None, :]
+    v = np.arange(h, dtype=np.float64)[:, None]
+    return np.stack([(u - K.cx_px) / K.fx_px * z, (v - K.cy_px) / K.fy_px * z, z], axis=-1)
+
+
+def frame_to_point_cloud(frame: RGBDFrame, stride: int = 1) -> PointCloud:
+    """Coloured point cloud of the valid pixels of ``frame``, in the base frame.
+
+    ``stride`` keeps every stride-th row and column, to thin the cloud for display.
+    """
+    depth = frame.depth_m[::stride, ::stride]
+    grid = depth_to_camera_points(depth, frame.intrinsics.strided(stride))
+    valid = depth > 0
+    rows, cols = np.nonzero(valid)
+    points = transform_points(frame.T_base_camera, grid[valid])
+    colors = frame.rgb[::stride, ::stride][valid]
+    return PointCloud(points, colors, np.column_stack([rows * stride, cols * stride]))

@@ -1,0 +1,206 @@
+"""The remote site: Baxter, the table with its bowl and markers, and the head camera, in PyBullet.
+
+The world frame of the simulation is Baxter's ``base`` frame. Every check that can fail because
+of the configuration runs in the constructor, so a bad setting stops the program at start-up.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from types import TracebackType
+
+import numpy as np
+import pybullet as p
+from numpy.typing import NDArray
+from pybullet_utils.bullet_client import BulletClient
+
+from arteleop.errors import ConfigurationError, WorkspaceError
+from arteleop.robot import (
+    REST_POSE,
+    ArmPose,
+    Baxter,
+    BaxterDescriptionConfig,
+    BaxterKinematics,
+    GripperConfig,
+    TopDownReach,
+    load_baxter_description,
+)
+from arteleop.robot.native_output import native_stdout_silenced
+from arteleop.scene.bodies import add_bowl, add_start_cross, add_table, add_target_circle
+from arteleop.scene.camera import HeadCamera, HeadCameraConfig, RGBDFrame
+from arteleop.scene.workspace import Workspace
+from arteleop.transforms import pose_to_transform, quat_xyzw_to_wxyz
+
+GRASP_DEPTH_M = 0.015
+"""How far below the rim the tool frame goes to pinch the wall (m)."""
+
+
+@dataclass(frozen=True)
+class SiteConfig:
+    """Everything that defines the simulated remote site.
+
+    Attributes:
+        workspace: Table, bowl and markers.
+        camera: The head RGB-D camera.
+        physics_rate_hz: Physics steps per simulated second (>= 240).
+        reach_margin: Fraction of the arm's maximum reach kept free at start and target.
+        robot: How the robot's URDF is prepared.
+        gripper: Electric gripper settings.
+        rest_pose: Arm pose before each trial.
+        seed: Seed of every random source of the site (depth noise).
+    """
+
+    workspace: Workspace = field(default_factory=Workspace)
+    camera: HeadCameraConfig = field(default_factory=HeadCameraConfig)
+    physics_rate_hz: float = 240.0
+    reach_margin: float = 0.05
+    robot: BaxterDescriptionConfig = field(default_factory=BaxterDescriptionConfig)
+    gripper: GripperConfig = field(default_factory=GripperConfig)
+    rest_pose: ArmPose = REST_POSE
+    seed: int = 0
+
+    def __post_init__(self) -> None:
+        if self.physics_rate_hz < 240:
+            raise ConfigurationError(
+                f"physics_rate_hz={self.physics_rate_hz}: use at least 240 Hz for stable grasps"
+            )
+        if not 0 <= self.reach_margin < 0.5:
+            raise ConfigurationError(f"reach_margin={self.reach_margin} must be in [0, 0.5)")
+
+
+class RemoteSite:
+    """A running simulation of the remote site; a context manager (or call :meth:`close`)."""
+
+    def __init__(self, config: SiteConfig | None = None) -> None:
+        self.config = config = config or SiteConfig()
+        ws = config.workspace
+        description = load_baxter_description(config.robot)
+        self.kinematics = BaxterKinematics(description.urdf_path)
+        self._check_reach(ws)
+
+        with native_stdout_silenced():
+            self.client = BulletClient(connection_mode=p.DIRECT)
+        try:
+            self.client.setGravity(0.0, 0.0, -9.81)
+            self.client.setTimeStep(1.0 / config.physics_rate_hz)
+            with native_stdout_silenced():
+                self.robot = Baxter(self.client, description, config.gripper)
+            self.robot.reset(config.rest_pose)
+            self.gripper_gap_range_m = self._measure_gripper_gap()
+            self._check_gripper_spans_bowl(ws)
+            self.table_id = add_table(self.client, ws)
+            self.start_marker_id = add_start_cross(self.client, ws)
+            self.target_marker_id = add_target_circle(self.client, ws)
+            self.bowl_id = add_bowl(self.client, ws, ws.start_xy_m)
+            self.camera = HeadCamera(
+                self.client,
+                config.camera,
+                self.robot.link_transform(config.camera.mount_link),
+                np.random.default_rng(config.seed),
+            )
+            rim = np.array([0.0, 0.0, ws.bowl.height_m])
+            self.camera.check_sees(
+                {
+                    "start marker": ws.start_m,
+                    "target marker": ws.target_m,
+                    "bowl rim at the start": ws.start_m + rim,
+                    "bowl rim at the target": ws.target_m + rim,
+                }
+            )
+        except BaseException:
+            self.client.disconnect()
+            raise
+        self._steps = 0
+
+    # -- time -----------------------------------------------------------------------------------
+    @property
+    def time_s(self) -> float:
+        """Simulated time since the site was built (s)."""
+        return self._steps / self.config.physics_rate_hz
+
+    def step(self, n: int = 1) -> None:
+        """Advance the physics by ``n`` steps of ``1 / physics_rate_hz`` seconds."""
+        for _ in range(n):
+            self.client.stepSimulation()
+        self._steps += n
+
+    # -- state ----------------------------------------------------------------------------------
+    def bowl_transform(self) -> NDArray[np.float64]:
+        """``T_base_bowl``: ground-truth pose of the bowl frame (centre of its bottom face)."""
+        pos, quat = self.client.getBasePositionAndOrientation(self.bowl_id)
+        # PyBullet reports the centre of mass; shift back to the bowl's own frame.
+        T_base_com = pose_to_transform(pos, quat_xyzw_to_wxyz(quat))
+        T_com_bowl = np.eye(4)
+        T_com_bowl[2, 3] = -self.config.workspace.bowl.center_of_mass_height_m
+        return T_base_com @ T_com_bowl
+
+    def bowl_position_m(self) -> NDArray[np.float64]:
+        """Ground-truth position of the bowl frame (centre of its bottom face), base frame (m)."""
+        return self.bowl_transform()[:3, 3]
+
+    def place_bowl(self, xy_m: tuple[float, float]) -> None:
+        """Teleport the bowl upright onto the table at ``xy_m`` and stop it."""
+        ws = self.config.workspace
+        com = [xy_m[0], xy_m[1], ws.table_top_z_m + ws.bowl.center_of_mass_height_m]
+        self.client.resetBasePositionAndOrientation(self.bowl_id, com, (0.0, 0.0, 0.0, 1.0))
+        self.client.resetBaseVelocity(self.bowl_id, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
+
+    def capture(self, with_segmentation: bool = False) -> RGBDFrame:
+        """One head-camera frame of the current state, stamped with :attr:`time_s`."""
+        return self.camera.capture(self.time_s, with_segmentation)
+
+    # -- start-up checks ------------------------------------------------------------------------
+    def _check_reach(self, ws: Workspace) -> None:
+        reach = TopDownReach.from_kinematics(self.kinematics)
+        grasp_h = ws.bowl.height_m - GRASP_DEPTH_M
+        for name, point in (("start", ws.start_m), ("target", ws.target_m)):
+            for side in (-1.0, 1.0):  # the near and the far side of the rim
+                rim_x = side * (ws.bowl.rim_radius_m - ws.bowl.wall_thickness_m / 2)
+                tool = point + np.array([rim_x, 0.0, grasp_h])
+                if not reach.is_reachable(tool, self.config.reach_margin):
+                    raise WorkspaceError(
+                        f"The {name} point {tuple(np.round(point[:2], 3))} m is out of the right "
+                        f"arm's reach from above: grasping the rim at {np.round(tool, 3).tolist()} "
+                        f"needs {reach.reach_fraction(tool):.0%} of the arm's reach, the limit is "
+                        f"{1 - self.config.reach_margin:.0%} (and at least "
+                        f"{reach.min_reach_m / reach.max_reach_m:.0%}). Move Workspace.{name}_xy_m "
+                        f"closer to the shoulder at {np.round(reach.shoulder_m[:2], 3).tolist()}."
+                    )
+
+    def _measure_gripper_gap(self) -> tuple[float, float]:
+        """(closed, open) gap between the finger pads (m), measured on the collision shapes."""
+        g = self.robot.gripper
+        gaps = []
+        for closure in (1.0, 0.0):
+            g.reset(closure)
+            gaps.append(g.pad_gap_m())
+        g.reset(self.config.rest_pose.gripper_closure)
+        return gaps[0], gaps[1]
+
+    def _check_gripper_spans_bowl(self, ws: Workspace) -> None:
+        closed, opened = self.gripper_gap_range_m
+        t = ws.bowl.wall_thickness_m
+        if not closed < t < 0.8 * opened:
+            raise WorkspaceError(
+                f"The gripper can't pinch a bowl wall {t * 1000:.1f} mm thick: its pads close to "
+                f"{closed * 1000:.1f} mm and open to {opened * 1000:.1f} mm. Choose "
+                f"BowlSpec.wall_thickness_m between {closed * 1000:.1f} and "
+                f"{0.8 * opened * 1000:.1f} mm (80 % of the opening, to leave room to aim)."
+            )
+
+    # -- lifetime -------------------------------------------------------------------------------
+    def close(self) -> None:
+        """Disconnect from PyBullet."""
+        if self.client.isConnected():
+            self.client.disconnect()
+
+    def __enter__(self) -> RemoteSite:
+        return self
+
+    def __exit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        tb: TracebackType | None,
+    ) -> None:
+        self.close()

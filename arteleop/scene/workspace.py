@@ -1,0 +1,93 @@
+"""Sizes and poses of everything on the table, in Baxter's base frame (m)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from arteleop.errors import WorkspaceError
+from arteleop.scene.bowl import BowlSpec
+
+
+@dataclass(frozen=True)
+class Workspace:
+    """The remote workspace. All positions are in Baxter's ``base`` frame, in metres.
+
+    Baxter's base frame sits in the torso, about 0.93 m above the floor on the pedestal; a 0.73 m
+    table therefore has its top at z = -0.20 m.
+
+    Attributes:
+        table_center_xy_m: Centre of the table top (x forward, y to Baxter's left).
+        table_size_m: Table top extent along x (depth) and y (width).
+        table_top_z_m: Height of the table top.
+        table_thickness_m: Thickness of the table slab.
+        table_rgba: Table colour.
+        start_xy_m: Where the bowl starts (cross marker).
+        target_xy_m: Where the bowl must go (circle marker).
+        bowl: The bowl.
+        cross_size_m: Arm length of the start cross, tip to tip.
+        marker_line_width_m: Line width of both markers.
+        target_circle_radius_m: Radius of the target circle's centre line; slightly larger than
+            the bowl's foot so a placed bowl leaves the circle visible around it.
+        marker_rgba: Marker colour.
+    """
+
+    table_center_xy_m: tuple[float, float] = (0.75, -0.15)
+    table_size_m: tuple[float, float] = (0.8, 1.2)
+    table_top_z_m: float = -0.20
+    table_thickness_m: float = 0.05
+    table_rgba: tuple[float, float, float, float] = (0.72, 0.72, 0.70, 1.0)
+    start_xy_m: tuple[float, float] = (0.68, -0.45)
+    target_xy_m: tuple[float, float] = (0.68, -0.10)
+    bowl: BowlSpec = field(default_factory=BowlSpec)
+    cross_size_m: float = 0.10
+    marker_line_width_m: float = 0.012
+    target_circle_radius_m: float = 0.06
+    marker_rgba: tuple[float, float, float, float] = (0.05, 0.05, 0.05, 1.0)
+
+    def __post_init__(self) -> None:
+        if min(self.table_size_m) <= 0 or self.table_thickness_m <= 0:
+            raise WorkspaceError(
+                f"Table size {self.table_size_m} and thickness {self.table_thickness_m} must be > 0"
+            )
+        for name in ("start_xy_m", "target_xy_m"):
+            xy = np.asarray(getattr(self, name))
+            if xy.shape != (2,) or not np.all(np.isfinite(xy)):
+                raise WorkspaceError(
+                    f"Workspace.{name}={getattr(self, name)} must be two finite numbers"
+                )
+            lo, hi = self.table_bounds_xy_m()
+            r = self.bowl.rim_radius_m
+            if np.any(xy - r < lo) or np.any(xy + r > hi):
+                raise WorkspaceError(
+                    f"Workspace.{name}={tuple(xy)}: a bowl of radius {r} m there overhangs the "
+                    f"table, which spans x in [{lo[0]:.3f}, {hi[0]:.3f}] and y in "
+                    f"[{lo[1]:.3f}, {hi[1]:.3f}] m."
+                )
+        gap = float(np.linalg.norm(np.subtract(self.start_xy_m, self.target_xy_m)))
+        if gap < self.bowl.diameter_m:
+            raise WorkspaceError(
+                f"Start {self.start_xy_m} and target {self.target_xy_m} are {gap:.3f} m apart, "
+                f"less than the bowl's diameter {self.bowl.diameter_m} m: the task is trivial."
+            )
+
+    def table_bounds_xy_m(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """(min corner, max corner) of the table top in x and y."""
+        c, s = np.asarray(self.table_center_xy_m), np.asarray(self.table_size_m)
+        return c - s / 2, c + s / 2
+
+    def on_table(self, xy_m: tuple[float, float] | NDArray[np.float64]) -> NDArray[np.float64]:
+        """The 3D point on the table top below ``xy_m``."""
+        return np.array([xy_m[0], xy_m[1], self.table_top_z_m], dtype=np.float64)
+
+    @property
+    def start_m(self) -> NDArray[np.float64]:
+        """Start point on the table top (x, y, z)."""
+        return self.on_table(self.start_xy_m)
+
+    @property
+    def target_m(self) -> NDArray[np.float64]:
+        """Target point on the table top (x, y, z)."""
+        return self.on_table(self.target_xy_m)

@@ -1,0 +1,67 @@
+"""Homogeneous transforms and quaternion conventions shared by every subpackage.
+
+Conventions (see README, "Conventions"):
+- ``T_a_b`` is a 4x4 homogeneous matrix that maps coordinates in frame b to frame a,
+  i.e. the pose of frame b expressed in frame a. ``T_a_c = T_a_b @ T_b_c``.
+- Quaternions are ``(w, x, y, z)`` in the API. PyBullet uses ``(x, y, z, w)``: convert with
+  :func:`quat_xyzw_to_wxyz` / :func:`quat_wxyz_to_xyzw` at that boundary only.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.spatial.transform import Rotation
+
+
+def quat_xyzw_to_wxyz(q_xyzw: ArrayLike) -> NDArray[np.float64]:
+    """Reorder a PyBullet quaternion (x, y, z, w) into the API's (w, x, y, z)."""
+    q = np.asarray(q_xyzw, dtype=np.float64)
+    return np.concatenate([q[..., 3:], q[..., :3]], axis=-1)
+
+
+def quat_wxyz_to_xyzw(q_wxyz: ArrayLike) -> NDArray[np.float64]:
+    """Reorder an API quaternion (w, x, y, z) into PyBullet's (x, y, z, w)."""
+    q = np.asarray(q_wxyz, dtype=np.float64)
+    return np.concatenate([q[..., 1:], q[..., :1]], axis=-1)
+
+
+def make_transform(rotation: ArrayLike, translation_m: ArrayLike) -> NDArray[np.float64]:
+    """Build a 4x4 transform from a 3x3 rotation matrix and a translation in metres."""
+    T = np.eye(4)
+    T[:3, :3] = np.asarray(rotation, dtype=np.float64)
+    T[:3, 3] = np.asarray(translation_m, dtype=np.float64)
+    return T
+
+
+def pose_to_transform(position_m: ArrayLike, quat_wxyz: ArrayLike) -> NDArray[np.float64]:
+    """Build ``T_parent_child`` from a position (m) and a (w, x, y, z) quaternion."""
+    R = Rotation.from_quat(np.asarray(quat_wxyz, dtype=np.float64), scalar_first=True)
+    return make_transform(R.as_matrix(), position_m)
+
+
+def transform_to_pose(T: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Split a 4x4 transform into (position in m, (w, x, y, z) quaternion with w >= 0)."""
+    T = np.asarray(T, dtype=np.float64)
+    q = Rotation.from_matrix(T[:3, :3]).as_quat(scalar_first=True, canonical=True)
+    return T[:3, 3].copy(), q
+
+
+def invert_transform(T: ArrayLike) -> NDArray[np.float64]:
+    """Inverse of a rigid transform: ``T_b_a`` from ``T_a_b``."""
+    T = np.asarray(T, dtype=np.float64)
+    R = T[:3, :3]
+    return make_transform(R.T, -R.T @ T[:3, 3])
+
+
+def transform_points(T_a_b: ArrayLike, points_b: ArrayLike) -> NDArray[np.float64]:
+    """Map points of shape (N, 3) from frame b to frame a."""
+    T = np.asarray(T_a_b, dtype=np.float64)
+    p = np.asarray(points_b, dtype=np.float64)
+    return p @ T[:3, :3].T + T[:3, 3]
+
+
+def rotation_about_axis(axis: ArrayLike, angle_rad: float) -> NDArray[np.float64]:
+    """3x3 rotation matrix about a unit ``axis`` by ``angle_rad`` (right-hand rule)."""
+    axis = np.asarray(axis, dtype=np.float64)
+    return Rotation.from_rotvec(axis / np.linalg.norm(axis) * angle_rad).as_matrix()

@@ -1,0 +1,43 @@
+"""Shared fixtures. The robot description is generated once per session into a temporary cache,
+so the tests also exercise mesh decimation and URDF rewriting from a clean state."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+
+from arteleop.robot import BaxterDescription, BaxterDescriptionConfig, load_baxter_description
+from arteleop.scene import RemoteSite, SiteConfig
+
+
+@pytest.fixture(scope="session")
+def description_config(tmp_path_factory: pytest.TempPathFactory) -> BaxterDescriptionConfig:
+    return BaxterDescriptionConfig(cache_dir=Path(tmp_path_factory.mktemp("arteleop-cache")))
+
+
+@pytest.fixture(scope="session")
+def description(description_config: BaxterDescriptionConfig) -> BaxterDescription:
+    return load_baxter_description(description_config)
+
+
+@pytest.fixture(scope="session")
+def site_config(description_config: BaxterDescriptionConfig) -> SiteConfig:
+    return SiteConfig(robot=description_config)
+
+
+@pytest.fixture
+def site(site_config: SiteConfig) -> Iterator[RemoteSite]:
+    with RemoteSite(site_config) as s:
+        yield s
+
+
+@pytest.fixture
+def noiseless_site(site_config: SiteConfig) -> Iterator[RemoteSite]:
+    from arteleop.scene import DepthNoiseConfig
+
+    camera = replace(site_config.camera, noise=DepthNoiseConfig(enabled=False, quantize=False))
+    with RemoteSite(replace(site_config, camera=camera)) as s:
+        yield s

@@ -1,0 +1,59 @@
+"""PyBullet and pinocchio load the same URDF and must agree on every pose."""
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from arteleop.errors import ConfigurationError
+from arteleop.robot import GRIPPER_FRAME, RIGHT_ARM_JOINTS, BaxterKinematics
+from arteleop.scene import RemoteSite
+
+FRAMES = (GRIPPER_FRAME, "head", "head_camera_link", "r_gripper_l_finger_tip", "left_gripper")
+
+
+def test_pybullet_and_pinocchio_agree_on_100_random_configurations(site: RemoteSite) -> None:
+    kin = site.kinematics
+    robot = site.robot
+    rng = np.random.default_rng(42)
+    names = list(robot.joint_index)
+    lower = kin.model.lowerPositionLimit
+    upper = kin.model.upperPositionLimit
+    worst_pos, worst_rot = 0.0, 0.0
+    for _ in range(100):
+        q = {n: rng.uniform(lower[kin._q_index[n]], upper[kin._q_index[n]]) for n in names}
+        robot.set_joint_positions(q)
+        for frame, T_pin in zip(FRAMES, kin.frame_transforms(q, FRAMES), strict=True):
+            T_pb = robot.link_transform(frame)
+            worst_pos = max(worst_pos, float(np.linalg.norm(T_pb[:3, 3] - T_pin[:3, 3])))
+            dR = Rotation.from_matrix(T_pb[:3, :3].T @ T_pin[:3, :3])
+            worst_rot = max(worst_rot, float(dR.magnitude()))
+    assert worst_pos < 1e-6
+    assert worst_rot < 1e-6
+
+
+def test_arm_limits_are_the_urdf_limits(site: RemoteSite) -> None:
+    pin_limits = site.kinematics.limits(RIGHT_ARM_JOINTS)
+    pb_limits = site.robot.right_arm_limits
+    for field in ("lower", "upper", "velocity", "effort"):
+        np.testing.assert_allclose(getattr(pb_limits, field), getattr(pin_limits, field))
+    # Values straight from the URDF text.
+    assert pin_limits.lower[3] == pytest.approx(-0.05)
+    assert pin_limits.upper[3] == pytest.approx(2.618)
+    assert pin_limits.velocity[4] == pytest.approx(4.0)
+
+
+def test_unknown_names_are_reported_with_the_valid_ones(site: RemoteSite) -> None:
+    kin: BaxterKinematics = site.kinematics
+    with pytest.raises(ConfigurationError, match="Unknown joint 'right_elbow'.*right_e1"):
+        kin.configuration({"right_elbow": 0.0})
+    with pytest.raises(ConfigurationError, match="Unknown frame 'gripper'.*right_gripper"):
+        kin.frame_transform({}, "gripper")
+    with pytest.raises(ConfigurationError, match="Unknown link 'hand'"):
+        site.robot.link_transform("hand")
+
+
+def test_arm_targets_outside_limits_are_refused(site: RemoteSite) -> None:
+    q = site.robot.arm_positions()
+    q[3] = 3.0
+    with pytest.raises(ConfigurationError, match=r"joint right_e1 = 3.0000 is outside .*-0.0500, 2.6180"):
+        site.robot.command_arm(q)

@@ -1,0 +1,38 @@
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from arteleop.transforms import (
+    invert_transform,
+    pose_to_transform,
+    quat_wxyz_to_xyzw,
+    quat_xyzw_to_wxyz,
+    transform_points,
+    transform_to_pose,
+)
+
+
+def test_quaternion_reordering_round_trip() -> None:
+    q = np.array([0.1, 0.2, 0.3, 0.9])
+    assert np.array_equal(quat_wxyz_to_xyzw(quat_xyzw_to_wxyz(q)), q)
+    assert np.array_equal(quat_xyzw_to_wxyz([1.0, 2.0, 3.0, 4.0]), [4.0, 1.0, 2.0, 3.0])
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_pose_round_trip_and_inverse(seed: int) -> None:
+    rng = np.random.default_rng(seed)
+    q = Rotation.random(random_state=seed).as_quat(scalar_first=True, canonical=True)
+    t = rng.normal(size=3)
+    T = pose_to_transform(t, q)
+    t2, q2 = transform_to_pose(T)
+    np.testing.assert_allclose(t2, t, atol=1e-12)
+    np.testing.assert_allclose(q2, q, atol=1e-12)
+    np.testing.assert_allclose(invert_transform(T) @ T, np.eye(4), atol=1e-12)
+    pts = rng.normal(size=(7, 3))
+    np.testing.assert_allclose(transform_points(invert_transform(T), transform_points(T, pts)), pts, atol=1e-12)
+
+
+def test_rotation_convention_is_active_w_first() -> None:
+    # 90 deg about z maps x onto y.
+    T = pose_to_transform([0, 0, 0], [np.cos(np.pi / 4), 0, 0, np.sin(np.pi / 4)])
+    np.testing.assert_allclose(transform_points(T, [[1.0, 0, 0]]), [[0, 1.0, 0]], atol=1e-12)
