@@ -22,7 +22,11 @@ def reach_down(site: RemoteSite, tool_m: NDArray[np.float64], iterations: int = 
     movable = list(robot.joint_index)
     for _ in range(iterations):
         q = site.client.calculateInverseKinematics(
-            robot.body_id, link, list(tool_m), DOWN_XYZW, maxNumIterations=200,
+            robot.body_id,
+            link,
+            list(tool_m),
+            DOWN_XYZW,
+            maxNumIterations=200,
             residualThreshold=1e-6,
         )
         solution = dict(zip(movable, q, strict=True))
@@ -31,14 +35,16 @@ def reach_down(site: RemoteSite, tool_m: NDArray[np.float64], iterations: int = 
     return float(np.linalg.norm(robot.link_transform(GRIPPER_FRAME)[:3, 3] - tool_m))
 
 
-
-
 def ik_down(site: RemoteSite, tool_m: NDArray[np.float64]) -> NDArray[np.float64]:
     """Right-arm joint targets (rad) for a top-down gripper pose, seeded from the current state."""
     robot = site.robot
     q = site.client.calculateInverseKinematics(
-        robot.body_id, robot.link_index[GRIPPER_FRAME], list(tool_m), DOWN_XYZW,
-        maxNumIterations=200, residualThreshold=1e-6,
+        robot.body_id,
+        robot.link_index[GRIPPER_FRAME],
+        list(tool_m),
+        DOWN_XYZW,
+        maxNumIterations=200,
+        residualThreshold=1e-6,
     )
     solution = dict(zip(robot.joint_index, q, strict=True))
     return np.array([solution[n] for n in RIGHT_ARM_JOINTS])

@@ -29,7 +29,9 @@ def test_pose_round_trip_and_inverse(seed: int) -> None:
     np.testing.assert_allclose(q2, q, atol=1e-12)
     np.testing.assert_allclose(invert_transform(T) @ T, np.eye(4), atol=1e-12)
     pts = rng.normal(size=(7, 3))
-    np.testing.assert_allclose(transform_points(invert_transform(T), transform_points(T, pts)), pts, atol=1e-12)
+    np.testing.assert_allclose(
+        transform_points(invert_transform(T), transform_points(T, pts)), pts, atol=1e-12
+    )
 
 
 def test_rotation_convention_is_active_w_first() -> None:

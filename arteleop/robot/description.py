@@ -35,6 +35,8 @@ from arteleop.robot.render_meshes import decimated_mesh
 DISTRIBUTION = "example-robot-data"
 BAXTER_URDF_SUFFIX = "example-robot-data/robots/baxter_description/urdf/baxter.urdf"
 PACKAGE_PREFIX = "package://"
+REWRITE_VERSION = 2
+"""Bump whenever :func:`_rewrite_urdf` changes, so cached URDFs from older code are not reused."""
 
 # Finger joint -> sign of the origin shift that moves the finger towards the gripper's centre.
 _FINGER_JOINTS = {
@@ -66,8 +68,8 @@ class BaxterDescriptionConfig:
         finger_slot_offset_m: How far each finger is moved towards the centre, in metres.
             0.002 m leaves about 0.5 mm between the closed pads and 42 mm between the open ones
             (0 m reproduces the URDF: 4.5 mm to 46 mm).
-        hidden_links: Links whose visuals are removed. The default lists the links fixed
-            behind or below the head camera, which it never sees (tests/robot checks this).
+        hidden_links: Links whose visuals are replaced by a 0.1 mm speck. The default lists the
+            links fixed behind or below the head camera, which it never sees (a test checks).
         cache_dir: Where generated meshes and URDFs are kept; default: the user cache folder.
     """
 
@@ -153,7 +155,7 @@ def load_baxter_description(config: BaxterDescriptionConfig | None = None) -> Ba
     out_dir.mkdir(parents=True, exist_ok=True)
 
     key = hashlib.sha256(
-        f"{source}|{config.render_triangles_per_mesh}|{sorted(config.hidden_links)}|"
+        f"{REWRITE_VERSION}|{source}|{config.render_triangles_per_mesh}|{sorted(config.hidden_links)}|"
         f"{config.finger_slot_offset_m}".encode()
     ).hexdigest()[:16]
     urdf_path = out_dir / f"baxter-{key}.urdf"
@@ -169,6 +171,9 @@ def _rewrite_urdf(source: Path, share: Path, config: BaxterDescriptionConfig, ou
         if link.attrib.get("name") in config.hidden_links:
             for visual in link.findall("visual"):
                 link.remove(visual)
+            # PyBullet draws a link's collision shape when it has no visual: leave a speck.
+            speck = ET.SubElement(ET.SubElement(link, "visual"), "geometry")
+            ET.SubElement(speck, "sphere", radius="0.0001")
     for visual in root.iter("visual"):
         mesh = visual.find("geometry/mesh")
         if mesh is None:

@@ -158,8 +158,9 @@ class RemoteSite:
                 rim_x = side * (ws.bowl.rim_radius_m - ws.bowl.wall_thickness_m / 2)
                 tool = point + np.array([rim_x, 0.0, grasp_h])
                 if not reach.is_reachable(tool, self.config.reach_margin):
+                    xy = tuple(np.round(point[:2], 3).tolist())
                     raise WorkspaceError(
-                        f"The {name} point {tuple(np.round(point[:2], 3))} m is out of the right "
+                        f"The {name} point {xy} m is out of the right "
                         f"arm's reach from above: grasping the rim at {np.round(tool, 3).tolist()} "
                         f"needs {reach.reach_fraction(tool):.0%} of the arm's reach, the limit is "
                         f"{1 - self.config.reach_margin:.0%} (and at least "

@@ -62,8 +62,8 @@ class Workspace:
             r = self.bowl.rim_radius_m
             if np.any(xy - r < lo) or np.any(xy + r > hi):
                 raise WorkspaceError(
-                    f"Workspace.{name}={tuple(xy)}: a bowl of radius {r} m there overhangs the "
-                    f"table, which spans x in [{lo[0]:.3f}, {hi[0]:.3f}] and y in "
+                    f"Workspace.{name}={tuple(xy.tolist())}: a bowl of radius {r} m there "
+                    f"overhangs the table, which spans x in [{lo[0]:.3f}, {hi[0]:.3f}] and y in "
                     f"[{lo[1]:.3f}, {hi[1]:.3f}] m."
                 )
         gap = float(np.linalg.norm(np.subtract(self.start_xy_m, self.target_xy_m)))

@@ -31,7 +31,8 @@ def test_visual_meshes_are_decimated_and_blind_links_hidden(description: BaxterD
         assert len(trimesh.load(f, force="mesh").faces) <= budget
     for link in root.iter("link"):
         if link.attrib["name"] in HEAD_CAMERA_BLIND_LINKS:
-            assert link.find("visual") is None
+            (visual,) = link.findall("visual")
+            assert float(visual.find("geometry/sphere").attrib["radius"]) <= 1e-4
     # Collision meshes keep the original COLLADA geometry.
     collision = [c.find("geometry/mesh") for c in root.iter("collision")]
     assert all(m.attrib["filename"].endswith(".DAE") for m in collision if m is not None)
@@ -42,7 +43,7 @@ def test_missing_robot_data_is_a_clear_error(monkeypatch: pytest.MonkeyPatch) ->
         raise importlib.metadata.PackageNotFoundError(name)
 
     monkeypatch.setattr(importlib.metadata, "distribution", missing)
-    with pytest.raises(RobotDataNotFoundError, match="pip install example-robot-data==6.0.0"):
+    with pytest.raises(RobotDataNotFoundError, match=r"pip install example-robot-data==6.0.0"):
         find_baxter_urdf()
 
 
@@ -54,7 +55,7 @@ def test_robot_data_without_baxter_is_a_clear_error(monkeypatch: pytest.MonkeyPa
         files = [f for f in real.files or () if "baxter" not in str(f)]
 
     monkeypatch.setattr(importlib.metadata, "distribution", lambda name: NoBaxter())
-    with pytest.raises(RobotDataNotFoundError, match="holds no 'example-robot-data/robots/baxter"):
+    with pytest.raises(RobotDataNotFoundError, match=r"holds no 'example-robot-data/robots/baxter"):
         find_baxter_urdf()
 
 

@@ -44,16 +44,18 @@ def test_arm_limits_are_the_urdf_limits(site: RemoteSite) -> None:
 
 def test_unknown_names_are_reported_with_the_valid_ones(site: RemoteSite) -> None:
     kin: BaxterKinematics = site.kinematics
-    with pytest.raises(ConfigurationError, match="Unknown joint 'right_elbow'.*right_e1"):
+    with pytest.raises(ConfigurationError, match=r"Unknown joint 'right_elbow'.*right_e1"):
         kin.configuration({"right_elbow": 0.0})
-    with pytest.raises(ConfigurationError, match="Unknown frame 'gripper'.*right_gripper"):
+    with pytest.raises(ConfigurationError, match=r"Unknown frame 'gripper'.*right_gripper"):
         kin.frame_transform({}, "gripper")
-    with pytest.raises(ConfigurationError, match="Unknown link 'hand'"):
+    with pytest.raises(ConfigurationError, match=r"Unknown link 'hand'"):
         site.robot.link_transform("hand")
 
 
 def test_arm_targets_outside_limits_are_refused(site: RemoteSite) -> None:
     q = site.robot.arm_positions()
     q[3] = 3.0
-    with pytest.raises(ConfigurationError, match=r"joint right_e1 = 3.0000 is outside .*-0.0500, 2.6180"):
+    with pytest.raises(
+        ConfigurationError, match=r"joint right_e1 = 3.0000 is outside .*-0.0500, 2.6180"
+    ):
         site.robot.command_arm(q)

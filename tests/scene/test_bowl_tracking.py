@@ -1,0 +1,44 @@
+"""Bowl tracking against the simulator's ground truth, with depth noise on."""
+
+import numpy as np
+import pybullet as p
+import pytest
+
+from arteleop.scene import BowlTracker, RemoteSite
+from arteleop.transforms import invert_transform, transform_points
+
+
+@pytest.mark.parametrize("where", ["start", "target"])
+def test_tracking_error_at_most_5_mm(site: RemoteSite, where: str) -> None:
+    ws = site.config.workspace
+    site.place_bowl(ws.start_xy_m if where == "start" else ws.target_xy_m)
+    site.step(120)
+    tracker = BowlTracker(ws.bowl)
+    for _ in range(3):
+        track = tracker.track(site.capture(), ws.table_top_z_m)
+        assert track.found, track.reason
+        assert np.linalg.norm(track.position_m - site.bowl_position_m()) <= 0.005
+
+
+def test_out_of_view_is_not_found(site: RemoteSite) -> None:
+    xy = (0.40, 0.40)  # on the table, below the bottom edge of the camera's view
+    frame = site.capture()
+    pc = transform_points(invert_transform(frame.T_base_camera), [[*xy, -0.2]])
+    assert frame.intrinsics.project(pc)[0, 1] > frame.intrinsics.height_px + 80  # premise
+    site.place_bowl(xy)
+    track = BowlTracker(site.config.workspace.bowl).track(site.capture(), -0.2)
+    assert not track.found and track.position_m is None
+    assert "out of view or hidden" in track.reason
+
+
+def test_hidden_bowl_is_not_found(site: RemoteSite) -> None:
+    ws = site.config.workspace
+    site.step(60)
+    # A board held 20 cm above the bowl hides it from the head camera.
+    cover = site.client.createVisualShape(p.GEOM_BOX, halfExtents=[0.15, 0.15, 0.005])
+    site.client.createMultiBody(
+        0.0, -1, cover, basePosition=[*ws.start_xy_m, ws.table_top_z_m + 0.27]
+    )
+    track = BowlTracker(ws.bowl).track(site.capture(), ws.table_top_z_m)
+    assert not track.found
+    assert track.reason

@@ -1,0 +1,135 @@
+from dataclasses import replace
+
+import numpy as np
+import pybullet as p
+import pytest
+
+from arteleop.robot import RIGHT_ARM_JOINTS, BaxterDescriptionConfig
+from arteleop.robot.description import HEAD_CAMERA_BLIND_LINKS
+from arteleop.scene import (
+    DepthNoiseConfig,
+    HeadCameraConfig,
+    RemoteSite,
+    SiteConfig,
+    apply_depth_noise,
+    frame_to_point_cloud,
+)
+from arteleop.transforms import invert_transform, transform_points
+
+
+def test_kinect_like_field_of_view() -> None:
+    h, v = HeadCameraConfig().intrinsics.fov_deg
+    assert h == pytest.approx(57.0)
+    assert 42.0 < v < 45.0
+
+
+def test_frame_carries_intrinsics_pose_and_timestamp(site: RemoteSite) -> None:
+    site.step(12)
+    frame = site.capture()
+    assert frame.rgb.shape == (480, 640, 3) and frame.rgb.dtype == np.uint8
+    assert frame.depth_m.shape == (480, 640) and frame.depth_m.dtype == np.float32
+    assert frame.timestamp_s == pytest.approx(12 / 240)
+    expected = site.robot.link_transform("head") @ site.config.camera.T_mount_camera()
+    np.testing.assert_allclose(frame.T_base_camera, expected, atol=1e-12)
+    assert frame.intrinsics == site.config.camera.intrinsics
+    valid = frame.depth_m[frame.depth_m > 0]
+    assert valid.min() >= 0.8 and valid.max() <= 4.0
+
+
+def test_depth_matches_the_scene_geometry(noiseless_site: RemoteSite) -> None:
+    site = noiseless_site
+    site.step(120)
+    frame = site.capture(with_segmentation=True)
+    cloud = frame_to_point_cloud(frame)
+    seg = frame.segmentation[cloud.pixels[:, 0], cloud.pixels[:, 1]]
+    table_z = cloud.points_m[seg == site.table_id, 2]
+    assert len(table_z) > 50_000
+    # All but the slab's front face (a sliver of pixels) lies on the top face.
+    on_top = np.abs(table_z - site.config.workspace.table_top_z_m) < 1e-3
+    assert on_top.mean() > 0.99
+    assert (
+        table_z.min()
+        >= site.config.workspace.table_top_z_m - site.config.workspace.table_thickness_m
+    )
+    # The centre of the bowl's floor projects onto a bowl pixel at the right depth.
+    floor = site.bowl_position_m() + [0.0, 0.0, site.config.workspace.bowl.wall_thickness_m]
+    pc = transform_points(invert_transform(frame.T_base_camera), floor[None])[0]
+    u, v = np.round(frame.intrinsics.project(pc)[0]).astype(int)
+    assert frame.segmentation[v, u] == site.bowl_id
+    assert frame.depth_m[v, u] == pytest.approx(pc[2], abs=2e-3)
+
+
+def test_axial_noise_grows_with_the_square_of_depth() -> None:
+    rng = np.random.default_rng(0)
+    z = np.repeat(np.array([1.0, 2.0, 3.0], dtype=np.float32), 200_000).reshape(3, -1)
+    cfg = DepthNoiseConfig(quantize=False)
+    noisy = apply_depth_noise(z, 589.0, cfg, rng)
+    sigma = (noisy - z).std(axis=1)
+    np.testing.assert_allclose(sigma, 1.425e-3 * np.array([1.0, 4.0, 9.0]), rtol=0.02)
+
+
+def test_quantisation_lands_on_disparity_steps() -> None:
+    cfg = DepthNoiseConfig(enabled=False)
+    z = np.linspace(0.8, 4.0, 1000, dtype=np.float32)[None]
+    q = apply_depth_noise(z, 589.0, cfg, np.random.default_rng(0)).astype(np.float64)
+    steps = cfg.baseline_m * 589.0 / q / cfg.subpixel
+    np.testing.assert_allclose(steps, np.round(steps), atol=1e-3)
+    # The error is at most half a step, and a step is z^2 * subpixel / (b f).
+    assert np.all(np.abs(q - z) <= 0.5 * cfg.quantization_step_m(4.0, 589.0) + 1e-6)
+    assert cfg.quantization_step_m(1.0, 589.0) == pytest.approx(0.125 / (0.075 * 589.0))
+
+
+def test_invalid_pixels_stay_invalid() -> None:
+    z = np.array([[0.0, 1.0]], dtype=np.float32)
+    out = apply_depth_noise(z, 589.0, DepthNoiseConfig(), np.random.default_rng(0))
+    assert out[0, 0] == 0.0 and out[0, 1] > 0
+
+
+def test_same_seed_same_frame(site_config: SiteConfig) -> None:
+    def depth(seed: int) -> np.ndarray:
+        with RemoteSite(replace(site_config, seed=seed)) as s:
+            return s.capture().depth_m
+
+    a, b, c = depth(3), depth(3), depth(4)
+    assert np.array_equal(a, b)
+    assert not np.array_equal(a, c)
+
+
+def _links_seen(site: RemoteSite, n_poses: int = 25) -> set[str]:
+    """Robot links the head camera sees over random right-arm poses (simulator segmentation)."""
+    cam, rid = site.camera, site.robot.body_id
+    names = {i: n for n, i in site.robot.link_index.items()}
+    rng = np.random.default_rng(1)
+    lim = site.robot.right_arm_limits
+    seen: set[str] = set()
+    for _ in range(n_poses):
+        q = rng.uniform(lim.lower, lim.upper)
+        site.robot.set_joint_positions(dict(zip(RIGHT_ARM_JOINTS, q, strict=True)))
+        seg = np.asarray(
+            site.client.getCameraImage(
+                160,
+                120,
+                cam._view_gl,
+                cam._proj_gl,
+                shadow=0,
+                renderer=p.ER_TINY_RENDERER,
+                flags=p.ER_SEGMENTATION_MASK_OBJECT_AND_LINKINDEX,
+            )[4]
+        ).ravel()
+        seg = seg[seg >= 0]
+        mine = seg[(seg & ((1 << 24) - 1)) == rid]
+        seen |= {names.get(int(link), "base") for link in (mine >> 24) - 1}
+    return seen
+
+
+def test_hidden_links_are_never_in_the_head_cameras_view(
+    site: RemoteSite, site_config: SiteConfig, description_config: BaxterDescriptionConfig
+) -> None:
+    """Links the render model hides are ones the camera never sees, and hiding adds nothing."""
+    full = replace(description_config, hidden_links=())
+    with RemoteSite(replace(site_config, robot=full)) as full_site:
+        seen_full = _links_seen(full_site)
+    assert "right_gripper_base_link" in seen_full
+    assert not seen_full & set(HEAD_CAMERA_BLIND_LINKS)
+    # PyBullet draws a link's collision shape when it has no visual; the speck prevents that.
+    assert not _links_seen(site) & set(HEAD_CAMERA_BLIND_LINKS)

@@ -1,0 +1,34 @@
+from pathlib import Path
+
+import cv2
+import numpy as np
+import open3d as o3d
+import pytest
+
+from arteleop.cli import main
+
+
+def test_scene_command_writes_the_three_files(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert main(["scene", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    rgb = cv2.imread(str(tmp_path / "rgb.png"))
+    depth = cv2.imread(str(tmp_path / "depth.png"), cv2.IMREAD_UNCHANGED)
+    cloud = o3d.io.read_point_cloud(str(tmp_path / "cloud.ply"))
+    assert rgb.shape == (480, 640, 3)
+    assert depth.dtype == np.uint16 and depth.shape == (480, 640)
+    valid = depth[depth > 0]
+    assert 800 <= valid.min() and valid.max() <= 4000  # millimetres, in the sensor's range
+    assert len(cloud.points) == np.count_nonzero(depth)
+    z = np.asarray(cloud.points)[:, 2]
+    assert np.median(z) == pytest.approx(-0.2, abs=0.01)  # mostly table top, base frame, metres
+    error_mm = float(out.split("tracking error")[1].split("mm")[0])
+    assert error_mm <= 5.0
+
+
+def test_cli_reports_bad_options(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as exit_info:
+        main(["scene", "--width-px", "many"])
+    assert exit_info.value.code != 0
+    assert "many" in capsys.readouterr().err
