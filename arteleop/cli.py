@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import sys
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import tyro
 
@@ -58,18 +59,57 @@ def scene(cmd: SceneCommand) -> int:
     return 0
 
 
-COMMANDS = {"scene": (SceneCommand, scene)}
+@dataclass(frozen=True)
+class OperatorCheckCommand:
+    """Validate a wearable recording and summarise it; exit non-zero if it is invalid."""
+
+    file: tyro.conf.Positional[Path]
+    """the recording's CSV; its JSON sidecar sits beside it with the same stem"""
+
+
+def operator_check(cmd: OperatorCheckCommand) -> int:
+    from arteleop.operator import load_recording, reconstruct
+
+    rec = load_recording(cmd.file)
+    traj = reconstruct(rec)
+    measured_hz = (len(rec.time_s) - 1) / rec.duration_s
+    report = rec.report
+    print(f"recording     {cmd.file} (subject {rec.info.subject_id})")
+    print(f"duration      {rec.duration_s:.2f} s, {len(rec.time_s)} samples")
+    print(
+        f"rate          {rec.info.rate_hz:g} Hz in the sidecar, {measured_hz:.2f} Hz after filling"
+    )
+    print(f"gaps          {report.gaps} filled by slerp ({report.filled_samples} samples)")
+    print(f"renormalised  {report.renormalized} quaternions")
+    print(f"hand path     {traj.path_length_m():.3f} m (reconstructed pinch point, torso frame)")
+    return 0
+
+
+Command = tuple[type, Callable[[Any], int]]
+COMMANDS: dict[str, Command] = {"scene": (SceneCommand, scene)}
+GROUPS: dict[str, dict[str, Command]] = {
+    "operator": {"check": (OperatorCheckCommand, operator_check)}
+}
+DESCRIPTION = (
+    "arteleop: study Augmented Reality in robot teleoperation, in simulation. "
+    "Command groups: 'arteleop operator check FILE.csv' validates a wearable recording."
+)
 
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the `arteleop` command."""
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv and argv[0] in GROUPS:
+        commands, prog, args = GROUPS[argv[0]], f"arteleop {argv[0]}", argv[1:]
+    else:
+        commands, prog, args = COMMANDS, "arteleop", argv
     cmd = tyro.extras.subcommand_cli_from_dict(
-        {name: cfg for name, (cfg, _) in COMMANDS.items()},
-        prog="arteleop",
-        args=argv,
-        description="arteleop: study Augmented Reality in robot teleoperation, in simulation.",
+        {name: cfg for name, (cfg, _) in commands.items()},
+        prog=prog,
+        args=args,
+        description=DESCRIPTION,
     )
-    run = next(fn for cfg, fn in COMMANDS.values() if isinstance(cmd, cfg))
+    run = next(fn for cfg, fn in commands.values() if isinstance(cmd, cfg))
     try:
         return run(cmd)
     except ArteleopError as err:

@@ -21,3 +21,7 @@ class WorkspaceError(ConfigurationError):
 
 class CameraConfigError(ConfigurationError):
     """The camera configuration cannot work (for example, the camera does not see the table)."""
+
+
+class RecordingError(ArteleopError):
+    """A wearable recording is invalid. The message names the file, the line and the value."""

@@ -32,3 +32,34 @@ def test_cli_reports_bad_options(capsys: pytest.CaptureFixture[str]) -> None:
         main(["scene", "--width-px", "many"])
     assert exit_info.value.code != 0
     assert "many" in capsys.readouterr().err
+
+
+def test_operator_check_summarises_a_valid_recording(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from arteleop.operator import ImuErrorConfig, write_recording
+    from tests.operator.motions import reach_and_return
+
+    syn = reach_and_return(errors=ImuErrorConfig.ideal())
+    write_recording(syn.recording, tmp_path / "rec.csv")
+    assert main(["operator", "check", str(tmp_path / "rec.csv")]) == 0
+    out = capsys.readouterr().out
+    assert "duration      5.00 s, 501 samples" in out
+    assert "gaps          0 filled" in out
+    true_path = np.linalg.norm(np.diff(syn.hand_m, axis=0), axis=1).sum()
+    assert f"hand path     {true_path:.3f} m" in out
+
+
+def test_operator_check_fails_on_an_invalid_recording(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from arteleop.operator import write_recording
+    from tests.operator.motions import reach_and_return
+
+    path = tmp_path / "rec.csv"
+    write_recording(reach_and_return().recording, path)
+    lines = path.read_text().splitlines()
+    lines[3] = ",".join([*lines[3].split(",")[:13], "2.0"])  # grip of the sample on line 4
+    path.write_text("\n".join(lines) + "\n")
+    assert main(["operator", "check", str(path)]) == 2
+    assert "line 4, column grip: 2.0; expected 0 (open) to 1 (pinched)" in capsys.readouterr().err

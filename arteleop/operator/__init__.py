@@ -1,0 +1,72 @@
+"""The operator: a wearable IMU model of the right arm, recordings and their reconstruction."""
+
+from arteleop.operator.arm_model import (
+    SEGMENTS,
+    ArmAngles,
+    ArmModel,
+    hand_pose,
+    joint_positions,
+    segment_rotations,
+    segments_for_hand_pose,
+)
+from arteleop.operator.calibration import SensorMounting, calibrate
+from arteleop.operator.minimum_jerk import minimum_jerk, minimum_jerk_profile
+from arteleop.operator.reconstruction import (
+    HandSample,
+    HandTrajectory,
+    SampleStatus,
+    StreamingReconstructor,
+    reconstruct,
+)
+from arteleop.operator.recording import (
+    COLUMNS,
+    CalibrationPosture,
+    LoaderConfig,
+    LoadReport,
+    Recording,
+    RecordingInfo,
+    load_recording,
+    sidecar_path,
+    write_recording,
+)
+from arteleop.operator.synthesis import SynthesizedRecording, record_hand_motion
+from arteleop.operator.wearable import (
+    ImuErrorConfig,
+    WearableConfig,
+    WearableSignals,
+    simulate_wearable,
+)
+
+__all__ = [
+    "COLUMNS",
+    "SEGMENTS",
+    "ArmAngles",
+    "ArmModel",
+    "CalibrationPosture",
+    "HandSample",
+    "HandTrajectory",
+    "ImuErrorConfig",
+    "LoadReport",
+    "LoaderConfig",
+    "Recording",
+    "RecordingInfo",
+    "SampleStatus",
+    "SensorMounting",
+    "StreamingReconstructor",
+    "SynthesizedRecording",
+    "WearableConfig",
+    "WearableSignals",
+    "calibrate",
+    "hand_pose",
+    "joint_positions",
+    "load_recording",
+    "minimum_jerk",
+    "minimum_jerk_profile",
+    "reconstruct",
+    "record_hand_motion",
+    "segment_rotations",
+    "segments_for_hand_pose",
+    "sidecar_path",
+    "simulate_wearable",
+    "write_recording",
+]

@@ -1,0 +1,73 @@
+"""Sensor-to-segment calibration from the posture held at the start of a recording."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.spatial.transform import Rotation
+
+from arteleop.errors import RecordingError
+from arteleop.operator.arm_model import SEGMENTS, segment_rotations
+from arteleop.operator.recording import CalibrationPosture, Recording
+
+MAX_POSTURE_SPREAD_DEG = 10.0
+"""A sensor moving more than this during the hold means the posture was not held."""
+
+
+@dataclass(frozen=True)
+class SensorMounting:
+    """Result of calibration: how each IMU sits on its segment, and where the torso faces.
+
+    Attributes:
+        segment_sensor_wxyz: (3, 4) ``q_segment_sensor`` for upper arm, forearm and hand.
+        torso_heading_rad: Heading of the torso in the IMUs' earth frame.
+    """
+
+    segment_sensor_wxyz: NDArray[np.float64]
+    torso_heading_rad: float
+
+    def segment_orientations(self, sensor_quat_wxyz: NDArray[np.float64]) -> Rotation:
+        """Segment orientations in the torso frame, (N * 3) rotations, from (N, 3, 4) IMU data.
+
+        ``q_torso_segment = Rz(-heading) * q_earth_sensor * inverse(q_segment_sensor)``.
+        """
+        q = np.asarray(sensor_quat_wxyz, dtype=np.float64)
+        n = q.shape[0]
+        earth_sensor = Rotation.from_quat(q.reshape(-1, 4), scalar_first=True)
+        sensor_segment = Rotation.from_quat(
+            np.tile(self.segment_sensor_wxyz, (n, 1)), scalar_first=True
+        ).inv()
+        return Rotation.from_euler("z", -self.torso_heading_rad) * earth_sensor * sensor_segment
+
+
+def calibrate(recording: Recording, posture: CalibrationPosture | None = None) -> SensorMounting:
+    """Estimate each sensor's mounting from the samples of the initial calibration hold.
+
+    The mean orientation over the hold is compared with the known posture. Raises
+    :class:`RecordingError` if the hold is too short or the operator moved during it.
+    """
+    posture = posture or recording.info.calibration
+    t0 = recording.time_s[0]
+    hold = recording.time_s <= t0 + posture.hold_s
+    if hold.sum() < 10:
+        raise RecordingError(
+            f"Only {int(hold.sum())} samples in the {posture.hold_s} s calibration hold; need 10."
+        )
+    torso_segment = segment_rotations(posture.angles)
+    heading = Rotation.from_euler("z", posture.torso_heading_rad)
+    mounting = np.empty((3, 4))
+    for k, name in enumerate(SEGMENTS):
+        samples = Rotation.from_quat(recording.sensor_quat_wxyz[hold, k], scalar_first=True)
+        mean = samples.mean()
+        spread = float(np.degrees((mean.inv() * samples).magnitude().max()))
+        if spread > MAX_POSTURE_SPREAD_DEG:
+            raise RecordingError(
+                f"The {name} sensor turned {spread:.0f} deg during the {posture.hold_s} s "
+                f"calibration hold (at most {MAX_POSTURE_SPREAD_DEG:.0f} deg allowed): the "
+                "operator must hold the calibration posture still at the start."
+            )
+        segment_sensor = (heading * torso_segment[k]).inv() * mean
+        mounting[k] = segment_sensor.as_quat(scalar_first=True, canonical=True)
+    return SensorMounting(mounting, posture.torso_heading_rad)

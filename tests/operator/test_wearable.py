@@ -1,0 +1,81 @@
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from arteleop.errors import ConfigurationError
+from arteleop.operator import (
+    ArmAngles,
+    ImuErrorConfig,
+    WearableConfig,
+    segment_rotations,
+    simulate_wearable,
+)
+from arteleop.operator.wearable import gauss_markov
+
+
+def test_gauss_markov_has_the_stated_std_and_correlation() -> None:
+    x = gauss_markov(200_000, 0.5, 20.0, np.random.default_rng(0))
+    np.testing.assert_allclose(x.std(axis=0), 0.5, rtol=0.03)
+    lag1 = np.corrcoef(x[:-1, 0], x[1:, 0])[0, 1]
+    assert lag1 == pytest.approx(np.exp(-1 / 20), abs=0.005)
+
+
+def _still(n: int = 20_000) -> Rotation:
+    return Rotation.concatenate([segment_rotations(ArmAngles(elbow_flexion=1.0))] * n)
+
+
+def test_orientation_noise_is_1_deg_rms() -> None:
+    errors = ImuErrorConfig(heading_drift_deg_per_sqrt_s=0.0, drop_probability=0.0)
+    cfg = WearableConfig(errors=errors)
+    noisy = simulate_wearable(_still(), np.zeros(20_000), cfg, np.random.default_rng(1))
+    clean = simulate_wearable(
+        _still(1),
+        np.zeros(1),
+        WearableConfig(errors=ImuErrorConfig.ideal()),
+        np.random.default_rng(1),
+    )
+    angles = (
+        Rotation.from_quat(clean.sensor_quat_wxyz[0, 0], scalar_first=True).inv()
+        * Rotation.from_quat(noisy.sensor_quat_wxyz[:, 0], scalar_first=True)
+    ).magnitude()
+    assert np.degrees(np.sqrt(np.mean(angles**2))) == pytest.approx(1.0, rel=0.05)
+
+
+def test_heading_drift_is_a_random_walk_about_vertical() -> None:
+    errors = ImuErrorConfig(
+        noise_deg_rms=0.0, drop_probability=0.0, heading_drift_deg_per_sqrt_s=0.1
+    )
+    finals = []
+    for seed in range(200):
+        sig = simulate_wearable(
+            _still(1000), np.zeros(1000), WearableConfig(errors=errors), np.random.default_rng(seed)
+        )
+        first = Rotation.from_quat(sig.sensor_quat_wxyz[0, 0], scalar_first=True)
+        last = Rotation.from_quat(sig.sensor_quat_wxyz[-1, 0], scalar_first=True)
+        d = last * first.inv()  # earth-frame rotation: about z only
+        assert np.allclose(d.as_rotvec()[:2], 0.0, atol=1e-9)
+        finals.append(d.as_rotvec()[2])
+    # After ~10 s, std = 0.1 deg * sqrt(10 s).
+    assert np.degrees(np.std(finals)) == pytest.approx(0.1 * np.sqrt(9.99), rel=0.15)
+
+
+def test_drops_remove_whole_packets() -> None:
+    errors = ImuErrorConfig(
+        noise_deg_rms=0.0, heading_drift_deg_per_sqrt_s=0.0, drop_probability=0.02, drop_burst_max=3
+    )
+    sig = simulate_wearable(
+        _still(10_000), np.zeros(10_000), WearableConfig(errors=errors), np.random.default_rng(2)
+    )
+    assert sig.dropped == 10_000 - len(sig.time_s)
+    assert (
+        0.02 * 1.5 * 10_000 * 0.7 < sig.dropped < 0.02 * 2 * 10_000 * 1.1
+    )  # mean burst ~2 samples
+    steps = np.diff(sig.time_s)
+    gaps = steps[steps > 0.015]
+    # Losses last 1-3 samples; only neighbouring losses that merge last longer.
+    assert np.mean(gaps <= 0.04 + 1e-9) > 0.9
+
+
+def test_bad_error_config() -> None:
+    with pytest.raises(ConfigurationError, match=r"drop_probability=1.5 must be in"):
+        ImuErrorConfig(drop_probability=1.5)
