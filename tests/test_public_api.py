@@ -2,7 +2,7 @@ import importlib
 
 import pytest
 
-PACKAGES = ["arteleop.operator", "arteleop.robot", "arteleop.scene"]
+PACKAGES = ["arteleop.analysis", "arteleop.operator", "arteleop.robot", "arteleop.scene"]
 
 
 @pytest.mark.parametrize("name", PACKAGES)

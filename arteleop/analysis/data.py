@@ -1,0 +1,208 @@
+"""Reading and checking study files (docs/data-format.md). Every error names file, line, column."""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from arteleop.analysis.errors import AnalysisInputError
+
+MODALITIES: tuple[str, ...] = ("none", "manipulation", "embodiment", "task", "full")
+MEASURES: tuple[str, ...] = ("completion_time_s", "placement_error_m", "normalized_jerk_xy")
+PHASES = ("familiarization", "experimental")
+AR_CLASSES = ("embodiment", "manipulation", "task")
+QUESTIONNAIRE_ITEMS = ("presence", "embodiment", "ease")
+
+TRIAL_COLUMNS = (
+    "participant", "phase", "trial_index", "modality", "position", "seed", "outcome",
+    "completion_time_s", "placement_error_m", "placement_error_true_m", "normalized_jerk_xy",
+    "grasp_attempts", "hand_path_length_m", "latency_median_ms", "trajectory_file",
+)  # fmt: skip
+TRIAL_REQUIRED = (
+    "participant", "phase", "modality", "position", "outcome", "completion_time_s",
+    "placement_error_m",
+)  # fmt: skip
+TRIAL_NUMERIC = (
+    "trial_index", "position", "seed", "completion_time_s", "placement_error_m",
+    "placement_error_true_m", "normalized_jerk_xy", "grasp_attempts", "hand_path_length_m",
+    "latency_median_ms",
+)  # fmt: skip
+PARTICIPANT_COLUMNS = (
+    "participant", "age", "gender", "handedness", "avr_experience", "avr_hours",
+    "games_experience", "games_hours", "source",
+)  # fmt: skip
+PARTICIPANT_NUMERIC = ("age", "avr_experience", "avr_hours", "games_experience", "games_hours")
+QUESTIONNAIRE_COLUMNS = ("participant", "ar_class", "item", "score")
+TRAJECTORY_COLUMNS = ("time_s", "hand_x_m", "hand_y_m", "hand_z_m")
+
+
+@dataclass(frozen=True)
+class StudyData:
+    """A study's tables after checking.
+
+    Attributes:
+        trials: Every trial row; numeric columns are floats (NaN where empty).
+        participants: Participant table, or None if not given.
+        questionnaire: Questionnaire table, or None if not given.
+        base_dir: Folder that ``trajectory_file`` paths are relative to.
+        trials_path: Where the trials came from.
+    """
+
+    trials: pd.DataFrame
+    participants: pd.DataFrame | None
+    questionnaire: pd.DataFrame | None
+    base_dir: Path
+    trials_path: Path
+
+    def analysed_trials(self) -> pd.DataFrame:
+        """Experimental trials whose outcome is ``success``."""
+        t = self.trials
+        return t[(t["phase"] == "experimental") & (t["outcome"] == "success")].copy()
+
+
+def load_study(path: Path, participants_path: Path | None = None) -> StudyData:
+    """Load a run folder (trials.csv and optional participants.csv, questionnaire.csv) or a bare
+    trials CSV (with ``participants_path`` if given)."""
+    path = Path(path)
+    if path.is_dir():
+        trials_path = path / "trials.csv"
+        base = path
+        participants_path = participants_path or _optional(path / "participants.csv")
+        questionnaire_path = _optional(path / "questionnaire.csv")
+    else:
+        trials_path, base, questionnaire_path = path, path.parent, None
+    if not trials_path.is_file():
+        raise AnalysisInputError(f"{trials_path}: no such file; a run folder holds trials.csv")
+    trials = read_table(
+        trials_path, TRIAL_COLUMNS, TRIAL_REQUIRED, TRIAL_NUMERIC,
+        {"phase": PHASES, "modality": MODALITIES},
+    )  # fmt: skip
+    _check_trials(trials_path, trials)
+    participants = None
+    if participants_path is not None:
+        participants = read_table(
+            participants_path, PARTICIPANT_COLUMNS, ("participant",), PARTICIPANT_NUMERIC,
+            {"source": ("synthetic", "real", "")},
+        )  # fmt: skip
+        _check_range(participants_path, participants, "avr_hours", 1, 3)
+        _check_range(participants_path, participants, "games_hours", 1, 3)
+    questionnaire = None
+    if questionnaire_path is not None:
+        questionnaire = read_table(
+            questionnaire_path, QUESTIONNAIRE_COLUMNS, QUESTIONNAIRE_COLUMNS, ("score",),
+            {"ar_class": AR_CLASSES, "item": QUESTIONNAIRE_ITEMS},
+        )  # fmt: skip
+        _check_range(questionnaire_path, questionnaire, "score", 1, 7)
+    return StudyData(trials, participants, questionnaire, base, trials_path)
+
+
+def read_table(
+    path: Path,
+    known: Sequence[str],
+    required: Sequence[str],
+    numeric: Sequence[str],
+    categories: Mapping[str, Sequence[str]],
+) -> pd.DataFrame:
+    """Read a CSV as text, check its columns and values, convert the numeric columns."""
+    try:
+        df = pd.read_csv(path, dtype=str, keep_default_na=False, skipinitialspace=True)
+    except (OSError, pd.errors.ParserError, pd.errors.EmptyDataError) as err:
+        raise AnalysisInputError(f"{path}: cannot be read as CSV ({err})") from None
+    df.columns = [c.strip() for c in df.columns]
+    for column in df.columns:
+        if column not in known:
+            close = difflib.get_close_matches(column, known, n=1)
+            hint = f" Did you mean '{close[0]}'?" if close else ""
+            raise AnalysisInputError(
+                f"{path}, line 1: unknown column '{column}'.{hint} "
+                f"Known columns: {', '.join(known)}"
+            )
+    missing = [c for c in required if c not in df.columns]
+    if missing:
+        raise AnalysisInputError(f"{path}, line 1: missing required column(s) {', '.join(missing)}")
+    for column in known:
+        if column not in df.columns:
+            df[column] = ""
+    df = df[list(known)].apply(lambda s: s.str.strip())
+    for column in required:
+        empty = np.flatnonzero(df[column].to_numpy() == "")
+        if len(empty):
+            raise AnalysisInputError(
+                f"{path}, line {empty[0] + 2}, column {column}: empty, but the column is required"
+            )
+    for column, allowed in categories.items():
+        bad = ~df[column].isin(allowed) & (df[column] != "")
+        if bad.any():
+            i = int(np.flatnonzero(bad.to_numpy())[0])
+            raise AnalysisInputError(
+                f"{path}, line {i + 2}, column {column}: unknown value '{df[column].iloc[i]}'. "
+                f"Expected one of: {', '.join(a for a in allowed if a)}"
+            )
+    for column in numeric:
+        values = pd.to_numeric(df[column].replace("", np.nan), errors="coerce")
+        bad = values.isna() & (df[column] != "")
+        if bad.any():
+            i = int(np.flatnonzero(bad.to_numpy())[0])
+            raise AnalysisInputError(
+                f"{path}, line {i + 2}, column {column}: '{df[column].iloc[i]}' is not a number"
+            )
+        df[column] = values.astype(float)
+    return df
+
+
+def load_trajectory(path: Path) -> pd.DataFrame:
+    """A trajectory file: at least time_s, hand_x_m, hand_y_m, hand_z_m."""
+    if not path.is_file():
+        raise AnalysisInputError(f"{path}: trajectory file not found")
+    df = pd.read_csv(path)
+    missing = [c for c in TRAJECTORY_COLUMNS if c not in df.columns]
+    if missing:
+        raise AnalysisInputError(f"{path}, line 1: missing column(s) {', '.join(missing)}")
+    return df
+
+
+def _optional(path: Path) -> Path | None:
+    return path if path.is_file() else None
+
+
+def _check_trials(path: Path, trials: pd.DataFrame) -> None:
+    exp = trials[trials["phase"] == "experimental"]
+    bad_pos = exp[~exp["position"].isin([1.0, 2.0, 3.0, 4.0, 5.0])]
+    if len(bad_pos):
+        i = bad_pos.index[0]
+        raise AnalysisInputError(
+            f"{path}, line {i + 2}, column position: {trials['position'][i]:g}; expected 1 to 5"
+        )
+    dup = exp[exp.duplicated(["participant", "modality"], keep=False)]
+    if len(dup):
+        first = dup.iloc[0]
+        lines = [str(i + 2) for i in dup.index[
+            (dup["participant"] == first["participant"]) & (dup["modality"] == first["modality"])
+        ]]  # fmt: skip
+        raise AnalysisInputError(
+            f"{path}, lines {', '.join(lines)}: participant '{first['participant']}' has "
+            f"{len(lines)} experimental trials in modality '{first['modality']}'; "
+            "the design has one."
+        )
+    for column in ("completion_time_s", "placement_error_m"):
+        neg = trials[trials[column] < 0]
+        if len(neg):
+            i = neg.index[0]
+            raise AnalysisInputError(
+                f"{path}, line {i + 2}, column {column}: {trials[column][i]:g} is negative"
+            )
+
+
+def _check_range(path: Path, df: pd.DataFrame, column: str, lo: float, hi: float) -> None:
+    bad = df[column].notna() & ~df[column].between(lo, hi)
+    if bad.any():
+        i = int(np.flatnonzero(bad.to_numpy())[0])
+        raise AnalysisInputError(
+            f"{path}, line {i + 2}, column {column}: {df[column].iloc[i]:g}; "
+            f"expected {lo:g} to {hi:g}"
+        )

@@ -1,0 +1,174 @@
+"""Write an analysis to a report folder: CSV tables, figures and a readable report.md."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from arteleop.analysis.data import MEASURES, MODALITIES, StudyData
+from arteleop.analysis.figures import (
+    expertise_bars,
+    measure_boxplot,
+    questionnaire_boxplot,
+    trajectory_plot,
+)
+from arteleop.analysis.statistics import AnalysisOptions, trim_extremes
+from arteleop.analysis.study_analysis import EXPERT_MIN_BUCKET, EXPERTISE_KINDS, AnalysisResult
+
+TEST_COLUMNS = (
+    "subset", "measure", "group_a", "group_b", "test", "n_a", "n_b", "statistic", "p_value",
+    "effect_size", "effect_size_kind", "stars", "note",
+)  # fmt: skip
+
+
+def write_report(
+    study: StudyData, result: AnalysisResult, options: AnalysisOptions, out_dir: Path
+) -> dict[str, Path]:
+    """Write tests.csv, normality.csv, order_effect.csv, descriptives.csv, report.md, figures/."""
+    out_dir.mkdir(parents=True, exist_ok=True)
+    figures = out_dir / "figures"
+    figures.mkdir(exist_ok=True)
+    files = {}
+    tests = result.tests.reindex(columns=TEST_COLUMNS)
+    for name, df in (
+        ("tests.csv", tests),
+        ("normality.csv", result.normality),
+        ("order_effect.csv", result.order_effect),
+        ("descriptives.csv", result.descriptives),
+    ):
+        df.to_csv(out_dir / name, index=False, float_format="%.6g")
+        files[name] = out_dir / name
+    files |= _figures(study, result, options, figures)
+    (out_dir / "report.md").write_text(_markdown(study, result, options, tests, files, out_dir))
+    files["report.md"] = out_dir / "report.md"
+    return files
+
+
+def _figures(
+    study: StudyData, result: AnalysisResult, options: AnalysisOptions, figures: Path
+) -> dict[str, Path]:
+    files = {}
+    trials = result.trials
+    all_tests = result.tests[result.tests["subset"] == "all"] if len(result.tests) else result.tests
+    for m in MEASURES:
+        if m not in trials or not trials[m].notna().any():
+            continue
+        sub = trim_extremes(trials, m, ["modality"]) if options.trim else trials
+        values = {mod: sub[sub["modality"] == mod][m].dropna().to_numpy() for mod in MODALITIES}
+        path = figures / f"boxplot_{m}.png"
+        measure_boxplot(values, all_tests, m, path)
+        files[path.name] = path
+    if study.questionnaire is not None:
+        path = figures / "questionnaire.png"
+        questionnaire_boxplot(study.questionnaire, path)
+        files[path.name] = path
+    if study.participants is not None:
+        for kind, column in EXPERTISE_KINDS.items():
+            known = study.participants.dropna(subset=[column]).set_index("participant")[column]
+            if known.empty:
+                continue
+            expert = known >= EXPERT_MIN_BUCKET
+            for m in ("completion_time_s", "placement_error_m"):
+                path = figures / f"expertise_{kind}_{m}.png"
+                expertise_bars(trials, expert, m, kind, path)
+                files[path.name] = path
+    if result.trajectories:
+        path = figures / "trajectories_xy.png"
+        trajectory_plot(trials, result.trajectories, path)
+        files[path.name] = path
+    return files
+
+
+def _fmt(v: float, digits: int = 3) -> str:
+    return "" if v is None or (isinstance(v, float) and not np.isfinite(v)) else f"{v:.{digits}g}"
+
+
+def _markdown(
+    study: StudyData,
+    result: AnalysisResult,
+    options: AnalysisOptions,
+    tests: pd.DataFrame,
+    files: dict[str, Path],
+    out_dir: Path,
+) -> str:
+    c = result.counts
+    excluded = (
+        ", ".join(
+            f"{k.removeprefix('excluded_')}: {v}" for k, v in c.items() if k.startswith("excluded_")
+        )
+        or "none"
+    )
+    lines = [
+        "# Study analysis",
+        "",
+        f"Source: `{study.trials_path}`",
+        "",
+        f"- Trials in the file: {c['rows']} ({c['familiarization']} familiarisation, {c['experimental']} experimental).",
+        f"- Analysed: {c['analysed']} experimental trials with outcome `success`. Experimental trials left out, by outcome: {excluded}.",
+        f"- Participants: {result.trials['participant'].nunique()}.",
+        "",
+        "## Method",
+        "",
+        "Only experimental trials that succeeded are analysed. "
+        + (
+            "Per modality and measure, the participant with the maximum and the one with the minimum value are removed (as in the thesis). "
+            if options.trim
+            else "No trimming. "
+        )
+        + "Each distribution is tested for normality with Lilliefors' test (p > 0.05 = normal). ",
+        "",
+    ]
+    if options.paired:
+        lines.append(
+            "Modalities are compared within subjects: the paired t-test when the paired differences are normal, otherwise the Wilcoxon signed-rank test (two-sided)."
+        )
+    else:
+        lines.append(
+            "Each pair of modalities is compared with Student's t-test when both samples are normal, otherwise with the Mann-Whitney U test (two-sided, normal approximation with continuity correction, as MATLAB's `ranksum`)."
+        )
+    lines += [
+        "",
+        "Order effects: one-way ANOVA of each measure over trial position 1-5 (untrimmed). "
+        + (
+            "p-values of each family (subset x measure) are Holm-corrected. "
+            if options.holm
+            else "p-values are not corrected for multiple comparisons. "
+        )
+        + "Effect sizes: Cohen's d (pooled SD; d_z for paired tests) with t-tests, the rank-biserial correlation with rank tests, eta squared with ANOVA. Stars: * p <= 0.05, ** p < 0.01.",
+        "",
+        "## Comparisons between modalities (all participants)",
+        "",
+        "| measure | a | b | test | n | statistic | p | effect | |",
+        "| --- | --- | --- | --- | --- | ---: | ---: | ---: | --- |",
+    ]
+    all_rows = tests[(tests["subset"] == "all") & (tests["test"] != "anova")]
+    for _, r in all_rows.iterrows():
+        why = f" ({r['note']})" if isinstance(r["note"], str) and r["note"] else ""
+        lines.append(
+            f"| {r['measure']} | {r['group_a']} | {r['group_b']} | {r['test'] or '-'}{why} | {r['n_a']}/{r['n_b']} "
+            f"| {_fmt(r['statistic'])} | {_fmt(r['p_value'])} | {_fmt(r['effect_size'])} {r['effect_size_kind'] or ''} | {r['stars'] or ''} |"
+        )
+    lines += [
+        "",
+        "## Order effect (one-way ANOVA over trial position)",
+        "",
+        "| measure | F | df | p | eta squared |",
+        "| --- | ---: | ---: | ---: | ---: |",
+    ]
+    for _, r in result.order_effect.iterrows():
+        lines.append(
+            f"| {r['measure']} | {_fmt(r['F'])} | {_fmt(r['df_between'])}, {_fmt(r['df_within'])} | {_fmt(r['p_value'])} | {_fmt(r.get('eta_squared', np.nan))} |"
+        )
+    sig = tests[(tests["stars"] != "") & tests["stars"].notna() & (tests["subset"] != "all")]
+    if len(sig):
+        lines += ["", "## Significant results in subsets", ""]
+        lines += [
+            f"- {r['subset']}, {r['measure']}: {r['group_a']} vs {r['group_b']} ({r['test']}, p = {_fmt(r['p_value'])}) {r['stars']}"
+            for _, r in sig.iterrows()
+        ]
+    if result.notes:
+        lines += ["", "## Notes", ""] + [f"- {n}" for n in result.notes]
+    lines += ["", "## Files", ""] + [f"- `{p.relative_to(out_dir)}`" for p in files.values()]
+    return "\n".join(lines) + "\n"

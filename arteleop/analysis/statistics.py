@@ -1,0 +1,320 @@
+"""The study's statistics, as STUDY.md §5 describes the thesis's analysis, plus options.
+
+Default (the thesis): per modality and measure, drop the participant with the maximum and the
+one with the minimum value; test each distribution for normality with Lilliefors' test; compare
+each pair of modalities with Student's t-test when both are normal, otherwise the Mann-Whitney U
+test (two-sided, normal approximation with continuity correction, as MATLAB's ``ranksum`` for
+samples this size); one-way ANOVA over trial position for order effects.
+
+Options: paired tests for the within-subject design (paired t-test when the differences are
+normal, else Wilcoxon signed-rank), Holm correction within each family (subset x measure), and
+no trimming. Every p-value comes with an effect size: Cohen's d (pooled SD; d_z for paired
+tests) or the rank-biserial correlation.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Sequence
+from dataclasses import asdict, dataclass
+
+import numpy as np
+import pandas as pd
+from numpy.typing import NDArray
+from scipy import stats
+from statsmodels.stats.diagnostic import lilliefors
+from statsmodels.stats.multitest import multipletests
+
+MIN_NORMALITY_N = 4  # Lilliefors' table starts at n = 4
+MIN_TEST_N = 3
+
+
+@dataclass(frozen=True)
+class AnalysisOptions:
+    """How to run the statistics.
+
+    Attributes:
+        trim: Drop the maximum and minimum participant per group and measure (the thesis).
+        paired: Within-subject tests (paired t-test / Wilcoxon) between modalities.
+        holm: Holm-correct the p-values of each family of pairwise tests.
+        alpha: Significance level for the normality decision (and the star for p <= alpha).
+    """
+
+    trim: bool = True
+    paired: bool = False
+    holm: bool = False
+    alpha: float = 0.05
+
+
+@dataclass(frozen=True)
+class TestResult:
+    """One row of tests.csv."""
+
+    __test__ = False  # not a pytest test class, despite the name
+    subset: str
+    measure: str
+    group_a: str
+    group_b: str
+    test: str
+    n_a: int
+    n_b: int
+    statistic: float
+    p_value: float
+    effect_size: float
+    effect_size_kind: str
+    stars: str
+    note: str = ""
+
+
+@dataclass(frozen=True)
+class NormalityResult:
+    """One row of normality.csv."""
+
+    subset: str
+    measure: str
+    group: str
+    n: int
+    statistic: float
+    p_value: float
+    normal: bool | None
+    note: str = ""
+
+
+def stars(p: float, alpha: float = 0.05) -> str:
+    """'**' for p < 0.01, '*' for p <= alpha, '' otherwise (and for missing p)."""
+    if not np.isfinite(p):
+        return ""
+    return "**" if p < 0.01 else "*" if p <= alpha else ""
+
+
+def trim_extremes(df: pd.DataFrame, value: str, by: Sequence[str]) -> pd.DataFrame:
+    """Drop, within each group of ``by``, the row with the largest and the smallest ``value``."""
+    kept = []
+    for _, group in df.dropna(subset=[value]).groupby(list(by), sort=False):
+        if len(group) <= 2:
+            continue
+        order = group[value].to_numpy().argsort(kind="stable")
+        kept.append(group.iloc[np.sort(order[1:-1])])
+    return pd.concat(kept) if kept else df.iloc[0:0]
+
+
+def normality(values: NDArray[np.float64], alpha: float = 0.05) -> tuple[float, float, bool | None]:
+    """Lilliefors test: (statistic, p, normal?). ``normal`` is None when n < 4."""
+    x = np.asarray(values, dtype=np.float64)
+    if len(x) < MIN_NORMALITY_N or np.ptp(x) == 0:
+        return math.nan, math.nan, None
+    stat, p = lilliefors(x, dist="norm", pvalmethod="table")
+    return float(stat), float(p), bool(p > alpha)
+
+
+def cohens_d(a: NDArray[np.float64], b: NDArray[np.float64]) -> float:
+    """(mean a - mean b) / pooled standard deviation (ddof = 1)."""
+    na, nb = len(a), len(b)
+    pooled = np.sqrt(((na - 1) * np.var(a, ddof=1) + (nb - 1) * np.var(b, ddof=1)) / (na + nb - 2))
+    return float((np.mean(a) - np.mean(b)) / pooled) if pooled > 0 else math.nan
+
+
+def rank_biserial(u_a: float, na: int, nb: int) -> float:
+    """Rank-biserial correlation from the U of sample a: positive when a tends to be larger."""
+    return float(2.0 * u_a / (na * nb) - 1.0)
+
+
+def compare_independent(
+    a: NDArray[np.float64], b: NDArray[np.float64], normal: bool
+) -> tuple[str, float, float, float, str]:
+    """(test, statistic, p, effect size, effect kind) for two independent samples."""
+    if normal:
+        res = stats.ttest_ind(a, b, equal_var=True)
+        return "ttest", float(res.statistic), float(res.pvalue), cohens_d(a, b), "cohen_d"
+    res = stats.mannwhitneyu(
+        a, b, alternative="two-sided", method="asymptotic", use_continuity=True
+    )
+    u = float(res.statistic)
+    return "mannwhitneyu", u, float(res.pvalue), rank_biserial(u, len(a), len(b)), "rank_biserial"
+
+
+def compare_paired(
+    a: NDArray[np.float64], b: NDArray[np.float64], normal: bool
+) -> tuple[str, float, float, float, str]:
+    """(test, statistic, p, effect size, effect kind) for paired samples (a[i] with b[i])."""
+    d = a - b
+    if normal:
+        res = stats.ttest_rel(a, b)
+        sd = np.std(d, ddof=1)
+        return (
+            "paired_ttest",
+            float(res.statistic),
+            float(res.pvalue),
+            float(np.mean(d) / sd),
+            "cohen_dz",
+        )
+    res = stats.wilcoxon(a, b, zero_method="wilcox", correction=True, method="approx")
+    nz = d[d != 0]
+    ranks = stats.rankdata(np.abs(nz))
+    t_plus, t_minus = ranks[nz > 0].sum(), ranks[nz < 0].sum()
+    r = (t_plus - t_minus) / (t_plus + t_minus) if len(nz) else math.nan
+    return "wilcoxon", float(res.statistic), float(res.pvalue), float(r), "rank_biserial"
+
+
+def _missing(
+    subset: str, measure: str, a: str, b: str, test: str, na: int, nb: int, why: str
+) -> TestResult:
+    return TestResult(
+        subset, measure, a, b, test, na, nb, math.nan, math.nan, math.nan, "", "", why
+    )
+
+
+def pairwise(
+    df: pd.DataFrame,
+    value: str,
+    group_col: str,
+    groups: Sequence[str],
+    subset: str,
+    options: AnalysisOptions,
+    measure: str | None = None,
+) -> tuple[list[TestResult], list[NormalityResult]]:
+    """All pairwise comparisons of ``value`` between ``groups`` of ``group_col``.
+
+    ``df`` must already be trimmed if trimming is wanted. Paired tests pair rows by participant.
+    """
+    measure = measure or value
+    data = {g: df[df[group_col] == g].dropna(subset=[value]) for g in groups}
+    norm_rows = []
+    normal: dict[str, bool | None] = {}
+    for g in groups:
+        stat, p, is_normal = normality(data[g][value].to_numpy(), options.alpha)
+        normal[g] = is_normal
+        note = (
+            ""
+            if is_normal is not None
+            else f"n={len(data[g])} is too few for Lilliefors (need {MIN_NORMALITY_N})"
+        )
+        norm_rows.append(
+            NormalityResult(subset, measure, g, len(data[g]), stat, p, is_normal, note)
+        )
+    rows: list[TestResult] = []
+    for ga, gb in itertools.combinations(groups, 2):
+        a_df, b_df = data[ga], data[gb]
+        if options.paired:
+            both = a_df.merge(b_df, on="participant", suffixes=("_a", "_b"))
+            a, b = both[f"{value}_a"].to_numpy(), both[f"{value}_b"].to_numpy()
+            if len(a) < MIN_TEST_N:
+                rows.append(
+                    _missing(
+                        subset,
+                        measure,
+                        ga,
+                        gb,
+                        "paired",
+                        len(a),
+                        len(b),
+                        f"too few pairs ({len(a)}, need {MIN_TEST_N})",
+                    )
+                )
+                continue
+            _, _, diff_normal = normality(a - b, options.alpha)
+            test = compare_paired(a, b, bool(diff_normal))
+        else:
+            a, b = a_df[value].to_numpy(), b_df[value].to_numpy()
+            if min(len(a), len(b)) < MIN_TEST_N:
+                rows.append(
+                    _missing(
+                        subset,
+                        measure,
+                        ga,
+                        gb,
+                        "",
+                        len(a),
+                        len(b),
+                        f"too few values ({len(a)} and {len(b)}, need {MIN_TEST_N} each)",
+                    )
+                )
+                continue
+            test = compare_independent(a, b, bool(normal[ga] and normal[gb]))
+        name, stat, p, effect, kind = test
+        rows.append(
+            TestResult(
+                subset,
+                measure,
+                ga,
+                gb,
+                name,
+                len(a),
+                len(b),
+                stat,
+                p,
+                effect,
+                kind,
+                stars(p, options.alpha),
+            )
+        )
+    if options.holm:
+        rows = holm(rows, options.alpha)
+    return rows, norm_rows
+
+
+def holm(rows: list[TestResult], alpha: float = 0.05) -> list[TestResult]:
+    """Holm-adjust the p-values of one family of tests (rows without p stay as they are)."""
+    idx = [i for i, r in enumerate(rows) if np.isfinite(r.p_value)]
+    if not idx:
+        return rows
+    adjusted = multipletests([rows[i].p_value for i in idx], alpha=alpha, method="holm")[1]
+    out = list(rows)
+    for i, p in zip(idx, adjusted, strict=True):
+        r = asdict(rows[i]) | {
+            "p_value": float(p),
+            "stars": stars(float(p), alpha),
+            "note": "Holm-adjusted",
+        }
+        out[i] = TestResult(**r)
+    return out
+
+
+def order_effect(df: pd.DataFrame, value: str, subset: str = "all") -> tuple[TestResult, dict]:
+    """One-way ANOVA of ``value`` over trial position 1..5."""
+    groups = [g[value].dropna().to_numpy() for _, g in df.groupby("position")]
+    groups = [g for g in groups if len(g)]
+    n = sum(len(g) for g in groups)
+    summary = {"measure": value, "k": len(groups), "n": n}
+    if len(groups) < 2 or n - len(groups) < 1:
+        summary |= {
+            "F": math.nan,
+            "p_value": math.nan,
+            "df_between": math.nan,
+            "df_within": math.nan,
+        }
+        return _missing(
+            subset, value, "position", "", "anova", n, len(groups), "too few positions or trials"
+        ), summary
+    res = stats.f_oneway(*groups)
+    eta2 = _eta_squared(groups)
+    summary |= {
+        "F": float(res.statistic),
+        "p_value": float(res.pvalue),
+        "df_between": len(groups) - 1,
+        "df_within": n - len(groups),
+        "eta_squared": eta2,
+    }
+    row = TestResult(
+        subset,
+        value,
+        "position",
+        "",
+        "anova",
+        n,
+        len(groups),
+        float(res.statistic),
+        float(res.pvalue),
+        eta2,
+        "eta_squared",
+        stars(float(res.pvalue)),
+    )
+    return row, summary
+
+
+def _eta_squared(groups: Sequence[NDArray[np.float64]]) -> float:
+    allv = np.concatenate(groups)
+    ss_between = sum(len(g) * (np.mean(g) - np.mean(allv)) ** 2 for g in groups)
+    ss_total = float(np.sum((allv - np.mean(allv)) ** 2))
+    return float(ss_between / ss_total) if ss_total > 0 else math.nan

@@ -1,0 +1,248 @@
+"""Run the whole analysis of a study: which comparisons, on which subsets, and why."""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from arteleop.analysis.data import (
+    AR_CLASSES,
+    MEASURES,
+    MODALITIES,
+    QUESTIONNAIRE_ITEMS,
+    StudyData,
+    load_trajectory,
+)
+from arteleop.analysis.errors import AnalysisInputError
+from arteleop.analysis.smoothness import normalized_jerk
+from arteleop.analysis.statistics import (
+    AnalysisOptions,
+    NormalityResult,
+    TestResult,
+    compare_independent,
+    normality,
+    order_effect,
+    pairwise,
+    stars,
+    trim_extremes,
+)
+
+EXPERTISE_KINDS = {"avr": "avr_hours", "games": "games_hours"}
+EXPERT_MIN_BUCKET = 2  # at least two hours a week (STUDY.md §4)
+
+
+@dataclass
+class AnalysisResult:
+    """Everything the report is made of."""
+
+    tests: pd.DataFrame
+    normality: pd.DataFrame
+    order_effect: pd.DataFrame
+    descriptives: pd.DataFrame
+    trials: pd.DataFrame  # the analysed trials, with jerk filled in where it could be
+    trajectories: dict[tuple[str, float], pd.DataFrame]
+    notes: list[str] = field(default_factory=list)
+    counts: dict[str, int] = field(default_factory=dict)
+
+
+def analyse(study: StudyData, options: AnalysisOptions | None = None) -> AnalysisResult:
+    """The thesis's analysis (STUDY.md §5) with the given options."""
+    options = options or AnalysisOptions()
+    notes: list[str] = []
+    trials = study.analysed_trials()
+    counts = {
+        "rows": len(study.trials),
+        "familiarization": int((study.trials["phase"] == "familiarization").sum()),
+        "experimental": int((study.trials["phase"] == "experimental").sum()),
+        "analysed": len(trials),
+    }
+    for outcome, n in (
+        study.trials[study.trials["phase"] == "experimental"]["outcome"].value_counts().items()
+    ):
+        if outcome != "success":
+            counts[f"excluded_{outcome}"] = int(n)
+    trajectories = _load_trajectories(study, trials, notes)
+    trials = _fill_jerk(trials, trajectories, notes)
+    measures = [m for m in MEASURES if trials[m].notna().any()]
+    if "normalized_jerk_xy" not in measures:
+        notes.append("Smoothness skipped: no normalized_jerk_xy values and no trajectory files.")
+
+    tests: list[TestResult] = []
+    norms: list[NormalityResult] = []
+    order_rows = []
+    for m in measures:
+        sub = trim_extremes(trials, m, ["modality"]) if options.trim else trials
+        t, n = pairwise(sub, m, "modality", MODALITIES, "all", options)
+        tests += t
+        norms += n
+        row, summary = order_effect(trials, m)
+        tests.append(row)
+        order_rows.append(summary)
+
+    if study.participants is None:
+        notes.append("Expertise analysis skipped: no participants table.")
+    else:
+        t, n = _expertise(trials, study.participants, measures, options, notes)
+        tests += t
+        norms += n
+    if study.questionnaire is None:
+        notes.append("Questionnaire comparison skipped: no questionnaire.csv.")
+    else:
+        for item in QUESTIONNAIRE_ITEMS:
+            q = study.questionnaire[study.questionnaire["item"] == item]
+            if q.empty:
+                continue
+            t, n = pairwise(
+                q, "score", "ar_class", AR_CLASSES, "all", options, f"questionnaire:{item}"
+            )
+            tests += t
+            norms += n
+    return AnalysisResult(
+        tests=pd.DataFrame([asdict(r) for r in tests]),
+        normality=pd.DataFrame([asdict(r) for r in norms]),
+        order_effect=pd.DataFrame(order_rows),
+        descriptives=_descriptives(trials, measures, options),
+        trials=trials,
+        trajectories=trajectories,
+        notes=notes,
+        counts=counts,
+    )
+
+
+def _expertise(
+    trials: pd.DataFrame,
+    participants: pd.DataFrame,
+    measures: list[str],
+    options: AnalysisOptions,
+    notes: list[str],
+) -> tuple[list[TestResult], list[NormalityResult]]:
+    tests: list[TestResult] = []
+    norms: list[NormalityResult] = []
+    for kind, column in EXPERTISE_KINDS.items():
+        known = participants.dropna(subset=[column])
+        if known.empty:
+            notes.append(f"Expertise ({kind}) skipped: the column {column} is empty.")
+            continue
+        expert = known.set_index("participant")[column] >= EXPERT_MIN_BUCKET
+        df = trials[trials["participant"].isin(expert.index)].copy()
+        df["expert"] = df["participant"].map(expert)
+        for m in measures:
+            groups = {}
+            for label, is_expert in (("expert", True), ("novice", False)):
+                g = df[df["expert"] == is_expert]
+                groups[label] = trim_extremes(g, m, ["modality"]) if options.trim else g
+                t, n = pairwise(
+                    groups[label], m, "modality", MODALITIES, f"{kind}_{label}", options
+                )
+                tests += t
+                norms += n
+            for modality in MODALITIES:
+                a = (
+                    groups["expert"][groups["expert"]["modality"] == modality][m]
+                    .dropna()
+                    .to_numpy()
+                )
+                b = (
+                    groups["novice"][groups["novice"]["modality"] == modality][m]
+                    .dropna()
+                    .to_numpy()
+                )
+                subset = f"experts_vs_novices:{kind}"
+                if min(len(a), len(b)) < 3:
+                    tests.append(
+                        TestResult(
+                            subset,
+                            m,
+                            f"expert:{modality}",
+                            f"novice:{modality}",
+                            "",
+                            len(a),
+                            len(b),
+                            math.nan,
+                            math.nan,
+                            math.nan,
+                            "",
+                            "",
+                            f"too few values ({len(a)} and {len(b)}, need 3 each)",
+                        )
+                    )
+                    continue
+                normal = bool(normality(a, options.alpha)[2] and normality(b, options.alpha)[2])
+                name, stat, p, effect, kind_e = compare_independent(a, b, normal)
+                tests.append(
+                    TestResult(
+                        subset,
+                        m,
+                        f"expert:{modality}",
+                        f"novice:{modality}",
+                        name,
+                        len(a),
+                        len(b),
+                        stat,
+                        p,
+                        effect,
+                        kind_e,
+                        stars(p, options.alpha),
+                    )
+                )
+    return tests, norms
+
+
+def _load_trajectories(
+    study: StudyData, trials: pd.DataFrame, notes: list[str]
+) -> dict[tuple[str, float], pd.DataFrame]:
+    out = {}
+    missing = 0
+    for _, row in trials.iterrows():
+        if not row["trajectory_file"]:
+            continue
+        path = study.base_dir / row["trajectory_file"]
+        if not path.is_file():
+            missing += 1
+            continue
+        out[(row["participant"], row["trial_index"])] = load_trajectory(path)
+    if missing:
+        notes.append(f"{missing} trajectory file(s) listed in trials.csv were not found.")
+    return out
+
+
+def _fill_jerk(trials: pd.DataFrame, trajectories: dict, notes: list[str]) -> pd.DataFrame:
+    trials = trials.copy()
+    computed = 0
+    for i, row in trials.iterrows():
+        traj = trajectories.get((row["participant"], row["trial_index"]))
+        if not np.isnan(row["normalized_jerk_xy"]) or traj is None:
+            continue
+        try:
+            trials.loc[i, "normalized_jerk_xy"] = normalized_jerk(
+                traj["time_s"].to_numpy(), traj[["hand_x_m", "hand_y_m", "hand_z_m"]].to_numpy()
+            )
+            computed += 1
+        except AnalysisInputError as err:
+            notes.append(
+                f"Jerk of participant {row['participant']} trial {row['trial_index']:g} "
+                f"not computed: {err}"
+            )
+    if computed:
+        notes.append(f"normalized_jerk_xy computed from trajectory files for {computed} trial(s).")
+    return trials
+
+
+def _descriptives(
+    trials: pd.DataFrame, measures: list[str], options: AnalysisOptions
+) -> pd.DataFrame:
+    rows = []
+    for m, modality in itertools.product(measures, MODALITIES):
+        raw = trials[trials["modality"] == modality][m].dropna()
+        sub = trim_extremes(trials, m, ["modality"]) if options.trim else trials
+        v = sub[sub["modality"] == modality][m].dropna()
+        rows.append({
+            "measure": m, "modality": modality, "n_total": len(raw), "n": len(v),
+            "mean": v.mean(), "sd": v.std(ddof=1), "median": v.median(),
+            "q1": v.quantile(0.25), "q3": v.quantile(0.75), "min": v.min(), "max": v.max(),
+        })  # fmt: skip
+    return pd.DataFrame(rows)

@@ -1,0 +1,130 @@
+"""Statistics against scipy/statsmodels directly and against closed-form values."""
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+from scipy import stats
+from statsmodels.stats.diagnostic import lilliefors
+
+from arteleop.analysis import (
+    AnalysisOptions,
+    cohens_d,
+    compare_independent,
+    compare_paired,
+    holm,
+    normality,
+    order_effect,
+    pairwise,
+    stars,
+    trim_extremes,
+)
+from arteleop.analysis.statistics import TestResult
+
+
+def test_trimming_drops_the_max_and_min_participant_per_group() -> None:
+    df = pd.DataFrame(
+        {
+            "participant": list("abcdeabcde"),
+            "modality": ["x"] * 5 + ["y"] * 5,
+            "v": [5, 1, 3, 9, 4, 2, 8, 6, 7, 0],
+        }
+    )
+    kept = trim_extremes(df, "v", ["modality"])
+    assert sorted(kept[kept.modality == "x"].participant) == ["a", "c", "e"]  # 9 (d) and 1 (b) out
+    assert sorted(kept[kept.modality == "y"].participant) == ["a", "c", "d"]  # 8 (b) and 0 (e) out
+
+
+def test_normality_is_statsmodels_lilliefors() -> None:
+    x = np.random.default_rng(0).normal(size=20)
+    stat, p, normal = normality(x)
+    assert (stat, p) == pytest.approx(lilliefors(x, dist="norm", pvalmethod="table"))
+    assert normal is True
+    assert normality(np.array([1.0, 2.0, 3.0]))[2] is None  # too few for the table
+
+
+def test_student_t_when_normal() -> None:
+    a, b = np.array([1.0, 2.0, 3.0, 4.0, 5.0]), np.array([3.0, 4.0, 5.0, 6.0, 7.0])
+    name, stat, p, d, kind = compare_independent(a, b, normal=True)
+    ref = stats.ttest_ind(a, b)
+    assert (name, kind) == ("ttest", "cohen_d")
+    assert (stat, p) == pytest.approx((ref.statistic, ref.pvalue))
+    assert d == pytest.approx(-2.0 / math.sqrt(2.5))  # mean difference / pooled SD
+    assert cohens_d(a, b) == pytest.approx(d)
+
+
+def test_mann_whitney_uses_the_continuity_corrected_normal_approximation() -> None:
+    a = np.array([1.1, 2.3, 2.9, 4.2, 5.0, 6.1, 7.4, 8.8, 9.3, 10.5])
+    b = np.array([3.2, 4.4, 5.9, 6.6, 7.9, 8.1, 9.9, 11.2, 12.7, 13.3])
+    name, u, p, r, kind = compare_independent(a, b, normal=False)
+    n1, n2 = len(a), len(b)
+    u_ref = sum((x > y) + 0.5 * (x == y) for x in a for y in b)
+    z = (u_ref - n1 * n2 / 2 + 0.5) / math.sqrt(n1 * n2 * (n1 + n2 + 1) / 12)  # no ties
+    assert (name, kind) == ("mannwhitneyu", "rank_biserial")
+    assert u == u_ref
+    assert p == pytest.approx(2 * stats.norm.sf(abs(z)))
+    assert r == pytest.approx(2 * u_ref / (n1 * n2) - 1)
+    # MATLAB's ranksum reports the rank sum W of sample a: W = U + n1 (n1 + 1) / 2.
+    assert stats.rankdata(np.concatenate([a, b]))[:n1].sum() == pytest.approx(u + n1 * (n1 + 1) / 2)
+
+
+def test_fully_separated_samples_have_rank_biserial_one() -> None:
+    _, _, _, r, _ = compare_independent(np.arange(10.0) + 100, np.arange(10.0), normal=False)
+    assert r == 1.0
+
+
+def test_paired_tests() -> None:
+    rng = np.random.default_rng(1)
+    a = rng.normal(10, 1, 12)
+    b = a - 0.5 + rng.normal(0, 0.2, 12)
+    name, t, p, dz, _ = compare_paired(a, b, normal=True)
+    ref = stats.ttest_rel(a, b)
+    assert name == "paired_ttest" and (t, p) == pytest.approx((ref.statistic, ref.pvalue))
+    assert dz == pytest.approx(np.mean(a - b) / np.std(a - b, ddof=1))
+    name, _, _, r, kind = compare_paired(a + 5, a, normal=False)
+    assert (name, kind, r) == ("wilcoxon", "rank_biserial", 1.0)  # every difference positive
+
+
+def test_holm_matches_hand_computation() -> None:
+    rows = [
+        TestResult("all", "m", "a", "b", "ttest", 5, 5, 0.0, p, 0.0, "", stars(p))
+        for p in (0.01, 0.04, 0.03)
+    ]
+    rows.append(
+        TestResult("all", "m", "a", "c", "", 1, 1, math.nan, math.nan, math.nan, "", "", "too few")
+    )
+    out = holm(rows)
+    # Sorted 0.01, 0.03, 0.04 -> 3 * 0.01, max(2 * 0.03, 0.03), max(1 * 0.04, 0.06).
+    assert [r.p_value for r in out[:3]] == pytest.approx([0.03, 0.06, 0.06])
+    assert [r.stars for r in out[:3]] == ["*", "", ""]
+    assert math.isnan(out[3].p_value)
+
+
+def test_anova_matches_sums_of_squares() -> None:
+    df = pd.DataFrame({"position": [1, 1, 1, 2, 2, 2, 3, 3, 3], "v": [1.0, 2, 3, 2, 3, 4, 6, 7, 8]})
+    row, summary = order_effect(df, "v")
+    # Group means 2, 3, 7; grand mean 4; SSB = 3 * (4 + 1 + 9) = 42, SSW = 6; F = (42/2) / (6/6).
+    assert row.statistic == pytest.approx(21.0)
+    assert row.p_value == pytest.approx(stats.f.sf(21.0, 2, 6))
+    assert summary["eta_squared"] == pytest.approx(42 / 48)
+
+
+def test_too_few_values_give_an_empty_p_and_a_reason() -> None:
+    df = pd.DataFrame(
+        {
+            "participant": ["a", "b", "c", "d"],
+            "modality": ["none", "none", "full", "full"],
+            "v": [1.0, 2.0, 3.0, 4.0],
+        }
+    )
+    rows, _ = pairwise(df, "v", "modality", ("none", "full"), "all", AnalysisOptions())
+    assert math.isnan(rows[0].p_value)
+    assert rows[0].note == "too few values (2 and 2, need 3 each)"
+
+
+@pytest.mark.parametrize(
+    ("p", "expected"), [(0.0099, "**"), (0.01, "*"), (0.05, "*"), (0.0501, ""), (math.nan, "")]
+)
+def test_stars(p: float, expected: str) -> None:
+    assert stars(p) == expected

@@ -1,0 +1,155 @@
+"""End to end on a synthetic run folder with known effects."""
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from arteleop.analysis import AnalysisOptions, analyse, load_study, write_report
+from arteleop.cli import main
+from tests.analysis.make_study import make_run
+
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    return make_run(tmp_path_factory.mktemp("run"), seed=3)
+
+
+@pytest.fixture(scope="module")
+def report(run: Path, tmp_path_factory: pytest.TempPathFactory) -> Path:
+    out = tmp_path_factory.mktemp("report")
+    study = load_study(run)
+    write_report(study, analyse(study), AnalysisOptions(), out)
+    return out
+
+
+def test_tests_csv_has_the_documented_columns_and_rows(report: Path) -> None:
+    tests = pd.read_csv(report / "tests.csv", keep_default_na=False)
+    assert list(tests.columns)[:12] == [
+        "subset", "measure", "group_a", "group_b", "test", "n_a", "n_b", "statistic", "p_value",
+        "effect_size", "effect_size_kind", "stars",
+    ]  # fmt: skip
+    main_rows = tests[
+        (tests["subset"] == "all") & ~tests["measure"].str.startswith("questionnaire")
+    ]
+    assert len(main_rows) == 3 * (10 + 1)  # 3 measures x (10 pairs + ANOVA)
+    assert set(tests["subset"]) >= {
+        "all",
+        "avr_expert",
+        "avr_novice",
+        "games_expert",
+        "games_novice",
+        "experts_vs_novices:avr",
+    }
+    assert {f"questionnaire:{i}" for i in ("presence", "embodiment", "ease")} <= set(
+        tests["measure"]
+    )
+    assert set(tests["test"]) <= {"ttest", "mannwhitneyu", "anova", ""}
+
+
+def test_known_effects_are_found(report: Path) -> None:
+    tests = pd.read_csv(report / "tests.csv", keep_default_na=False)
+    row = tests[
+        (tests.subset == "all")
+        & (tests.measure == "completion_time_s")
+        & (tests.group_a == "none")
+        & (tests.group_b == "full")
+    ].iloc[0]
+    assert row["stars"] == "**"
+    assert (row["n_a"], row["n_b"]) == (20, 19)  # 22 - max - min; full lost a timed-out trial
+    err = tests[
+        (tests.subset == "all")
+        & (tests.measure == "placement_error_m")
+        & (tests.group_a == "none")
+        & (tests.group_b == "full")
+    ].iloc[0]
+    assert err["stars"] == "**"
+    jerk = tests[
+        (tests.subset == "all")
+        & (tests.measure == "normalized_jerk_xy")
+        & (tests.group_a == "none")
+        & (tests.group_b == "embodiment")
+    ].iloc[0]
+    assert jerk["stars"] == "**"  # the embodiment trajectories carry the least tremor
+    order = pd.read_csv(report / "order_effect.csv")
+    assert (order["p_value"] > 0.01).all()  # no order effect was built in
+
+
+def test_test_choice_follows_normality(report: Path) -> None:
+    tests = pd.read_csv(report / "tests.csv", keep_default_na=False)
+    norm = pd.read_csv(report / "normality.csv")
+    normal = {(r.measure, r.group): bool(r.normal) for r in norm[norm.subset == "all"].itertuples()}
+    for r in tests[
+        (tests.subset == "all")
+        & tests.group_b.isin(["none", "manipulation", "embodiment", "task", "full"])
+    ].itertuples():
+        both = normal[(r.measure, r.group_a)] and normal[(r.measure, r.group_b)]
+        assert r.test == ("ttest" if both else "mannwhitneyu")
+
+
+def test_report_and_figures(report: Path) -> None:
+    text = (report / "report.md").read_text()
+    assert "Mann-Whitney U test" in text and "Lilliefors" in text
+    assert "timeout: 1" in text  # the failed trial is counted, not analysed
+    assert "computed from trajectory files for 109 trial(s)" in text
+    for name in (
+        "boxplot_completion_time_s.png",
+        "boxplot_normalized_jerk_xy.png",
+        "questionnaire.png",
+        "expertise_avr_completion_time_s.png",
+        "trajectories_xy.png",
+    ):
+        assert (report / "figures" / name).stat().st_size > 10_000
+
+
+def test_descriptives(report: Path, run: Path) -> None:
+    desc = pd.read_csv(report / "descriptives.csv")
+    full = desc[(desc.measure == "completion_time_s") & (desc.modality == "full")].iloc[0]
+    assert full["n_total"] == 21 and full["n"] == 19  # one full-AR trial timed out
+    trials = pd.read_csv(run / "trials.csv")
+    v = trials[
+        (trials.phase == "experimental")
+        & (trials.outcome == "success")
+        & (trials.modality == "full")
+    ]["completion_time_s"].sort_values()
+    assert full["mean"] == pytest.approx(v.iloc[1:-1].mean())
+
+
+def test_missing_parts_are_skipped_with_a_note(run: Path, tmp_path: Path) -> None:
+    study = load_study(run / "trials.csv")  # no participants, no questionnaire
+    trials = study.trials.assign(normalized_jerk_xy=np.nan, trajectory_file="")
+    result = analyse(type(study)(trials, None, None, study.base_dir, study.trials_path))
+    assert any("Expertise analysis skipped" in n for n in result.notes)
+    assert any("Smoothness skipped" in n for n in result.notes)
+    assert set(result.tests["measure"]) == {"completion_time_s", "placement_error_m"}
+
+
+def test_options_paired_and_holm(run: Path) -> None:
+    study = load_study(run)
+    plain = analyse(study, AnalysisOptions(trim=False))
+    paired = analyse(study, AnalysisOptions(trim=False, paired=True, holm=True))
+    within = paired.tests[paired.tests.subset.isin(["all", "avr_expert", "games_novice"])]
+    assert set(within["test"]) <= {"paired_ttest", "wilcoxon", "anova", ""}
+    # Experts and novices are different people: that comparison stays unpaired.
+    between = paired.tests[paired.tests.subset.str.startswith("experts_vs_novices")]
+    assert set(between["test"]) <= {"ttest", "mannwhitneyu", ""}
+    assert (paired.tests["note"] == "Holm-adjusted").any()
+    assert plain.tests[plain.tests.test != "anova"]["n_a"].max() == 22
+
+
+def test_same_input_same_files(run: Path, tmp_path: Path) -> None:
+    for name in ("a", "b"):
+        assert main(["analyze", str(run), "--out", str(tmp_path / name)]) == 0
+    for name in ("tests.csv", "normality.csv", "descriptives.csv", "report.md"):
+        a = (tmp_path / "a" / name).read_text().replace(str(tmp_path / "a"), "")
+        b = (tmp_path / "b" / name).read_text().replace(str(tmp_path / "b"), "")
+        assert a == b
+
+
+def test_cli_reports_bad_input(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    (tmp_path / "trials.csv").write_text(
+        "participant,phase,modality,position,outcome,completion_time_s,placement_error_m\nP1,experimental,vr,1,success,30,0.01\n"
+    )
+    assert main(["analyze", str(tmp_path / "trials.csv"), "--out", str(tmp_path / "r")]) == 2
+    assert "line 2, column modality: unknown value 'vr'" in capsys.readouterr().err
