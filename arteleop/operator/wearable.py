@@ -60,19 +60,6 @@ class ImuErrorConfig:
         return cls(noise_deg_rms=0.0, heading_drift_deg_per_sqrt_s=0.0, drop_probability=0.0)
 
 
-def gauss_markov(
-    n: int, sigma: float, correlation_samples: float, rng: np.random.Generator, dims: int = 3
-) -> NDArray[np.float64]:
-    """(n, dims) stationary first-order Gauss-Markov noise with standard deviation ``sigma``."""
-    e = rng.standard_normal((n, dims)) * sigma
-    if correlation_samples <= 0:
-        return e
-    a = np.exp(-1.0 / correlation_samples)
-    # Start in the stationary distribution: y[-1] ~ N(0, sigma^2), so zi = a * y[-1].
-    zi = a * rng.standard_normal((1, dims)) * sigma
-    return lfilter([np.sqrt(1.0 - a * a)], [1.0, -a], e, axis=0, zi=zi)[0]
-
-
 def _default_mounting() -> tuple[tuple[float, float, float, float], ...]:
     # Straps are never aligned with the bones: a few tens of degrees off, differently per sensor.
     angles = ((20.0, -10.0, 35.0), (-15.0, 25.0, -40.0), (10.0, 30.0, 15.0))
@@ -126,6 +113,83 @@ class WearableSignals:
     dropped: int
 
 
+class WearableSimulator:
+    """IMU model with state: mounting, torso heading, drift and noise processes, packet loss.
+
+    The orientation error is a first-order Gauss-Markov process per axis and sensor, and the
+    heading bias a random walk; their states carry over between calls, so a trial can be
+    simulated sample by sample (:meth:`sample`) or in one block (:meth:`run`).
+    """
+
+    def __init__(self, config: WearableConfig, rng: np.random.Generator) -> None:
+        self.config = config
+        self._rng = rng
+        err = config.errors
+        self._dt = 1.0 / config.rate_hz
+        self._heading = Rotation.from_euler("z", config.torso_heading_rad)
+        self._mounting = np.asarray(config.mounting_wxyz, dtype=np.float64)
+        self._sigma = np.radians(err.noise_deg_rms) / np.sqrt(3.0)  # per axis: RMS angle / sqrt(3)
+        corr = err.noise_correlation_s * config.rate_hz
+        self._a = float(np.exp(-1.0 / corr)) if corr > 0 else 0.0
+        self._noise = rng.standard_normal((3, 3)) * self._sigma  # start in the stationary law
+        self._bias = np.zeros(3)
+        self._drop_left = 0
+        self.dropped = 0
+        self.samples = 0
+
+    def run(
+        self, segments_torso: Rotation, n: int
+    ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        """IMU quaternions (n, 3, 4) for n postures (3n rotations), and which packets arrived."""
+        err = self.config.errors
+        bias = np.zeros((n, 3))
+        if err.heading_drift_deg_per_sqrt_s > 0:
+            step = np.radians(err.heading_drift_deg_per_sqrt_s) * np.sqrt(self._dt)
+            bias = self._bias + np.cumsum(self._rng.standard_normal((n, 3)) * step, axis=0)
+            self._bias = bias[-1]
+        noise = np.zeros((n, 3, 3))
+        if err.noise_deg_rms > 0:
+            innovation = (
+                self._rng.standard_normal((n, 3, 3)) * self._sigma * np.sqrt(1 - self._a**2)
+            )
+            noise = lfilter(
+                [1.0], [1.0, -self._a], innovation, axis=0, zi=self._a * self._noise[None]
+            )[0]
+            self._noise = noise[-1]
+        keep = self._arrivals(n)
+        earth = Rotation.from_euler("z", bias.reshape(-1, 1)) * self._heading
+        sensor = (
+            earth
+            * segments_torso
+            * Rotation.from_quat(np.tile(self._mounting, (n, 1)), scalar_first=True)
+            * Rotation.from_rotvec(noise.reshape(-1, 3))
+        )
+        return sensor.as_quat(scalar_first=True, canonical=True).reshape(n, 3, 4), keep
+
+    def sample(self, segments_torso: Rotation) -> NDArray[np.float64] | None:
+        """(3, 4) IMU quaternions for one posture, or None if the packet is lost."""
+        quats, keep = self.run(segments_torso, 1)
+        return quats[0] if keep[0] else None
+
+    def _arrivals(self, n: int) -> NDArray[np.bool_]:
+        err = self.config.errors
+        keep = np.ones(n, dtype=bool)
+        if err.drop_probability <= 0:
+            self.samples += n
+            return keep
+        starts = self._rng.random(n) < err.drop_probability
+        bursts = self._rng.integers(1, err.drop_burst_max + 1, n)
+        for i in range(n):
+            self.samples += 1
+            if self._drop_left == 0 and starts[i] and self.samples > 1:  # the first one anchors
+                self._drop_left = int(bursts[i])
+            if self._drop_left > 0:
+                self._drop_left -= 1
+                keep[i] = False
+        self.dropped += int(n - keep.sum())
+        return keep
+
+
 def simulate_wearable(
     segments_torso: Rotation,
     grip: ArrayLike,
@@ -140,29 +204,7 @@ def simulate_wearable(
         raise ConfigurationError(
             f"{len(segments_torso)} segment rotations for {n} grip samples; need 3 per sample"
         )
-    err = config.errors
-    dt = 1.0 / config.rate_hz
-    q = segments_torso.as_quat().reshape(n, 3, 4)  # (x, y, z, w)
-    heading = Rotation.from_euler("z", config.torso_heading_rad)
-    out = np.empty((n, 3, 4))
-    for k in range(3):
-        seg = Rotation.from_quat(q[:, k])
-        sensor = heading * seg * Rotation.from_quat(config.mounting_wxyz[k], scalar_first=True)
-        if err.heading_drift_deg_per_sqrt_s > 0:
-            steps = (
-                rng.standard_normal(n) * np.radians(err.heading_drift_deg_per_sqrt_s) * np.sqrt(dt)
-            )
-            sensor = Rotation.from_euler("z", np.cumsum(steps)[:, None]) * sensor
-        if err.noise_deg_rms > 0:
-            # Isotropic rotation vector: the RMS angle is sqrt(3) times the per-axis sigma.
-            sigma = np.radians(err.noise_deg_rms) / np.sqrt(3.0)
-            noise = gauss_markov(n, sigma, err.noise_correlation_s * config.rate_hz, rng)
-            sensor = sensor * Rotation.from_rotvec(noise)
-        out[:, k] = sensor.as_quat(scalar_first=True, canonical=True)
-    keep = np.ones(n, dtype=bool)
-    if err.drop_probability > 0:
-        for start in np.flatnonzero(rng.random(n) < err.drop_probability):
-            keep[start : start + rng.integers(1, err.drop_burst_max + 1)] = False
-        keep[0] = True  # the first sample anchors the calibration
-    time = start_time_s + np.arange(n) * dt
-    return WearableSignals(time[keep], out[keep], grip[keep], int(n - keep.sum()))
+    sim = WearableSimulator(config, rng)
+    quats, keep = sim.run(segments_torso, n)
+    time = start_time_s + np.arange(n) / config.rate_hz
+    return WearableSignals(time[keep], quats[keep], grip[keep], sim.dropped)

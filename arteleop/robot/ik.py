@@ -1,0 +1,189 @@
+"""Differential inverse kinematics of the right arm with mink.
+
+Tasks: a frame task on the gripper (``right_gripper``) and a low-weight posture task that keeps the
+arm near a natural pose and resolves the arm's redundancy. Limits: joint positions, joint
+velocities (the URDF's), and collision avoidance between forearm/wrist/gripper and the table.
+
+Each call to :meth:`ArmIK.step` integrates one QP solution over ``dt`` seconds, so the joint motion
+per step never exceeds the velocity limits: a far target is approached over several control ticks
+instead of jumping, and an unreachable one leaves the gripper at the nearest pose it can reach.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import mink
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from arteleop.errors import ConfigurationError
+from arteleop.robot.joints import GRIPPER_FRAME, RIGHT_ARM_JOINTS, JointLimits
+from arteleop.robot.mujoco_model import (
+    ARM_COLLISION_BODIES,
+    TABLE_BODY,
+    body_geoms,
+    build_arm_model,
+)
+from arteleop.transforms import transform_to_pose
+
+
+@dataclass(frozen=True)
+class IKConfig:
+    """Weights, limits and tolerances of the IK.
+
+    Attributes:
+        position_cost: Frame-task weight on position errors (per metre).
+        orientation_cost: Frame-task weight on orientation errors (per radian); lower than the
+            position's because the bowl is symmetric and the position matters most.
+        posture_cost: Posture-task weight (per radian); small, it only resolves redundancy.
+        lm_damping: Levenberg-Marquardt damping of the frame task; keeps steps bounded near
+            singularities and out of reach.
+        solver: QP solver for mink (``daqp``: fast dense active-set).
+        collision_margin_m: Clearance kept between the arm's geoms and the table.
+        collision_detection_m: Distance at which collision avoidance starts acting.
+        unreachable_tolerance_m: Position error above which a target that no longer gets closer
+            is flagged unreachable.
+    """
+
+    position_cost: float = 1.0
+    orientation_cost: float = 0.5
+    posture_cost: float = 1e-3
+    lm_damping: float = 1e-3
+    solver: str = "daqp"
+    collision_margin_m: float = 0.01
+    collision_detection_m: float = 0.05
+    unreachable_tolerance_m: float = 0.005
+
+    def __post_init__(self) -> None:
+        for name in (
+            "position_cost",
+            "orientation_cost",
+            "posture_cost",
+            "unreachable_tolerance_m",
+        ):
+            if getattr(self, name) < 0:
+                raise ConfigurationError(f"IKConfig.{name} must be >= 0, got {getattr(self, name)}")
+
+
+@dataclass(frozen=True)
+class IKResult:
+    """Outcome of an IK step or solve.
+
+    Attributes:
+        q_rad: (7,) joint positions in ``RIGHT_ARM_JOINTS`` order.
+        position_error_m: Distance between the gripper frame and the target.
+        orientation_error_rad: Angle between the gripper frame's and the target's orientation.
+        reachable: False when the target is out of reach (the arm stopped short of it).
+        iterations: QP solves used.
+    """
+
+    q_rad: NDArray[np.float64]
+    position_error_m: float
+    orientation_error_rad: float
+    reachable: bool
+    iterations: int
+
+
+class ArmIK:
+    """mink IK for Baxter's right arm on a MuJoCo model of the same URDF."""
+
+    def __init__(
+        self,
+        urdf_path: Path,
+        limits: JointLimits,
+        posture_rad: ArrayLike,
+        table_center_m: ArrayLike | None = None,
+        table_half_extents_m: ArrayLike | None = None,
+        config: IKConfig | None = None,
+    ) -> None:
+        self.config = c = config or IKConfig()
+        self.model = build_arm_model(urdf_path, table_center_m, table_half_extents_m)
+        names = [self.model.joint(i).name for i in range(self.model.njnt)]
+        if tuple(names) != RIGHT_ARM_JOINTS:
+            raise ConfigurationError(
+                f"MuJoCo arm model has joints {names}, expected {RIGHT_ARM_JOINTS}"
+            )
+        self.configuration = mink.Configuration(self.model)
+        self.frame_task = mink.FrameTask(
+            GRIPPER_FRAME, "body", position_cost=c.position_cost,
+            orientation_cost=c.orientation_cost, lm_damping=c.lm_damping,
+        )  # fmt: skip
+        self.posture_task = mink.PostureTask(self.model, cost=c.posture_cost)
+        self.posture_task.set_target(np.asarray(posture_rad, dtype=np.float64))
+        self.tasks = [self.frame_task, self.posture_task]
+        if limits.names != RIGHT_ARM_JOINTS:
+            raise ConfigurationError(f"limits are for {limits.names}, expected {RIGHT_ARM_JOINTS}")
+        velocities = dict(zip(RIGHT_ARM_JOINTS, limits.velocity.tolist(), strict=True))
+        self.limits: list[mink.Limit] = [
+            mink.ConfigurationLimit(self.model),
+            mink.VelocityLimit(self.model, velocities),
+        ]
+        if table_center_m is not None:
+            arm = body_geoms(self.model, ARM_COLLISION_BODIES)
+            table = body_geoms(self.model, (TABLE_BODY,))
+            self.limits.append(
+                mink.CollisionAvoidanceLimit(
+                    self.model, [(arm, table)],
+                    minimum_distance_from_collisions=c.collision_margin_m,
+                    collision_detection_distance=c.collision_detection_m,
+                )
+            )  # fmt: skip
+        self._last_error = np.inf
+        self._target = np.eye(4)
+
+    def set_target(self, T_base_gripper: ArrayLike) -> None:
+        """Target pose of the gripper frame in the base frame (4x4)."""
+        self._target = np.array(T_base_gripper, dtype=np.float64)
+        pos, quat = transform_to_pose(self._target)
+        self.frame_task.set_target(mink.SE3(np.concatenate([quat, pos])))
+
+    def gripper_transform(self) -> NDArray[np.float64]:
+        """``T_base_gripper`` at the IK's current configuration."""
+        return self.configuration.get_transform_frame_to_world(GRIPPER_FRAME, "body").as_matrix()
+
+    def reset(self, q_rad: ArrayLike) -> None:
+        """Restart from joint positions ``q_rad`` (e.g. the measured state)."""
+        self.configuration.update(np.asarray(q_rad, dtype=np.float64))
+        self._last_error = np.inf
+
+    def step(self, dt: float, iterations: int = 1) -> IKResult:
+        """Integrate ``iterations`` QP solutions of duration ``dt`` towards the target."""
+        for _ in range(iterations):
+            velocity = mink.solve_ik(
+                self.configuration, self.tasks, dt, self.config.solver, 1e-6, limits=self.limits
+            )
+            self.configuration.integrate_inplace(velocity, dt)
+        return self._result(iterations, float(np.linalg.norm(velocity)))
+
+    def solve(
+        self, dt: float = 0.05, max_iterations: int = 300, tolerance_m: float = 1e-4
+    ) -> IKResult:
+        """Iterate to convergence: for offline use (benchmarks, reach checks)."""
+        result = self.step(dt)
+        for i in range(2, max_iterations + 1):
+            previous = result.position_error_m
+            result = self.step(dt)
+            converged = (
+                result.position_error_m < tolerance_m and result.orientation_error_rad < 1e-3
+            )
+            if converged or abs(previous - result.position_error_m) < 1e-9:
+                return IKResult(
+                    result.q_rad,
+                    result.position_error_m,
+                    result.orientation_error_rad,
+                    result.reachable,
+                    i,
+                )
+        return result
+
+    def _result(self, iterations: int, speed: float) -> IKResult:
+        T = self.gripper_transform()
+        pos_err = float(np.linalg.norm(T[:3, 3] - self._target[:3, 3]))
+        cos = (np.trace(T[:3, :3].T @ self._target[:3, :3]) - 1.0) / 2.0
+        rot_err = float(np.arccos(np.clip(cos, -1.0, 1.0)))
+        stalled = speed < 1e-3 or pos_err >= self._last_error - 1e-6
+        reachable = not (pos_err > self.config.unreachable_tolerance_m and stalled)
+        self._last_error = pos_err
+        return IKResult(self.configuration.q.copy(), pos_err, rot_err, reachable, iterations)
