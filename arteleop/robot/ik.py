@@ -38,8 +38,9 @@ class IKConfig:
         orientation_cost: Frame-task weight on orientation errors (per radian); lower than the
             position's because the bowl is symmetric and the position matters most.
         posture_cost: Posture-task weight (per radian); small, it only resolves redundancy.
-        lm_damping: Levenberg-Marquardt damping of the frame task; keeps steps bounded near
-            singularities and out of reach.
+        lm_damping: Levenberg-Marquardt damping of the frame task, scaled by the task error:
+            it settles the arm at the nearest pose when the target is out of reach (with 1e-3
+            a wrist joint chattered on its limit) and leaves reachable targets unaffected.
         solver: QP solver for mink (``daqp``: fast dense active-set).
         collision_margin_m: Clearance kept between the arm's geoms and the table.
         collision_detection_m: Distance at which collision avoidance starts acting.
@@ -50,7 +51,7 @@ class IKConfig:
     position_cost: float = 1.0
     orientation_cost: float = 0.5
     posture_cost: float = 1e-3
-    lm_damping: float = 1e-3
+    lm_damping: float = 1.0
     solver: str = "daqp"
     collision_margin_m: float = 0.01
     collision_detection_m: float = 0.05

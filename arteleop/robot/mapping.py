@@ -2,10 +2,10 @@
 
 The mapping is a fixed, documented similarity: ``p_gripper = offset + scale * p_hand`` with the
 torso's axes aligned with the robot's (x forward, y left, z up), as if the operator stood where
-Baxter stands. With scale 1 and offset (0.28, -0.025, 0.15) m, a hand 40 cm in front of the
-shoulders, 7-43 cm to the right of the midline and 15-30 cm below the shoulders puts the gripper
-over the start and target points from above: the comfortable reach of a seated or standing
-adult (tests check the coverage).
+Baxter stands. With scale 1 and offset (0.33, -0.10, 0.15) m, the hand works 35 cm in front of
+the shoulders, between 8 cm left and 43 cm right of the midline and 15-30 cm below the shoulders,
+to put the gripper over the start and target points from above: within 85 % of an adult's reach
+(a test checks every grasp and carry position).
 
 The gripper always points down; its yaw about the vertical follows the hand's yaw relative to the
 yaw the hand had when the mapping was (re)centred, limited to ``max_yaw_rad``.
@@ -37,7 +37,7 @@ class MappingConfig:
     """
 
     scale: float = 1.0
-    offset_m: tuple[float, float, float] = (0.28, -0.025, 0.15)
+    offset_m: tuple[float, float, float] = (0.33, -0.10, 0.15)
     max_yaw_rad: float = 1.5
     clutch_max_speed_m_s: float = 0.02
 

@@ -1,0 +1,97 @@
+"""mink IK on the MuJoCo model, checked against pinocchio's forward kinematics."""
+
+import numpy as np
+import pytest
+
+from arteleop.robot import (
+    GRIPPER_FRAME,
+    REST_POSE,
+    RIGHT_ARM_JOINTS,
+    BaxterDescription,
+    BaxterKinematics,
+)
+from arteleop.robot.ik import ArmIK
+from arteleop.robot.mapping import R_DOWN
+from arteleop.scene import Workspace
+
+
+@pytest.fixture(scope="module")
+def kin(description: BaxterDescription) -> BaxterKinematics:
+    return BaxterKinematics(description.urdf_path)
+
+
+@pytest.fixture
+def ik(description: BaxterDescription, kin: BaxterKinematics) -> ArmIK:
+    ws = Workspace()
+    center = (*ws.table_center_xy_m, ws.table_top_z_m - ws.table_thickness_m / 2)
+    half = (ws.table_size_m[0] / 2, ws.table_size_m[1] / 2, ws.table_thickness_m / 2)
+    return ArmIK(description.urdf_path, kin.limits(RIGHT_ARM_JOINTS), REST_POSE.right, center, half)
+
+
+def _fk(kin: BaxterKinematics, q: np.ndarray) -> np.ndarray:
+    return kin.frame_transform(dict(zip(RIGHT_ARM_JOINTS, q, strict=True)), GRIPPER_FRAME)
+
+
+def test_mujoco_and_pinocchio_agree_on_the_gripper(ik: ArmIK, kin: BaxterKinematics) -> None:
+    rng = np.random.default_rng(0)
+    lim = kin.limits(RIGHT_ARM_JOINTS)
+    for _ in range(20):
+        q = rng.uniform(lim.lower, lim.upper)
+        ik.reset(q)
+        np.testing.assert_allclose(ik.gripper_transform(), _fk(kin, q), atol=1e-9)
+
+
+def test_solves_grasp_poses_over_start_and_target(ik: ArmIK, kin: BaxterKinematics) -> None:
+    ws = Workspace()
+    for point in (ws.start_m, ws.target_m):
+        T = np.eye(4)
+        T[:3, :3] = R_DOWN
+        T[:3, 3] = point + [0.0, ws.bowl.rim_radius_m - 0.002, ws.bowl.height_m - 0.015]
+        ik.reset(REST_POSE.right)
+        ik.set_target(T)
+        result = ik.solve()
+        assert result.position_error_m < 1e-3 and result.orientation_error_rad < 1e-2
+        # The answer is a real configuration: pinocchio puts the gripper on the target too.
+        np.testing.assert_allclose(_fk(kin, result.q_rad)[:3, 3], T[:3, 3], atol=1e-3)
+        kin.limits(RIGHT_ARM_JOINTS).check(result.q_rad)
+
+
+def test_each_step_respects_the_velocity_limits(ik: ArmIK, kin: BaxterKinematics) -> None:
+    vmax = kin.limits(RIGHT_ARM_JOINTS).velocity
+    T = _fk(kin, np.array([0.3, -0.3, 0.0, 1.0, 0.0, 0.8, 0.0]))
+    ik.reset(REST_POSE.right)
+    ik.set_target(T)
+    q = np.array(REST_POSE.right)
+    for _ in range(50):
+        new = ik.step(0.01).q_rad
+        assert np.all(np.abs(new - q) <= vmax * 0.01 + 1e-9)
+        q = new
+
+
+def test_out_of_reach_stops_at_the_nearest_pose_and_flags(ik: ArmIK) -> None:
+    T = np.eye(4)
+    T[:3, :3] = R_DOWN
+    T[:3, 3] = (1.6, -0.3, 0.2)  # twice the arm's reach
+    ik.reset(REST_POSE.right)
+    ik.set_target(T)
+    results = [ik.step(0.01) for _ in range(400)]
+    assert not results[-1].reachable
+    assert np.all(np.isfinite(results[-1].q_rad))
+    # Converged to the nearest reachable pose: no motion at the end, nothing diverges.
+    assert np.abs(results[-1].q_rad - results[-2].q_rad).max() < 1e-3
+    # It rests within millimetres of the closest it came (the posture task pulls a little).
+    closest = min(r.position_error_m for r in results)
+    assert results[-1].position_error_m == pytest.approx(closest, abs=5e-3)
+
+
+def test_collision_avoidance_keeps_the_gripper_above_the_table(ik: ArmIK) -> None:
+    ws = Workspace()
+    T = np.eye(4)
+    T[:3, :3] = R_DOWN
+    T[:3, 3] = ws.target_m + [0.0, 0.0, -0.05]  # 5 cm into the table
+    ik.reset(REST_POSE.right)
+    ik.set_target(T)
+    for _ in range(400):
+        result = ik.step(0.01)
+    assert ik.gripper_transform()[2, 3] > ws.table_top_z_m
+    assert result.position_error_m > 0.04
