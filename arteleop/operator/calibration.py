@@ -43,23 +43,30 @@ class SensorMounting:
 
 
 def calibrate(recording: Recording, posture: CalibrationPosture | None = None) -> SensorMounting:
-    """Estimate each sensor's mounting from the samples of the initial calibration hold.
+    """Estimate each sensor's mounting from the initial calibration hold of a recording."""
+    posture = posture or recording.info.calibration
+    hold = recording.time_s <= recording.time_s[0] + posture.hold_s
+    return calibrate_from_hold(recording.sensor_quat_wxyz[hold], posture)
+
+
+def calibrate_from_hold(
+    sensor_quat_wxyz: NDArray[np.float64], posture: CalibrationPosture
+) -> SensorMounting:
+    """Mounting from (N, 3, 4) IMU samples taken while the operator held ``posture``.
 
     The mean orientation over the hold is compared with the known posture. Raises
-    :class:`RecordingError` if the hold is too short or the operator moved during it.
+    :class:`RecordingError` if there are too few samples or the operator moved during the hold.
     """
-    posture = posture or recording.info.calibration
-    t0 = recording.time_s[0]
-    hold = recording.time_s <= t0 + posture.hold_s
-    if hold.sum() < 10:
+    quats = np.asarray(sensor_quat_wxyz, dtype=np.float64)
+    if len(quats) < 10:
         raise RecordingError(
-            f"Only {int(hold.sum())} samples in the {posture.hold_s} s calibration hold; need 10."
+            f"Only {len(quats)} samples in the {posture.hold_s} s calibration hold; need 10."
         )
     torso_segment = segment_rotations(posture.angles)
     heading = Rotation.from_euler("z", posture.torso_heading_rad)
     mounting = np.empty((3, 4))
     for k, name in enumerate(SEGMENTS):
-        samples = Rotation.from_quat(recording.sensor_quat_wxyz[hold, k], scalar_first=True)
+        samples = Rotation.from_quat(quats[:, k], scalar_first=True)
         mean = samples.mean()
         spread = float(np.degrees((mean.inv() * samples).magnitude().max()))
         if spread > MAX_POSTURE_SPREAD_DEG:

@@ -14,6 +14,7 @@ from arteleop.robot.joints import (
     REST_POSE,
     RIGHT_ARM_JOINTS,
     RIGHT_FINGER_JOINTS,
+    WORK_POSTURE,
     ArmPose,
     JointLimits,
 )
@@ -26,6 +27,7 @@ __all__ = [
     "REST_POSE",
     "RIGHT_ARM_JOINTS",
     "RIGHT_FINGER_JOINTS",
+    "WORK_POSTURE",
     "ArmControlConfig",
     "ArmPose",
     "Baxter",

@@ -37,7 +37,8 @@ class IKConfig:
         position_cost: Frame-task weight on position errors (per metre).
         orientation_cost: Frame-task weight on orientation errors (per radian); lower than the
             position's because the bowl is symmetric and the position matters most.
-        posture_cost: Posture-task weight (per radian); small, it only resolves redundancy.
+        posture_cost: Posture-task weight (per radian); small, it resolves redundancy. At 1e-3
+            the elbow drifted up into the head camera's view over a long teleoperated motion.
         lm_damping: Levenberg-Marquardt damping of the frame task, scaled by the task error:
             it settles the arm at the nearest pose when the target is out of reach (with 1e-3
             a wrist joint chattered on its limit) and leaves reachable targets unaffected.
@@ -50,7 +51,7 @@ class IKConfig:
 
     position_cost: float = 1.0
     orientation_cost: float = 0.5
-    posture_cost: float = 1e-3
+    posture_cost: float = 1e-2
     lm_damping: float = 1.0
     solver: str = "daqp"
     collision_margin_m: float = 0.01

@@ -74,6 +74,11 @@ class ArmPose:
         return dict(zip(RIGHT_ARM_JOINTS + LEFT_ARM_JOINTS, self.right + self.left, strict=True))
 
 
+WORK_POSTURE: tuple[float, ...] = (0.09, 0.11, 1.48, 1.55, -1.68, 1.48, -2.27)
+"""Right-arm posture (rad) the IK's posture task pulls towards while teleoperating: gripper down
+over the table with the elbow out to the side, below the head camera's line of sight to the
+table (found by solving the IK from 60 random seeds and keeping the most elbow-out solution)."""
+
 REST_POSE = ArmPose(
     # Right arm raised and folded beside the torso, clear of the table and of the head camera's
     # view of it; gripper open. Chosen by rendering the head camera (see tests/robot).

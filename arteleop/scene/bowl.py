@@ -8,6 +8,7 @@ it flares from the foot and is vertical at the rim, where a parallel gripper pin
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
@@ -54,7 +55,7 @@ class BowlSpec:
                 f"height {self.height_m} and foot {self.bottom_diameter_m}."
             )
 
-    @property
+    @cached_property
     def center_of_mass_height_m(self) -> float:
         """Height of the centre of mass above the bottom face (m), from the closed mesh."""
         return _mesh_center_of_mass(*bowl_mesh(self))[2]

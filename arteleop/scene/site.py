@@ -74,7 +74,7 @@ class RemoteSite:
     def __init__(self, config: SiteConfig | None = None) -> None:
         self.config = config = config or SiteConfig()
         ws = config.workspace
-        description = load_baxter_description(config.robot)
+        self.description = description = load_baxter_description(config.robot)
         self.kinematics = BaxterKinematics(description.urdf_path)
         self._check_reach(ws)
 
@@ -137,6 +137,11 @@ class RemoteSite:
     def bowl_position_m(self) -> NDArray[np.float64]:
         """Ground-truth position of the bowl frame (centre of its bottom face), base frame (m)."""
         return self.bowl_transform()[:3, 3]
+
+    def bowl_speed_m_s(self) -> float:
+        """Linear speed of the bowl's centre of mass (m/s), ground truth."""
+        velocity, _ = self.client.getBaseVelocity(self.bowl_id)
+        return float(np.linalg.norm(velocity))
 
     def place_bowl(self, xy_m: tuple[float, float]) -> None:
         """Teleport the bowl upright onto the table at ``xy_m`` and stop it."""

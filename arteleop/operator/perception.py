@@ -1,0 +1,113 @@
+"""What the operator sees on the display, and how well: perception errors by visible cue.
+
+The operator never reads the simulator's state. Each time they look, they estimate the gripper,
+the bowl and the target from what the display shows; the error of each estimate depends only on
+the cues visible (assumptions, each with its reasoning, in :class:`PerceptionParams`):
+
+- the point cloud alone gives good lateral but poor depth judgement along the line of sight;
+- the distance bar gives the gripper-to-grasp-point distance, the beam its direction;
+- the target mesh turns placement into a coincidence judgement;
+- the ghost shows the arm when the camera cannot (out of view, or too close for the sensor);
+  without it, an unseen gripper is estimated from the operator's own arm (proprioception).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from arteleop.ar_features import ArCues
+
+
+@dataclass(frozen=True)
+class DisplayView:
+    """What the display holds at one instant (plain data from the loop), base frame (m).
+
+    Attributes:
+        time_s: Time of the view.
+        viewpoint_m: The camera's position: the operator's eye in the remote scene.
+        gripper_m: Gripper tool-frame position as rendered (the ghost shows the same).
+        gripper_in_camera: The head camera captures the gripper (in the image and depth range).
+        gripper_closure: Gripper closure, 0 open .. 1 closed.
+        bowl_m: Bowl bottom-centre position as rendered.
+        target_m: Target point on the table.
+        cues: AR layers shown.
+        engaged: The display's status indicator: the robot follows the hand.
+    """
+
+    time_s: float
+    viewpoint_m: NDArray[np.float64]
+    gripper_m: NDArray[np.float64]
+    gripper_in_camera: bool
+    gripper_closure: float
+    bowl_m: NDArray[np.float64]
+    target_m: NDArray[np.float64]
+    cues: ArCues = field(default_factory=ArCues)
+    engaged: bool = True
+
+
+@dataclass(frozen=True)
+class PerceptionParams:
+    """Standard deviations of the operator's estimates (m).
+
+    Attributes:
+        depth_sd_m: Along the line of sight, from a point cloud seen in an HMD. Depth from
+            disparity and motion parallax in a sparse, noisy cloud is judged several times worse
+            than lateral position; 15 mm at about 1.3 m viewing distance.
+        lateral_sd_m: Across the line of sight: a few pixels of the 640x480 view at 1.3 m.
+        bar_sd_m: Residual distance error when reading the distance bar (its resolution).
+        beam_sd_m: Residual lateral error when aligning with the beam.
+        target_marker_sd_m: Centring the bowl over the target circle by eye, per axis.
+        target_mesh_sd_m: Making the real and the virtual bowl coincide, per axis.
+        proprioception_sd_m: Estimating an unseen gripper from one's own arm, per axis.
+    """
+
+    depth_sd_m: float = 0.015
+    lateral_sd_m: float = 0.004
+    bar_sd_m: float = 0.003
+    beam_sd_m: float = 0.002
+    target_marker_sd_m: float = 0.008
+    target_mesh_sd_m: float = 0.003
+    proprioception_sd_m: float = 0.03
+
+
+@dataclass(frozen=True)
+class Perceived:
+    """The operator's estimates at one look, base frame (m)."""
+
+    gripper_m: NDArray[np.float64]
+    bowl_m: NDArray[np.float64]
+    target_m: NDArray[np.float64]
+    gripper_seen: bool
+    closure_known: bool
+
+
+def perceive(
+    view: DisplayView, params: PerceptionParams, rng: np.random.Generator, noise_scale: float = 1.0
+) -> Perceived:
+    """One look at the display: estimates with errors that depend on the visible cues."""
+    cues = view.cues
+    k = noise_scale
+    gripper_seen = view.gripper_in_camera or cues.ghost
+
+    def seen(point: NDArray[np.float64], depth_sd: float, lateral_sd: float) -> NDArray[np.float64]:
+        d = point - view.viewpoint_m
+        d /= np.linalg.norm(d)
+        lateral = rng.normal(0.0, lateral_sd * k, 3)
+        lateral -= d * (lateral @ d)
+        return point + d * rng.normal(0.0, depth_sd * k) + lateral
+
+    bowl = seen(view.bowl_m, params.depth_sd_m, params.lateral_sd_m)
+    if gripper_seen:
+        # With the bar and beam, the gripper is judged relative to the grasp point.
+        depth_sd = params.bar_sd_m if cues.distance_bar else params.depth_sd_m
+        lateral_sd = params.beam_sd_m if cues.beam else params.lateral_sd_m
+        gripper = bowl + seen(view.gripper_m, depth_sd, lateral_sd) - view.bowl_m
+    else:
+        gripper = view.gripper_m + rng.normal(0.0, params.proprioception_sd_m * k, 3)
+    target_sd = params.target_mesh_sd_m if cues.target_mesh else params.target_marker_sd_m
+    target = view.target_m + np.append(rng.normal(0.0, target_sd * k, 2), 0.0)
+    closure_known = cues.grip_bar or view.gripper_in_camera or cues.ghost
+    return Perceived(gripper, bowl, target, gripper_seen, closure_known)

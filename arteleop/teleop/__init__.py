@@ -1,0 +1,28 @@
+"""The teleoperation loop: clock, network link, robot-side controller, timing and trials."""
+
+from arteleop.teleop.clock import LoopClock, LoopRates, Tick
+from arteleop.teleop.controller import ControllerConfig, ControllerState, TeleopController
+from arteleop.teleop.network import NetworkConfig, NetworkLink
+from arteleop.teleop.sources import OperatorSource, RecordingSource, SyntheticSource, WearableSample
+from arteleop.teleop.timing import StageStats, StageTimer
+from arteleop.teleop.trial import TrialConfig, TrialResult, run_trial
+
+__all__ = [
+    "ControllerConfig",
+    "ControllerState",
+    "LoopClock",
+    "LoopRates",
+    "NetworkConfig",
+    "NetworkLink",
+    "OperatorSource",
+    "RecordingSource",
+    "StageStats",
+    "StageTimer",
+    "SyntheticSource",
+    "TeleopController",
+    "Tick",
+    "TrialConfig",
+    "TrialResult",
+    "WearableSample",
+    "run_trial",
+]

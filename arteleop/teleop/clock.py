@@ -1,0 +1,80 @@
+"""One clock for the whole loop: control, physics and camera ticks at their own rates.
+
+Time advances in base ticks at the least common multiple of the rates (1200 Hz for 100, 240 and
+30 Hz), so every stage fires at exact multiples of its period and the event order never depends
+on floating-point rounding. In batch mode the loop runs as fast as it can; in real-time mode it
+sleeps so that simulated time keeps pace with the wall clock. The sequence of events is the same
+in both, hence the same robot motion for the same inputs and seed.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+from arteleop.errors import ConfigurationError
+
+
+@dataclass(frozen=True)
+class LoopRates:
+    """Rates of the loop's stages (Hz, whole numbers)."""
+
+    control_hz: int = 100
+    physics_hz: int = 240
+    camera_hz: int = 30
+
+    def __post_init__(self) -> None:
+        for name in ("control_hz", "physics_hz", "camera_hz"):
+            value = getattr(self, name)
+            if not isinstance(value, int) or value <= 0:
+                raise ConfigurationError(
+                    f"LoopRates.{name} must be a positive whole number, got {value}"
+                )
+        if self.physics_hz < 240:
+            raise ConfigurationError(f"physics_hz={self.physics_hz}: use at least 240 Hz")
+
+    @property
+    def base_hz(self) -> int:
+        return math.lcm(self.control_hz, self.physics_hz, self.camera_hz)
+
+
+@dataclass(frozen=True)
+class Tick:
+    """What fires at one base tick."""
+
+    index: int
+    time_s: float
+    control: bool
+    physics: bool
+    camera: bool
+
+
+class LoopClock:
+    """Yields ticks; in real time, waits for the wall clock before each one."""
+
+    def __init__(self, rates: LoopRates, realtime: bool = False) -> None:
+        self.rates = rates
+        self.realtime = realtime
+        base = rates.base_hz
+        self._every = (base // rates.control_hz, base // rates.physics_hz, base // rates.camera_hz)
+        self._base = base
+        self._k = 0
+        self._wall0: float | None = None
+
+    def next(self) -> Tick:
+        k = self._k
+        self._k += 1
+        t = k / self._base
+        if self.realtime:
+            if self._wall0 is None:
+                self._wall0 = time.perf_counter()
+            delay = self._wall0 + t - time.perf_counter()
+            if delay > 0:
+                time.sleep(delay)
+        c, p, cam = (k % e == 0 for e in self._every)
+        return Tick(k, t, c, p, cam)
+
+    def lag_s(self, tick: Tick) -> float:
+        """How far the wall clock is behind (+) simulated time in real-time mode (s)."""
+        return 0.0 if self._wall0 is None else time.perf_counter() - self._wall0 - tick.time_s

@@ -1,0 +1,98 @@
+"""Where the operator's samples come from: a synthetic operator (closed loop) or a recording."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+from numpy.typing import NDArray
+
+from arteleop.operator import (
+    ArmModel,
+    CalibrationPosture,
+    Recording,
+    WearableConfig,
+    segment_rotations,
+    segments_for_hand_pose,
+)
+from arteleop.operator.perception import DisplayView
+from arteleop.operator.synthetic import (
+    Expertise,
+    OperatorParams,
+    Phase,
+    SyntheticOperator,
+    TaskGeometry,
+)
+from arteleop.operator.wearable import WearableSimulator
+
+
+@dataclass(frozen=True)
+class WearableSample:
+    """One sample as sent by the wearable: IMU quaternions (None if lost) and grip."""
+
+    time_s: float
+    sensor_quat_wxyz: NDArray[np.float64] | None
+    grip: float
+    true_hand_m: NDArray[np.float64] | None = None  # ground truth, for evaluation only
+
+
+class OperatorSource(Protocol):
+    """Gives one sample per control tick; None once the operator has stopped."""
+
+    arm: ArmModel
+    calibration: CalibrationPosture
+
+    def sample(self, time_s: float, view: DisplayView) -> WearableSample | None: ...
+
+
+class SyntheticSource:
+    """A :class:`SyntheticOperator` wearing the simulated wearable."""
+
+    def __init__(
+        self,
+        task: TaskGeometry,
+        hand_for_gripper: Callable[[NDArray[np.float64]], NDArray[np.float64]],
+        rng: np.random.Generator,
+        arm: ArmModel | None = None,
+        calibration: CalibrationPosture | None = None,
+        wearable: WearableConfig | None = None,
+        params: OperatorParams | None = None,
+        expertise: Expertise | None = None,
+    ) -> None:
+        self.arm = arm or ArmModel()
+        self.calibration = calibration or CalibrationPosture()
+        self.operator = SyntheticOperator(
+            task, hand_for_gripper, self.arm, self.calibration, rng, params, expertise
+        )
+        self.wearable = WearableSimulator(wearable or WearableConfig(), rng)
+        self._calibration_segments = segment_rotations(self.calibration.angles)
+
+    def sample(self, time_s: float, view: DisplayView) -> WearableSample | None:
+        out = self.operator.step(view)
+        if out.phase is Phase.CALIBRATE:
+            segments = self._calibration_segments
+        else:
+            segments = segments_for_hand_pose(self.arm, out.hand_m, out.hand_rotation)
+        return WearableSample(time_s, self.wearable.sample(segments), out.grip, out.hand_m)
+
+
+class RecordingSource:
+    """Replays a recording open loop; it starts with the recording's calibration hold."""
+
+    def __init__(self, recording: Recording) -> None:
+        self.recording = recording
+        self.arm = recording.info.arm
+        self.calibration = recording.info.calibration
+        self._i = 0
+
+    def sample(self, time_s: float, view: DisplayView) -> WearableSample | None:
+        rec = self.recording
+        t = rec.time_s[0] + time_s
+        if t > rec.time_s[-1] + 0.5 / rec.info.rate_hz:
+            return None
+        while self._i + 1 < len(rec.time_s) and rec.time_s[self._i + 1] <= t + 1e-9:
+            self._i += 1
+        quats = rec.sensor_quat_wxyz[self._i]
+        return WearableSample(time_s, quats, float(rec.grip[self._i]))

@@ -1,0 +1,261 @@
+"""One pick-and-place trial, headless: operator -> network -> robot -> physics -> camera.
+
+Completion time (STUDY.md §1) starts when the operator starts moving the arm after engaging and
+stops at the first camera frame, after the release, in which the tracker finds the bowl at rest.
+Placement error is the distance between that tracked position and the target.
+"""
+
+from __future__ import annotations
+
+import time
+from collections import deque
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from arteleop.ar_features import modality_cues
+from arteleop.errors import ConfigurationError
+from arteleop.operator.perception import DisplayView
+from arteleop.robot import GRIPPER_FRAME
+from arteleop.scene import BowlTracker, RemoteSite, SiteConfig, frame_to_point_cloud
+from arteleop.teleop.clock import LoopClock, LoopRates
+from arteleop.teleop.controller import ControllerConfig, ControllerState, TeleopController
+from arteleop.teleop.network import NetworkConfig, NetworkLink
+from arteleop.teleop.sources import OperatorSource, WearableSample
+from arteleop.teleop.timing import StageStats, StageTimer
+from arteleop.transforms import invert_transform, transform_points
+
+START_SPEED_M_S = 0.05
+"""Hand speed that marks the start of the reach (m/s)."""
+TRACKING_PERIOD_S = 0.2
+"""After the release, the bowl tracker runs on every sixth camera frame (5 Hz)."""
+BOWL_AT_REST_M_S = 0.01
+
+
+@dataclass(frozen=True)
+class TrialConfig:
+    """A headless trial.
+
+    Attributes:
+        modality: AR modality shown to the operator.
+        seed: Seed of every random source of the trial.
+        timeout_s: Simulated time after which the trial ends as ``timeout``.
+        rates: Control, physics and camera rates.
+        network: Operator-to-robot link (the display's return link has the same delay).
+        realtime: Pace the loop with the wall clock instead of running as fast as possible.
+        render_camera: Render every camera frame (needed for the display and for wall-clock
+            latency); otherwise frames are rendered only to track the bowl at the end.
+        site: The remote site.
+        controller: Robot-side settings.
+    """
+
+    modality: str = "full"
+    seed: int = 0
+    timeout_s: float = 120.0
+    rates: LoopRates = field(default_factory=LoopRates)
+    network: NetworkConfig = field(default_factory=NetworkConfig)
+    realtime: bool = False
+    render_camera: bool = False
+    site: SiteConfig = field(default_factory=SiteConfig)
+    controller: ControllerConfig = field(default_factory=ControllerConfig)
+
+    def __post_init__(self) -> None:
+        modality_cues(self.modality)
+        if self.network.delay_s + 3 * self.network.jitter_s >= self.timeout_s:
+            raise ConfigurationError(
+                f"The network delay ({self.network.delay_s} s, jitter {self.network.jitter_s} s) "
+                f"is longer than the trial timeout ({self.timeout_s} s): no command would ever "
+                "arrive. Shorten the delay or lengthen TrialConfig.timeout_s."
+            )
+
+
+@dataclass
+class TrialResult:
+    """What happened in the trial."""
+
+    outcome: str
+    completion_time_s: float
+    placement_error_m: float
+    placement_error_true_m: float
+    grasped: bool
+    placed: bool
+    grasp_attempts: int
+    duration_s: float
+    hand_time_s: NDArray[np.float64]
+    hand_m: NDArray[np.float64]
+    latency_sim_ms: NDArray[np.float64]
+    stages: list[StageStats]
+    counts: dict[str, int]
+
+
+def run_trial(
+    source: OperatorSource, config: TrialConfig, site: RemoteSite | None = None
+) -> TrialResult:
+    """Run one trial to its end; builds the site from ``config.site`` unless one is given."""
+    own_site = site is None
+    site = site or RemoteSite(config.site)
+    try:
+        return _Trial(source, config, site).run()
+    finally:
+        if own_site:
+            site.close()
+
+
+class _Trial:
+    def __init__(self, source: OperatorSource, config: TrialConfig, site: RemoteSite) -> None:
+        self.source, self.config, self.site = source, config, site
+        rng = np.random.default_rng(config.seed)
+        self.link: NetworkLink[WearableSample] = NetworkLink(config.network, rng)
+        self.clock = LoopClock(config.rates, config.realtime)
+        self.control = TeleopController(
+            site, source.arm, source.calibration, 1.0 / config.rates.control_hz, config.controller
+        )
+        self.cues = modality_cues(config.modality)
+        self.tracker = BowlTracker(site.config.workspace.bowl)
+        self.timer = StageTimer()
+        self.views: deque[DisplayView] = deque(maxlen=64)
+        self.hand_t: list[float] = []
+        self.hand_p: list[NDArray[np.float64]] = []
+        self.latency: list[float] = []
+        self.t_start: float | None = None
+        self.grasped = False
+        self.grasp_attempts = 0
+        self.released = False
+        self.dropped_samples = 0
+        self._was_closed = False
+        self._next_track_s = 0.0
+
+    def run(self) -> TrialResult:
+        site, cfg = self.site, self.config
+        ws = site.config.workspace
+        target = ws.target_m
+        while True:
+            tick = self.clock.next()
+            t = tick.time_s
+            if t > cfg.timeout_s:
+                return self._result("timeout", t)
+            if tick.camera:
+                self._camera(t)
+                if self.released and t >= self._next_track_s and self._bowl_at_rest():
+                    self._next_track_s = t + TRACKING_PERIOD_S
+                    frame = site.capture()
+                    track = self.tracker.track(frame, ws.table_top_z_m)
+                    if track.found and track.position_m is not None:
+                        err = float(np.linalg.norm(track.position_m[:2] - target[:2]))
+                        return self._result("success", t, err)
+                if site.bowl_position_m()[2] < ws.table_top_z_m - 0.05:
+                    return self._result("dropped", t)
+            if tick.control:
+                if not self._control(t):
+                    return self._result("operator_stopped", t)
+            if tick.physics:
+                w0 = time.perf_counter()
+                self.control.physics_tick()
+                self.timer.record("trajectory", w0)
+                w0 = time.perf_counter()
+                site.step()
+                self.timer.record("physics", w0)
+
+    def _control(self, t: float) -> bool:
+        view = self._view(t)
+        w0 = time.perf_counter()
+        sample = self.source.sample(t, view)
+        self.timer.record("operator_input", w0)
+        if sample is None:
+            return False
+        self.link.send(sample.time_s, sample, t)
+        for _, received in self.link.receive(t):
+            if received.sensor_quat_wxyz is None:
+                self.dropped_samples += 1
+            self.control.receive(received.time_s, received.sensor_quat_wxyz, received.grip)
+        w0 = time.perf_counter()
+        self.control.control_tick()
+        self.timer.record("mapping_ik", w0)
+        hand = self.control.last_hand
+        if self.control.state is ControllerState.ENGAGED and hand is not None:
+            self.hand_t.append(hand.time_s)
+            self.hand_p.append(hand.hand_m)
+            if self.t_start is None and self.control.hand_speed_m_s > START_SPEED_M_S:
+                self.t_start = t
+        self._grasp_state()
+        return True
+
+    def _grasp_state(self) -> None:
+        closed = self.control.grip.closed
+        if closed and not self._was_closed:
+            self.grasp_attempts += 1
+        if closed and all(self.site.robot.gripper.touching(self.site.bowl_id)):
+            self.grasped = True
+        if self.grasped and not closed:
+            self.released = True
+        self._was_closed = closed
+
+    def _bowl_at_rest(self) -> bool:
+        return self.site.bowl_speed_m_s() < BOWL_AT_REST_M_S
+
+    def _camera(self, t: float) -> None:
+        """A camera tick: the display's content now (rendered if asked), and its latency."""
+        site = self.site
+        if self.config.render_camera:
+            w0 = time.perf_counter()
+            frame = site.capture()
+            self.timer.record("camera", w0)
+            w0 = time.perf_counter()
+            frame_to_point_cloud(frame, stride=2)
+            self.timer.record("point_cloud", w0)
+        if np.isfinite(self.control.applied_sample_time_s):
+            self.latency.append(t - self.control.applied_sample_time_s)
+        T_cam = site.camera.T_base_camera
+        gripper = site.robot.link_transform(GRIPPER_FRAME)[:3, 3]
+        pc = transform_points(invert_transform(T_cam), gripper[None])[0]
+        K = site.camera.intrinsics
+        u, v = K.project(pc)[0] if pc[2] > 0 else (-1.0, -1.0)
+        cam = site.config.camera
+        in_view = bool(
+            0 <= u < K.width_px
+            and 0 <= v < K.height_px
+            and cam.min_depth_m <= pc[2] <= cam.max_depth_m
+        )
+        self.views.append(DisplayView(
+            t, T_cam[:3, 3].copy(), gripper, in_view, site.robot.gripper.closure(),
+            site.bowl_position_m(), site.config.workspace.target_m, self.cues,
+            self.control.state is ControllerState.ENGAGED,
+        ))  # fmt: skip
+
+    def _view(self, t: float) -> DisplayView:
+        """The newest display content that has reached the operator (return-link delay)."""
+        delay = self.config.network.delay_s
+        for view in reversed(self.views):
+            if view.time_s <= t - delay:
+                return view
+        if self.views:
+            return self.views[0]
+        self._camera(t)
+        return self.views[-1]
+
+    def _result(self, outcome: str, t: float, error_m: float = float("nan")) -> TrialResult:
+        ws = self.site.config.workspace
+        true_err = float(np.linalg.norm(self.site.bowl_position_m()[:2] - ws.target_m[:2]))
+        start = self.t_start if self.t_start is not None else t
+        counts = {
+            "samples_sent": self.link.sent, "samples_lost_network": self.link.lost,
+            "samples_late": self.link.late, "samples_lost_wearable": self.dropped_samples,
+            "unreachable_ticks": self.control.unreachable_ticks,
+            "held_samples": self.control.reconstructor.held if self.control.reconstructor else 0,
+        }  # fmt: skip
+        return TrialResult(
+            outcome=outcome,
+            completion_time_s=t - start if outcome == "success" else float("nan"),
+            placement_error_m=error_m,
+            placement_error_true_m=true_err if self.released else float("nan"),
+            grasped=self.grasped,
+            placed=outcome == "success",
+            grasp_attempts=self.grasp_attempts,
+            duration_s=t,
+            hand_time_s=np.array(self.hand_t),
+            hand_m=np.array(self.hand_p).reshape(-1, 3),
+            latency_sim_ms=np.array(self.latency) * 1000,
+            stages=self.timer.summary(),
+            counts=counts,
+        )
