@@ -121,8 +121,10 @@ def segments_for_hand_pose(
     relaxed person does: the elbow hangs as low as it can. Targets beyond reach are pulled in to
     99.9 % of the arm's length along the shoulder-wrist line.
     """
+    # Plain 3x3 matrices inside: this runs at the wearable's rate in the loop.
+    R_hand = hand_rotation.as_matrix()
     s = np.asarray(arm.shoulder_m)
-    wrist = np.asarray(hand_position_m, dtype=np.float64) - hand_rotation.apply(_X) * arm.hand_m
+    wrist = np.asarray(hand_position_m, dtype=np.float64) - R_hand[:, 0] * arm.hand_m
     lu, lf = arm.upper_arm_m, arm.forearm_m
     axis = wrist - s
     d = float(np.linalg.norm(axis))
@@ -133,18 +135,30 @@ def segments_for_hand_pose(
     cos_a = (lu**2 + d_clamped**2 - lf**2) / (2 * lu * d_clamped)
     center = s + n * lu * cos_a
     radius = lu * np.sqrt(max(0.0, 1 - cos_a**2))
-    down = np.array([0.0, 0.0, -1.0]) - n * np.dot([0.0, 0.0, -1.0], n)
+    down = np.array([0.0, 0.0, -1.0]) - n * -n[2]
     if np.linalg.norm(down) < 1e-9:  # arm pointing straight down or up: let the elbow go out
-        down = np.array([0.0, -1.0, 0.0]) - n * np.dot([0.0, -1.0, 0.0], n)
+        down = np.array([0.0, -1.0, 0.0]) - n * -n[1]
     elbow = center + radius * down / np.linalg.norm(down)
     x_u = (elbow - s) / lu
     x_f = (wrist - elbow) / lf
     z_u = x_f - np.dot(x_f, x_u) * x_u  # the forearm bends towards the upper arm's z
     z_u /= np.linalg.norm(z_u)
-    upper = Rotation.from_matrix(np.column_stack([x_u, np.cross(z_u, x_u), z_u]))
+    upper = np.column_stack([x_u, np.cross(z_u, x_u), z_u])
     flexion = float(np.arccos(np.clip(np.dot(x_u, x_f), -1.0, 1.0)))
-    fore0 = upper * Rotation.from_euler("y", -flexion)
-    # Pronation takes the part of the wrist's rotation about the forearm's own axis.
-    pronation = (fore0.inv() * hand_rotation).as_euler("XYZ")[0]
-    fore = fore0 * Rotation.from_euler("x", pronation)
-    return Rotation.concatenate([upper, fore, hand_rotation])
+    fore0 = upper @ _rot_y(-flexion)
+    # Pronation takes the part of the wrist's rotation about the forearm's own axis: the first
+    # angle of the intrinsic x-y-z decomposition of the wrist's rotation.
+    rel = fore0.T @ R_hand
+    pronation = float(np.arctan2(-rel[1, 2], rel[2, 2]))
+    fore = fore0 @ _rot_x(pronation)
+    return Rotation.from_matrix(np.stack([upper, fore, R_hand]))
+
+
+def _rot_x(a: float) -> NDArray[np.float64]:
+    c, s = np.cos(a), np.sin(a)
+    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+
+
+def _rot_y(a: float) -> NDArray[np.float64]:
+    c, s = np.cos(a), np.sin(a)
+    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])

@@ -107,7 +107,17 @@ def perceive(
         gripper = bowl + seen(view.gripper_m, depth_sd, lateral_sd) - view.bowl_m
     else:
         gripper = view.gripper_m + rng.normal(0.0, params.proprioception_sd_m * k, 3)
-    target_sd = params.target_mesh_sd_m if cues.target_mesh else params.target_marker_sd_m
-    target = view.target_m + np.append(rng.normal(0.0, target_sd * k, 2), 0.0)
+    if cues.target_mesh:
+        # Coincidence of the real and the virtual bowl: judged relative to the bowl.
+        target = (
+            bowl
+            + view.target_m
+            - view.bowl_m
+            + np.append(rng.normal(0.0, params.target_mesh_sd_m * k, 2), 0.0)
+        )
+    else:
+        # The marker is a point of the cloud like any other, then centred on by eye.
+        marker = seen(view.target_m, params.depth_sd_m, params.lateral_sd_m)
+        target = marker + np.append(rng.normal(0.0, params.target_marker_sd_m * k, 2), 0.0)
     closure_known = cues.grip_bar or view.gripper_in_camera or cues.ghost
     return Perceived(gripper, bowl, target, gripper_seen, closure_known)

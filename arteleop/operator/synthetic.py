@@ -186,7 +186,9 @@ class SyntheticOperator:
 
     def _goal_gripper(self, phase: Phase, seen: Perceived) -> NDArray[np.float64]:
         grasp = seen.bowl_m + self.task.grasp_offset_m
-        place = seen.target_m + self.task.grasp_offset_m + [0.0, 0.0, 0.005]
+        # Carrying, the operator puts the bowl it sees over the target it sees.
+        place = seen.gripper_m + seen.target_m - seen.bowl_m
+        place[2] = seen.target_m[2] + self.task.grasp_offset_m[2] + 0.005
         up = np.array([0.0, 0.0, 1.0])
         lift_from = self._grasped_at if self._grasped_at is not None else grasp
         return {

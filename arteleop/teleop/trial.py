@@ -28,8 +28,8 @@ from arteleop.transforms import invert_transform, transform_points
 
 START_SPEED_M_S = 0.05
 """Hand speed that marks the start of the reach (m/s)."""
-TRACKING_PERIOD_S = 0.2
-"""After the release, the bowl tracker runs on every sixth camera frame (5 Hz)."""
+TRACKING_PERIOD_S = 0.5
+"""After the release, the bowl tracker runs on every fifteenth camera frame (2 Hz)."""
 BOWL_AT_REST_M_S = 0.01
 
 
