@@ -130,17 +130,95 @@ def analyze(cmd: AnalyzeCommand) -> int:
     return 0
 
 
+@dataclass(frozen=True)
+class TrialCommand:
+    """Run one pick-and-place trial headless and print its outcome."""
+
+    operator: str = "synthetic"
+    """'synthetic', or a wearable recording's CSV"""
+    modality: str = "full"
+    """none, manipulation, embodiment, task or full"""
+    seed: int = 0
+    delay_ms: float = 0.0
+    """one-way network delay"""
+    timeout_s: float = 120.0
+    realtime: bool = False
+    """pace the loop with the wall clock"""
+
+
+def trial(cmd: TrialCommand) -> int:
+    from arteleop.operator import load_recording
+    from arteleop.scene import RemoteSite
+    from arteleop.teleop import (
+        NetworkConfig,
+        RecordingSource,
+        TrialConfig,
+        run_trial,
+        synthetic_source,
+    )
+
+    config = TrialConfig(
+        modality=cmd.modality, seed=cmd.seed, timeout_s=cmd.timeout_s, realtime=cmd.realtime,
+        network=NetworkConfig(delay_s=cmd.delay_ms / 1000),
+    )  # fmt: skip
+    with RemoteSite(config.site) as site:
+        if cmd.operator == "synthetic":
+            source = synthetic_source(site, config)
+        else:
+            source = RecordingSource(load_recording(Path(cmd.operator)))
+        result = run_trial(source, config, site)
+    print(f"outcome              {result.outcome}")
+    print(f"grasped, placed      {result.grasped}, {result.placed}")
+    print(f"completion time      {result.completion_time_s:.2f} s")
+    print(f"placement error      {result.placement_error_m * 1000:.1f} mm (tracked), "
+          f"{result.placement_error_true_m * 1000:.1f} mm (ground truth)")  # fmt: skip
+    print(f"simulated time       {result.duration_s:.1f} s")
+    return 0 if result.outcome == "success" else 1
+
+
+@dataclass(frozen=True)
+class OperatorSynthCommand:
+    """Run one synthetic trial headless and write the operator's wearable recording."""
+
+    modality: str = "full"
+    """none, manipulation, embodiment, task or full"""
+    seed: int = 0
+    out: Path = Path("synthetic.csv")
+    """recording CSV (its JSON sidecar is written beside it)"""
+
+
+def operator_synth(cmd: OperatorSynthCommand) -> int:
+    from arteleop.operator import Recording, RecordingInfo, write_recording
+    from arteleop.scene import RemoteSite
+    from arteleop.teleop import TrialConfig, run_trial, synthetic_source
+
+    config = TrialConfig(modality=cmd.modality, seed=cmd.seed)
+    with RemoteSite(config.site) as site:
+        source = synthetic_source(site, config)
+        result = run_trial(source, config, site)
+    rec = source.recorded()
+    info = RecordingInfo(subject_id=f"synthetic-{cmd.modality}-{cmd.seed}")
+    write_recording(Recording(rec.time_s, rec.sensor_quat_wxyz, rec.grip, info), cmd.out)
+    print(f"trial outcome {result.outcome}; wrote {len(rec.time_s)} samples to {cmd.out}")
+    return 0
+
+
 Command = tuple[type, Callable[[Any], int]]
 COMMANDS: dict[str, Command] = {
     "scene": (SceneCommand, scene),
     "analyze": (AnalyzeCommand, analyze),
+    "trial": (TrialCommand, trial),
 }
 GROUPS: dict[str, dict[str, Command]] = {
-    "operator": {"check": (OperatorCheckCommand, operator_check)}
+    "operator": {
+        "check": (OperatorCheckCommand, operator_check),
+        "synth": (OperatorSynthCommand, operator_synth),
+    }
 }
 DESCRIPTION = (
     "arteleop: study Augmented Reality in robot teleoperation, in simulation. "
-    "Command groups: 'arteleop operator check FILE.csv' validates a wearable recording."
+    "Command groups: 'arteleop operator check FILE.csv' validates a wearable recording; "
+    "'arteleop operator synth --modality M --seed N --out FILE.csv' records a synthetic operator."
 )
 
 

@@ -34,7 +34,7 @@ class OperatorParams:
             teleoperation through an HMD with ~0.1 s latency roughly doubles it.
         fitts_b_s_per_bit: Fitts slope (s/bit), Shannon form MT = a + b log2(D/W + 1). Direct
             pointing 0.1-0.2 s/bit; remote manipulation with delayed visual feedback 0.3-0.6
-            (Sheridan & Ferrell 1963; Hoffmann 1992). 0.45 gives the thesis's 20-50 s trials.
+            (Sheridan & Ferrell 1963; Hoffmann 1992).
         dwell_s: Pause after each movement to look at the result (visual reaction, ~0.25 s).
         settle_speed_m_s: Under delay, people move and wait (Sheridan & Ferrell 1963): the
             result is judged only once the displayed gripper moves slower than this.
@@ -54,8 +54,8 @@ class OperatorParams:
         perception: Perception error model.
     """
 
-    fitts_a_s: float = 0.4
-    fitts_b_s_per_bit: float = 0.45
+    fitts_a_s: float = 0.3
+    fitts_b_s_per_bit: float = 0.3
     dwell_s: float = 0.25
     settle_speed_m_s: float = 0.02
     endpoint_noise_ratio: float = 0.03

@@ -3,6 +3,7 @@
 from arteleop.teleop.clock import LoopClock, LoopRates, Tick
 from arteleop.teleop.controller import ControllerConfig, ControllerState, TeleopController
 from arteleop.teleop.network import NetworkConfig, NetworkLink
+from arteleop.teleop.setup import synthetic_source
 from arteleop.teleop.sources import OperatorSource, RecordingSource, SyntheticSource, WearableSample
 from arteleop.teleop.timing import StageStats, StageTimer
 from arteleop.teleop.trial import TrialConfig, TrialResult, run_trial
@@ -25,4 +26,5 @@ __all__ = [
     "TrialResult",
     "WearableSample",
     "run_trial",
+    "synthetic_source",
 ]

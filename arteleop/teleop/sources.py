@@ -25,7 +25,7 @@ from arteleop.operator.synthetic import (
     SyntheticOperator,
     TaskGeometry,
 )
-from arteleop.operator.wearable import WearableSimulator
+from arteleop.operator.wearable import WearableSignals, WearableSimulator
 
 
 @dataclass(frozen=True)
@@ -68,6 +68,7 @@ class SyntheticSource:
         )
         self.wearable = WearableSimulator(wearable or WearableConfig(), rng)
         self._calibration_segments = segment_rotations(self.calibration.angles)
+        self._log: list[tuple[float, NDArray[np.float64], float]] = []
 
     def sample(self, time_s: float, view: DisplayView) -> WearableSample | None:
         out = self.operator.step(view)
@@ -75,7 +76,17 @@ class SyntheticSource:
             segments = self._calibration_segments
         else:
             segments = segments_for_hand_pose(self.arm, out.hand_m, out.hand_rotation)
-        return WearableSample(time_s, self.wearable.sample(segments), out.grip, out.hand_m)
+        quats = self.wearable.sample(segments)
+        if quats is not None:
+            self._log.append((time_s, quats, out.grip))
+        return WearableSample(time_s, quats, out.grip, out.hand_m)
+
+    def recorded(self) -> WearableSignals:
+        """Everything the wearable delivered so far (lost packets absent), for a recording."""
+        t, q, g = zip(*self._log, strict=True) if self._log else ((), (), ())
+        return WearableSignals(
+            np.array(t), np.array(q).reshape(-1, 3, 4), np.array(g), self.wearable.dropped
+        )
 
 
 class RecordingSource:
