@@ -23,7 +23,7 @@ from scipy.spatial.transform import Rotation
 from arteleop.robot import GRIPPER_FRAME, RIGHT_ARM_JOINTS, WORK_POSTURE
 from arteleop.robot.ik import ArmIK
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
-from arteleop.teleop import TrialConfig, run_trial, synthetic_source
+from arteleop.teleop import TrialConfig, TrialResult, run_trial, synthetic_source
 from arteleop.transforms import quat_wxyz_to_xyzw, transform_to_pose
 
 
@@ -125,15 +125,18 @@ def latency(seconds: float) -> None:
         )
 
 
-def _stages(result) -> None:
+def _stages(result: TrialResult) -> None:
     print(
-        "| stage | rounds | service median (ms) | service p95 (ms) | latency median (ms) | latency p99-ish p95 (ms) |"
+        "| stage | rounds | service median (ms) | service p95 (ms) | latency median (us) | latency p99 (us) |"
     )
     print("| --- | ---: | ---: | ---: | ---: | ---: |")
     for s in result.stages:
         print(
-            f"| {s.stage} | {s.rounds} | {s.service_median_ms:.3f} | {s.service_p95_ms:.3f} | {s.latency_median_ms:.3f} | {s.latency_p95_ms:.3f} |"
+            f"| {s.stage} | {s.rounds} | {s.service_median_ms:.3f} | {s.service_p95_ms:.3f} | {s.latency_median_ms * 1e3:.0f} | {s.latency_p99_ms * 1e3:.0f} |"
         )
+    print(
+        "\nmapping_ik is the control tick: mapping, one IK step, the trajectory's new target, the gripper command."
+    )
 
 
 def main() -> None:
@@ -141,12 +144,17 @@ def main() -> None:
     parser.add_argument("--targets", type=int, default=1000)
     parser.add_argument("--trial-seconds", type=float, default=120.0)
     parser.add_argument("--latency-seconds", type=float, default=20.0)
+    parser.add_argument("--parts", default="ik,trial,latency", help="comma-separated subset")
     args = parser.parse_args()
     if hasattr(os, "sched_setaffinity"):
         os.sched_setaffinity(0, {min(os.sched_getaffinity(0))})
-    ik_side_by_side(args.targets)
-    trial_timing(args.trial_seconds)
-    latency(args.latency_seconds)
+    parts = set(args.parts.split(","))
+    if "ik" in parts:
+        ik_side_by_side(args.targets)
+    if "trial" in parts:
+        trial_timing(args.trial_seconds)
+    if "latency" in parts:
+        latency(args.latency_seconds)
 
 
 if __name__ == "__main__":

@@ -157,11 +157,10 @@ def compare_paired(
     return "wilcoxon", float(res.statistic), float(res.pvalue), float(r), "rank_biserial"
 
 
-def _missing(
-    subset: str, measure: str, a: str, b: str, test: str, na: int, nb: int, why: str
-) -> TestResult:
+def untested(subset: str, measure: str, a: str, b: str, n_a: int, n_b: int, why: str) -> TestResult:
+    """A row for a comparison that could not run: empty test, statistic and p, and the reason."""
     return TestResult(
-        subset, measure, a, b, test, na, nb, math.nan, math.nan, math.nan, "", "", why
+        subset, measure, a, b, "", n_a, n_b, math.nan, math.nan, math.nan, "", "", why
     )
 
 
@@ -199,38 +198,16 @@ def pairwise(
         if options.paired:
             both = a_df.merge(b_df, on="participant", suffixes=("_a", "_b"))
             a, b = both[f"{value}_a"].to_numpy(), both[f"{value}_b"].to_numpy()
-            if len(a) < MIN_TEST_N:
-                rows.append(
-                    _missing(
-                        subset,
-                        measure,
-                        ga,
-                        gb,
-                        "paired",
-                        len(a),
-                        len(b),
-                        f"too few pairs ({len(a)}, need {MIN_TEST_N})",
-                    )
-                )
-                continue
-            _, _, diff_normal = normality(a - b, options.alpha)
-            test = compare_paired(a, b, bool(diff_normal))
+            short = f"too few pairs ({len(a)}, need {MIN_TEST_N})"
         else:
             a, b = a_df[value].to_numpy(), b_df[value].to_numpy()
-            if min(len(a), len(b)) < MIN_TEST_N:
-                rows.append(
-                    _missing(
-                        subset,
-                        measure,
-                        ga,
-                        gb,
-                        "",
-                        len(a),
-                        len(b),
-                        f"too few values ({len(a)} and {len(b)}, need {MIN_TEST_N} each)",
-                    )
-                )
-                continue
+            short = f"too few values ({len(a)} and {len(b)}, need {MIN_TEST_N} each)"
+        if min(len(a), len(b)) < MIN_TEST_N:
+            rows.append(untested(subset, measure, ga, gb, len(a), len(b), short))
+            continue
+        if options.paired:
+            test = compare_paired(a, b, bool(normality(a - b, options.alpha)[2]))
+        else:
             test = compare_independent(a, b, bool(normal[ga] and normal[gb]))
         name, stat, p, effect, kind = test
         rows.append(
@@ -284,8 +261,8 @@ def order_effect(df: pd.DataFrame, value: str, subset: str = "all") -> tuple[Tes
             "df_between": math.nan,
             "df_within": math.nan,
         }
-        return _missing(
-            subset, value, "position", "", "anova", n, len(groups), "too few positions or trials"
+        return untested(
+            subset, value, "position", "", n, len(groups), "too few positions or trials"
         ), summary
     res = stats.f_oneway(*groups)
     eta2 = _eta_squared(groups)

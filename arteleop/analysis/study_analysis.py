@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import itertools
-import math
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
@@ -20,6 +19,7 @@ from arteleop.analysis.data import (
 from arteleop.analysis.errors import AnalysisInputError
 from arteleop.analysis.smoothness import normalized_jerk
 from arteleop.analysis.statistics import (
+    MIN_TEST_N,
     AnalysisOptions,
     NormalityResult,
     TestResult,
@@ -29,6 +29,7 @@ from arteleop.analysis.statistics import (
     pairwise,
     stars,
     trim_extremes,
+    untested,
 )
 
 EXPERTISE_KINDS = {"avr": "avr_hours", "games": "games_hours"}
@@ -152,22 +153,17 @@ def _expertise(
                     .to_numpy()
                 )
                 subset = f"experts_vs_novices:{kind}"
-                if min(len(a), len(b)) < 3:
+                if min(len(a), len(b)) < MIN_TEST_N:
+                    why = f"too few values ({len(a)} and {len(b)}, need {MIN_TEST_N} each)"
                     tests.append(
-                        TestResult(
+                        untested(
                             subset,
                             m,
                             f"expert:{modality}",
                             f"novice:{modality}",
-                            "",
                             len(a),
                             len(b),
-                            math.nan,
-                            math.nan,
-                            math.nan,
-                            "",
-                            "",
-                            f"too few values ({len(a)} and {len(b)}, need 3 each)",
+                            why,
                         )
                     )
                     continue

@@ -162,7 +162,27 @@ class ArmIK:
     def solve(
         self, dt: float = 0.05, max_iterations: int = 300, tolerance_m: float = 1e-4
     ) -> IKResult:
-        """Iterate to convergence: for offline use (benchmarks, reach checks)."""
+        """Iterate to convergence: for offline use (benchmarks, reach checks).
+
+        Once the posture-weighted solution stalls, it is refined with the posture task almost
+        off, so the posture only picks the branch and does not bias the answer.
+        """
+        cost = self.config.posture_cost
+        _, iterations = self._iterate(dt, max_iterations // 2, tolerance_m)
+        self.posture_task.set_cost(cost * 1e-3)
+        try:
+            refined, more = self._iterate(dt, max_iterations - iterations, tolerance_m)
+        finally:
+            self.posture_task.set_cost(cost)
+        return IKResult(
+            refined.q_rad,
+            refined.position_error_m,
+            refined.orientation_error_rad,
+            refined.reachable,
+            iterations + more,
+        )
+
+    def _iterate(self, dt: float, max_iterations: int, tolerance_m: float) -> tuple[IKResult, int]:
         result = self.step(dt)
         for i in range(2, max_iterations + 1):
             previous = result.position_error_m
@@ -171,14 +191,8 @@ class ArmIK:
                 result.position_error_m < tolerance_m and result.orientation_error_rad < 1e-3
             )
             if converged or abs(previous - result.position_error_m) < 1e-9:
-                return IKResult(
-                    result.q_rad,
-                    result.position_error_m,
-                    result.orientation_error_rad,
-                    result.reachable,
-                    i,
-                )
-        return result
+                return result, i
+        return result, max_iterations
 
     def _result(self, iterations: int, speed: float) -> IKResult:
         T = self.gripper_transform()

@@ -24,6 +24,7 @@ class StageStats:
     service_p95_ms: float
     latency_median_ms: float
     latency_p95_ms: float
+    latency_p99_ms: float
 
 
 class StageTimer:
@@ -56,6 +57,6 @@ class StageTimer:
             lat = np.asarray(self._latency[stage]) * 1000
             rows.append(StageStats(
                 stage, len(lat), float(np.median(s)), float(np.percentile(s, 95)),
-                float(np.median(lat)), float(np.percentile(lat, 95)),
+                float(np.median(lat)), float(np.percentile(lat, 95)), float(np.percentile(lat, 99)),
             ))  # fmt: skip
         return rows
