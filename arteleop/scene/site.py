@@ -159,9 +159,9 @@ class RemoteSite:
         reach = TopDownReach.from_kinematics(self.kinematics)
         grasp_h = ws.bowl.height_m - GRASP_DEPTH_M
         for name, point in (("start", ws.start_m), ("target", ws.target_m)):
-            for side in (-1.0, 1.0):  # the near and the far side of the rim
-                rim_x = side * (ws.bowl.rim_radius_m - ws.bowl.wall_thickness_m / 2)
-                tool = point + np.array([rim_x, 0.0, grasp_h])
+            r = ws.bowl.rim_radius_m - ws.bowl.wall_thickness_m / 2
+            for dx, dy in ((r, 0.0), (-r, 0.0), (0.0, r), (0.0, -r)):  # four sides of the rim
+                tool = point + np.array([dx, dy, grasp_h])
                 if not reach.is_reachable(tool, self.config.reach_margin):
                     xy = tuple(np.round(point[:2], 3).tolist())
                     raise WorkspaceError(

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from arteleop.errors import ConfigurationError
-from arteleop.operator import ImuErrorConfig, write_recording
+from arteleop.operator import ImuErrorConfig, load_recording, write_recording
 from arteleop.scene import RemoteSite, SiteConfig
 from arteleop.teleop import (
     LoopClock,
@@ -50,7 +50,7 @@ def test_recording_that_ends_mid_trial_stops_the_trial(site_config: SiteConfig, 
     rec = reach_and_return(errors=ImuErrorConfig.ideal()).recording
     write_recording(rec, tmp_path / "r.csv")
     config = TrialConfig(site=site_config)
-    result = run_trial(RecordingSource(rec), config)
+    result = run_trial(RecordingSource(load_recording(tmp_path / "r.csv")), config)
     assert result.outcome == "operator_stopped"
     assert result.duration_s == pytest.approx(rec.duration_s, abs=0.05)
 
