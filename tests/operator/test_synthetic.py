@@ -13,10 +13,15 @@ P = PerceptionParams()
 
 def _view(cues: ArCues, gripper_in_camera: bool = True) -> DisplayView:
     return DisplayView(
-        time_s=0.0, viewpoint_m=np.array([0.22, 0.0, 0.89]), gripper_m=np.array([0.68, -0.37, -0.05]),
-        gripper_in_camera=gripper_in_camera, gripper_closure=0.0, bowl_m=np.array([0.68, -0.45, -0.2]),
-        target_m=np.array([0.68, -0.10, -0.2]), cues=cues,
-    )  # fmt: skip
+        time_s=0.0,
+        viewpoint_m=np.array([0.22, 0.0, 0.89]),
+        gripper_m=np.array([0.68, -0.37, -0.05]),
+        gripper_in_camera=gripper_in_camera,
+        gripper_closure=0.0,
+        bowl_m=np.array([0.68, -0.45, -0.2]),
+        target_m=np.array([0.68, -0.10, -0.2]),
+        cues=cues,
+    )
 
 
 def _errors(cues: ArCues, n: int = 4000, **kw) -> dict[str, np.ndarray]:
@@ -69,9 +74,13 @@ def test_ghost_shows_a_gripper_the_camera_cannot() -> None:
 
 def test_expertise_speeds_up_and_steadies_the_operator() -> None:
     task = TaskGeometry(np.zeros(3), np.array([0.3, -0.56, 0.0]))
-    make = lambda e: SyntheticOperator(
-        task, lambda p: p, ArmModel(), CalibrationPosture(), np.random.default_rng(0), expertise=e
-    )
+
+    def make(e: Expertise) -> SyntheticOperator:
+        rng = np.random.default_rng(0)
+        return SyntheticOperator(
+            task, lambda p: p, ArmModel(), CalibrationPosture(), rng, expertise=e
+        )
+
     novice, expert = make(Expertise(1, 1)), make(Expertise(avr_hours=2))
     assert expert._fitts_s(0.3, 0.01) < novice._fitts_s(0.3, 0.01)
     assert novice._fitts_s(0.3, 0.01) == pytest.approx(
