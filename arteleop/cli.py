@@ -197,7 +197,12 @@ def operator_synth(cmd: OperatorSynthCommand) -> int:
         source = synthetic_source(site, config)
         result = run_trial(source, config, site)
     rec = source.recorded()
-    info = RecordingInfo(subject_id=f"synthetic-{cmd.modality}-{cmd.seed}")
+    info = RecordingInfo(
+        rate_hz=source.wearable.config.rate_hz,
+        arm=source.arm,
+        calibration=source.calibration,
+        subject_id=f"synthetic-{cmd.modality}-{cmd.seed}",
+    )
     write_recording(Recording(rec.time_s, rec.sensor_quat_wxyz, rec.grip, info), cmd.out)
     print(f"trial outcome {result.outcome}; wrote {len(rec.time_s)} samples to {cmd.out}")
     return 0

@@ -59,9 +59,3 @@ def transform_points(T_a_b: ArrayLike, points_b: ArrayLike) -> NDArray[np.float6
     T = np.asarray(T_a_b, dtype=np.float64)
     p = np.asarray(points_b, dtype=np.float64)
     return p @ T[:3, :3].T + T[:3, 3]
-
-
-def rotation_about_axis(axis: ArrayLike, angle_rad: float) -> NDArray[np.float64]:
-    """3x3 rotation matrix about a unit ``axis`` by ``angle_rad`` (right-hand rule)."""
-    axis = np.asarray(axis, dtype=np.float64)
-    return Rotation.from_rotvec(axis / np.linalg.norm(axis) * angle_rad).as_matrix()

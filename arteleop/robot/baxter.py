@@ -116,12 +116,6 @@ class Baxter:
         states = self._client.getJointStates(self.body_id, [self.joint_index[n] for n in names])
         return np.array([s[0] for s in states])
 
-    def all_joint_positions(self) -> dict[str, float]:
-        """Measured position of every movable joint, by name."""
-        return dict(
-            zip(self.joint_index, self.joint_positions(tuple(self.joint_index)), strict=True)
-        )
-
     def link_transform(self, link: str) -> NDArray[np.float64]:
         """``T_base_link`` (4x4) of a URDF link, from the current simulator state."""
         if link not in self.link_index:

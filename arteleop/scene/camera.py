@@ -8,6 +8,7 @@ Depth images hold the z coordinate in the camera frame (m), 0 where there is no 
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -242,28 +243,43 @@ class HeadCamera:
             segmentation[np.asarray(seg).reshape(c.height_px, c.width_px) < 0] = -1
         return RGBDFrame(rgb, depth, self.intrinsics, self.T_base_camera, timestamp_s, segmentation)
 
+    def locate(self, point_base_m: ArrayLike) -> tuple[float, float, float]:
+        """Pixel (u, v) and depth z (m) of a base-frame point; u and v are nan behind the camera."""
+        pc = transform_points(invert_transform(self.T_base_camera), np.atleast_2d(point_base_m))[0]
+        if pc[2] <= 0:
+            return math.nan, math.nan, float(pc[2])
+        u, v = self.intrinsics.project(pc)[0]
+        return float(u), float(v), float(pc[2])
+
+    def sees(self, point_base_m: ArrayLike, margin_px: float = 0.0) -> bool:
+        """Whether a base-frame point is in the image (with a margin) and in the depth range."""
+        u, v, z = self.locate(point_base_m)
+        c = self.config
+        return (
+            c.min_depth_m <= z <= c.max_depth_m
+            and margin_px <= u <= c.width_px - 1 - margin_px
+            and margin_px <= v <= c.height_px - 1 - margin_px
+        )
+
     def check_sees(
         self, points_base_m: dict[str, NDArray[np.float64]], margin_px: int = 10
     ) -> None:
         """Raise :class:`CameraConfigError` unless every named point is in view and in range."""
         c = self.config
-        T_camera_base = invert_transform(self.T_base_camera)
         for name, point in points_base_m.items():
-            pc = transform_points(T_camera_base, np.atleast_2d(point))[0]
-            if not c.min_depth_m <= pc[2] <= c.max_depth_m:
+            if self.sees(point, margin_px):
+                continue
+            u, v, z = self.locate(point)
+            where = np.round(point, 3).tolist()
+            if not c.min_depth_m <= z <= c.max_depth_m:
                 raise CameraConfigError(
-                    f"The head camera can't see the {name} at {np.round(point, 3).tolist()} m: it "
-                    f"lies {pc[2]:.2f} m along the optical axis, outside the depth range "
-                    f"[{c.min_depth_m}, {c.max_depth_m}] m. Adjust HeadCameraConfig."
-                    "pitch_down_deg, yaw_deg or mount_xyz_m."
+                    f"The head camera can't see the {name} at {where} m: it lies {z:.2f} m along "
+                    f"the optical axis, outside the depth range [{c.min_depth_m}, "
+                    f"{c.max_depth_m}] m. Adjust HeadCameraConfig.pitch_down_deg, yaw_deg or "
+                    "mount_xyz_m."
                 )
-            u, v = self.intrinsics.project(pc)[0]
-            if not (
-                margin_px <= u <= c.width_px - 1 - margin_px
-                and margin_px <= v <= c.height_px - 1 - margin_px
-            ):
-                raise CameraConfigError(
-                    f"The head camera can't see the {name} at {np.round(point, 3).tolist()} m: it "
-                    f"projects to pixel ({u:.0f}, {v:.0f}), outside the {c.width_px}x{c.height_px} "
-                    "image. Adjust HeadCameraConfig.pitch_down_deg, yaw_deg or mount_xyz_m."
-                )
+            raise CameraConfigError(
+                f"The head camera can't see the {name} at {where} m: it projects to pixel "
+                f"({u:.0f}, {v:.0f}), outside the {c.width_px}x{c.height_px} image. Adjust "
+                "HeadCameraConfig.pitch_down_deg, yaw_deg or mount_xyz_m."
+            )

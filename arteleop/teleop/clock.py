@@ -74,7 +74,3 @@ class LoopClock:
                 time.sleep(delay)
         c, p, cam = (k % e == 0 for e in self._every)
         return Tick(k, t, c, p, cam)
-
-    def lag_s(self, tick: Tick) -> float:
-        """How far the wall clock is behind (+) simulated time in real-time mode (s)."""
-        return 0.0 if self._wall0 is None else time.perf_counter() - self._wall0 - tick.time_s

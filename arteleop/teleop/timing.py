@@ -43,13 +43,6 @@ class StageTimer:
         self._last_end[stage] = end
         self._latency[stage].append(end - start_s)
 
-    def add_latency(self, stage: str, latency_s: float) -> None:
-        """A latency measured elsewhere (e.g. end to end, in simulated time)."""
-        self._latency[stage].append(latency_s)
-
-    def latencies_s(self, stage: str) -> np.ndarray:
-        return np.asarray(self._latency.get(stage, []), dtype=np.float64)
-
     def summary(self) -> list[StageStats]:
         rows = []
         for stage in self._latency:

@@ -24,7 +24,6 @@ from arteleop.teleop.controller import ControllerConfig, ControllerState, Teleop
 from arteleop.teleop.network import NetworkConfig, NetworkLink
 from arteleop.teleop.sources import OperatorSource, WearableSample
 from arteleop.teleop.timing import StageStats, StageTimer
-from arteleop.transforms import invert_transform, transform_points
 
 START_SPEED_M_S = 0.05
 """Hand speed that marks the start of the reach (m/s)."""
@@ -206,19 +205,11 @@ class _Trial:
             self.timer.record("point_cloud", w0)
         if np.isfinite(self.control.applied_sample_time_s):
             self.latency.append(t - self.control.applied_sample_time_s)
-        T_cam = site.camera.T_base_camera
         gripper = site.robot.link_transform(GRIPPER_FRAME)[:3, 3]
-        pc = transform_points(invert_transform(T_cam), gripper[None])[0]
-        K = site.camera.intrinsics
-        u, v = K.project(pc)[0] if pc[2] > 0 else (-1.0, -1.0)
-        cam = site.config.camera
-        in_view = bool(
-            0 <= u < K.width_px
-            and 0 <= v < K.height_px
-            and cam.min_depth_m <= pc[2] <= cam.max_depth_m
-        )
+        in_view = site.camera.sees(gripper)
         self.views.append(DisplayView(
-            t, T_cam[:3, 3].copy(), gripper, in_view, site.robot.gripper.closure(),
+            t, site.camera.T_base_camera[:3, 3].copy(), gripper, in_view,
+            site.robot.gripper.closure(),
             site.bowl_position_m(), site.config.workspace.target_m, self.cues,
             self.control.state is ControllerState.ENGAGED,
         ))  # fmt: skip
