@@ -24,7 +24,6 @@ from arteleop.robot import GRIPPER_FRAME, RIGHT_ARM_JOINTS, WORK_POSTURE
 from arteleop.robot.ik import ArmIK
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
 from arteleop.teleop import TrialConfig, TrialResult, run_trial, synthetic_source
-from arteleop.transforms import quat_wxyz_to_xyzw, transform_to_pose
 
 
 def ik_side_by_side(n: int) -> None:
@@ -33,13 +32,10 @@ def ik_side_by_side(n: int) -> None:
     lim = kin.limits(RIGHT_ARM_JOINTS)
     ik = ArmIK(site.description.urdf_path, lim, WORK_POSTURE)
     rng = np.random.default_rng(0)
-    link = robot.link_index[GRIPPER_FRAME]
-    movable = list(robot.joint_index)
     rows = {"mink": [], "pybullet": []}
     for _ in range(n):
         q = rng.uniform(lim.lower, lim.upper)
         T = kin.frame_transform(dict(zip(RIGHT_ARM_JOINTS, q, strict=True)), GRIPPER_FRAME)
-        pos, quat = transform_to_pose(T)
         # mink, converged offline solve from the working posture
         ik.reset(WORK_POSTURE)
         ik.set_target(T)
@@ -49,13 +45,8 @@ def ik_side_by_side(n: int) -> None:
         # PyBullet from the same posture
         robot.set_joint_positions(dict(zip(RIGHT_ARM_JOINTS, WORK_POSTURE, strict=True)))
         t0 = time.perf_counter()
-        sol = site.client.calculateInverseKinematics(
-            robot.body_id, link, pos.tolist(), quat_wxyz_to_xyzw(quat).tolist(),
-            lowerLimits=list(lim.lower), upperLimits=list(lim.upper),
-            maxNumIterations=200, residualThreshold=1e-6,
-        )  # fmt: skip
+        q_pb = robot.pybullet_ik(T)
         dt = time.perf_counter() - t0
-        q_pb = np.array([dict(zip(movable, sol, strict=True))[j] for j in RIGHT_ARM_JOINTS])
         T_pb = kin.frame_transform(dict(zip(RIGHT_ARM_JOINTS, q_pb, strict=True)), GRIPPER_FRAME)
         rot = Rotation.from_matrix(T_pb[:3, :3].T @ T[:3, :3]).magnitude()
         rows["pybullet"].append((float(np.linalg.norm(T_pb[:3, 3] - T[:3, 3])), rot, dt))

@@ -6,22 +6,32 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
+import pinocchio as pin
 import pybullet as p
 from numpy.typing import ArrayLike, NDArray
 from pybullet_utils.bullet_client import BulletClient
 
 from arteleop.errors import ConfigurationError
-from arteleop.robot.description import BaxterDescription
+from arteleop.robot.description import BaxterDescription, freeze_joints
 from arteleop.robot.gripper import ElectricGripper, GripperConfig
 from arteleop.robot.joints import (
+    GRIPPER_FRAME,
     LEFT_ARM_JOINTS,
     LEFT_FINGER_JOINTS,
+    REST_POSE,
     RIGHT_ARM_JOINTS,
     RIGHT_FINGER_JOINTS,
     ArmPose,
     JointLimits,
 )
-from arteleop.transforms import pose_to_transform, quat_xyzw_to_wxyz
+from arteleop.robot.kinematics import BaxterKinematics
+from arteleop.transforms import (
+    invert_transform,
+    pose_to_transform,
+    quat_wxyz_to_xyzw,
+    quat_xyzw_to_wxyz,
+    transform_to_pose,
+)
 
 
 @dataclass(frozen=True)
@@ -37,12 +47,21 @@ class ArmControlConfig:
     velocity_gain: float = 1.0
 
 
+HEAD_PAN_JOINT = "head_pan"
+
+
 class Baxter:
     """Baxter loaded into a PyBullet client, fixed at the world origin.
 
     The world frame is therefore Baxter's ``base`` frame: every pose this class returns is
     ``T_base_<link>``. Arm commands go through PyBullet position control with the URDF's effort
     and velocity limits; the right gripper is an :class:`ElectricGripper`.
+
+    Only the right arm and its fingers move. The left arm (at ``left_arm_rad``), its fingers
+    and the head are frozen into fixed joints and PyBullet merges the fixed links, which cuts a
+    physics step about six-fold (see benchmarks/bench_site.py). Every URDF link keeps its name
+    for :meth:`link_transform`, which composes the merged link's pose with the fixed offset
+    pinocchio reads from the same URDF.
     """
 
     def __init__(
@@ -51,55 +70,68 @@ class Baxter:
         description: BaxterDescription,
         gripper_config: GripperConfig | None = None,
         control: ArmControlConfig | None = None,
+        left_arm_rad: Sequence[float] = REST_POSE.left,
     ) -> None:
         self._client = client
         self.control = control or ArmControlConfig()
+        self.left_arm_rad = tuple(float(v) for v in left_arm_rad)
+        full = BaxterKinematics(description.urdf_path)
+        full.limits(LEFT_ARM_JOINTS).check(np.asarray(self.left_arm_rad), "left arm pose")
+        frozen = {
+            **dict(zip(LEFT_ARM_JOINTS, self.left_arm_rad, strict=True)),
+            **dict.fromkeys(LEFT_FINGER_JOINTS, 0.0),
+            HEAD_PAN_JOINT: 0.0,
+        }
+        self.urdf_path = urdf = freeze_joints(description, frozen)
+        """The URDF loaded: ``description``'s with the left arm, its fingers and the head fixed."""
         self.body_id = client.loadURDF(
-            str(description.urdf_path),
+            str(urdf),
             basePosition=(0.0, 0.0, 0.0),
             useFixedBase=True,
-            flags=p.URDF_USE_INERTIA_FROM_FILE,
+            flags=p.URDF_USE_INERTIA_FROM_FILE | p.URDF_MERGE_FIXED_LINKS,
         )
         self.joint_index: dict[str, int] = {}
         self.link_index: dict[str, int] = {}
+        """PyBullet link index of each link that survived merging (the movable ones)."""
+        link_of_joint: dict[str, int] = {}
         limits: dict[str, tuple[float, float, float, float]] = {}
         for i in range(client.getNumJoints(self.body_id)):
             info = client.getJointInfo(self.body_id, i)
             name = info[1].decode()
             self.link_index[info[12].decode()] = i
+            link_of_joint[name] = i
             if info[2] in (p.JOINT_REVOLUTE, p.JOINT_PRISMATIC):
                 self.joint_index[name] = i
                 limits[name] = (info[8], info[9], info[11], info[10])
+        self._frames = _frame_offsets(BaxterKinematics(urdf).model, link_of_joint)
         self.right_arm_limits = _limits(RIGHT_ARM_JOINTS, limits)
-        self.left_arm_limits = _limits(LEFT_ARM_JOINTS, limits)
         self.gripper = ElectricGripper(
             client,
             self.body_id,
             finger_joints=tuple(self.joint_index[n] for n in RIGHT_FINGER_JOINTS),
-            finger_tip_links=(
-                self.link_index["r_gripper_l_finger_tip"],
-                self.link_index["r_gripper_r_finger_tip"],
-            ),
+            # The finger tips (pads) are merged into the finger links.
+            finger_links=tuple(self.joint_index[n] for n in RIGHT_FINGER_JOINTS),
             finger_limits=_limits(RIGHT_FINGER_JOINTS, limits),
             config=gripper_config,
         )
-        self._left_fingers = tuple(self.joint_index[n] for n in LEFT_FINGER_JOINTS)
 
     @property
     def client(self) -> BulletClient:
         return self._client
 
     def reset(self, pose: ArmPose) -> None:
-        """Teleport both arms and the gripper to ``pose`` and hold it with the motors."""
+        """Teleport the right arm and the gripper to ``pose`` and hold it with the motors."""
+        if not np.allclose(pose.left, self.left_arm_rad, atol=1e-9):
+            raise ConfigurationError(
+                f"ArmPose.left={pose.left} differs from the left-arm pose this Baxter was built "
+                f"with ({self.left_arm_rad}); the left arm is frozen. Build Baxter (or the site's "
+                "rest_pose) with the left arm you want."
+            )
         self.right_arm_limits.check(np.asarray(pose.right), "ArmPose.right")
-        self.left_arm_limits.check(np.asarray(pose.left), "ArmPose.left")
-        for name, value in pose.as_dict().items():
+        for name, value in zip(RIGHT_ARM_JOINTS, pose.right, strict=True):
             self._client.resetJointState(self.body_id, self.joint_index[name], value)
-        for j in self._left_fingers:
-            self._client.resetJointState(self.body_id, j, 0.0)
         self.gripper.reset(pose.gripper_closure)
         self.command_arm(pose.right)
-        self._command(LEFT_ARM_JOINTS, pose.left, self.left_arm_limits)
 
     def command_arm(self, q_rad: ArrayLike) -> None:
         """Position targets (rad) of the right arm's joints, in ``RIGHT_ARM_JOINTS`` order."""
@@ -116,16 +148,48 @@ class Baxter:
         states = self._client.getJointStates(self.body_id, [self.joint_index[n] for n in names])
         return np.array([s[0] for s in states])
 
+    def frame_link(self, frame: str) -> tuple[int, NDArray[np.float64]]:
+        """(PyBullet link index, ``T_link_frame``) of a URDF link or joint frame; -1 is the base."""
+        if frame not in self._frames:
+            raise ConfigurationError(
+                f"Unknown link '{frame}'. Baxter's links: {sorted(self._frames)}"
+            )
+        return self._frames[frame]
+
     def link_transform(self, link: str) -> NDArray[np.float64]:
         """``T_base_link`` (4x4) of a URDF link, from the current simulator state."""
-        if link not in self.link_index:
-            raise ConfigurationError(
-                f"Unknown link '{link}'. Baxter's links: {sorted(self.link_index)}"
-            )
-        state = self._client.getLinkState(
-            self.body_id, self.link_index[link], computeForwardKinematics=True
+        index, T_link_frame = self.frame_link(link)
+        if index < 0:
+            return T_link_frame.copy()  # fixed to the base, which sits at the world origin
+        state = self._client.getLinkState(self.body_id, index, computeForwardKinematics=True)
+        return pose_to_transform(state[4], quat_xyzw_to_wxyz(state[5])) @ T_link_frame
+
+    def pybullet_ik(
+        self,
+        T_base_target: ArrayLike,
+        frame: str = GRIPPER_FRAME,
+        max_iterations: int = 200,
+    ) -> NDArray[np.float64]:
+        """Right-arm joint positions (rad) from PyBullet's ``calculateInverseKinematics``, seeded
+        from the current state; the baseline that mink is measured against, and a test tool.
+
+        Args:
+            T_base_target: Wanted ``T_base_frame`` (4x4).
+            frame: Any URDF frame rigidly attached to the right arm.
+            max_iterations: PyBullet's iteration cap.
+        """
+        index, T_link_frame = self.frame_link(frame)
+        pos, quat = transform_to_pose(np.asarray(T_base_target) @ invert_transform(T_link_frame))
+        q = self._client.calculateInverseKinematics(
+            self.body_id,
+            index,
+            pos.tolist(),
+            quat_wxyz_to_xyzw(quat).tolist(),
+            maxNumIterations=max_iterations,
+            residualThreshold=1e-6,
         )
-        return pose_to_transform(state[4], quat_xyzw_to_wxyz(state[5]))
+        solution = dict(zip(self.joint_index, q, strict=True))
+        return np.array([solution[n] for n in RIGHT_ARM_JOINTS])
 
     def set_joint_positions(self, positions: Mapping[str, float]) -> None:
         """Teleport the named joints (no dynamics); used for kinematic checks."""
@@ -155,3 +219,20 @@ def _limits(
         velocity=rows[:, 2],
         effort=rows[:, 3],
     )
+
+
+def _frame_offsets(
+    model: pin.Model, link_of_joint: Mapping[str, int]
+) -> dict[str, tuple[int, NDArray[np.float64]]]:
+    """Each pinocchio frame -> (PyBullet link of its parent joint, ``T_link_frame``).
+
+    Pinocchio's joint frame is the URDF frame of the joint's child link, which is also the frame
+    PyBullet reports for that link, so a frame's placement in its parent joint is exactly its
+    offset from the merged PyBullet link.
+    """
+    frames: dict[str, tuple[int, NDArray[np.float64]]] = {}
+    for frame in model.frames:
+        joint = frame.parentJoint
+        link = -1 if joint == 0 else link_of_joint[model.names[joint]]
+        frames.setdefault(frame.name, (link, frame.placement.homogeneous.copy()))
+    return frames

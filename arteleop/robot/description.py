@@ -15,6 +15,10 @@ The URDF we load differs from the installed one in three documented ways:
 3. The gripper fingers sit 2 mm further in. With the URDF's finger placement the pads stop
    4.5 mm apart, so they could never pinch a thin bowl wall; the real Rethink electric gripper
    takes its fingers in several slots and the innermost one closes to about zero.
+4. Each finger loses the collision box of its mounting block (5 cm wide, 10 cm above the pads).
+   The two blocks overlap at every opening, so they carry no contact the simulation uses, but
+   once PyBullet merges the pads into the fingers (see :func:`freeze_joints`) they would hide
+   the pad gap.
 """
 
 from __future__ import annotations
@@ -24,9 +28,12 @@ import importlib.metadata
 import os
 import tempfile
 import xml.etree.ElementTree as ET
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
+import pinocchio as pin
 import platformdirs
 
 from arteleop.errors import ConfigurationError, RobotDataNotFoundError
@@ -35,8 +42,11 @@ from arteleop.robot.render_meshes import decimated_mesh
 DISTRIBUTION = "example-robot-data"
 BAXTER_URDF_SUFFIX = "example-robot-data/robots/baxter_description/urdf/baxter.urdf"
 PACKAGE_PREFIX = "package://"
-REWRITE_VERSION = 2
+REWRITE_VERSION = 3
 """Bump whenever :func:`_rewrite_urdf` changes, so cached URDFs from older code are not reused."""
+
+FINGER_BLOCK_MIN_WIDTH_M = 0.03
+"""A finger collision box wider than this along y is the mounting block, not the finger bar."""
 
 # Finger joint -> sign of the origin shift that moves the finger towards the gripper's centre.
 _FINGER_JOINTS = {
@@ -165,6 +175,55 @@ def load_baxter_description(config: BaxterDescriptionConfig | None = None) -> Ba
     return BaxterDescription(urdf_path=urdf_path, source_urdf_path=source, share_dir=share)
 
 
+def freeze_joints(description: BaxterDescription, positions_rad: Mapping[str, float]) -> Path:
+    """A copy of ``description.urdf_path`` in which the named joints are fixed at the given
+    positions (rad for revolute joints, m for prismatic ones); cached beside it.
+
+    PyBullet's cost per step grows with every movable joint and every link: freezing the joints
+    a study never moves and merging the fixed links that result cuts a step several-fold. The
+    kinematics are unchanged at the frozen positions (each joint's rotation or shift is folded
+    into its origin).
+    """
+    key = hashlib.sha256(
+        f"{description.urdf_path.name}|{sorted(positions_rad.items())}".encode()
+    ).hexdigest()[:16]
+    out = description.urdf_path.with_name(f"{description.urdf_path.stem}-frozen-{key}.urdf")
+    if out.is_file():
+        return out
+    root = ET.parse(description.urdf_path).getroot()
+    joints = {j.attrib["name"]: j for j in root.findall("joint")}  # not transmissions' joints
+    for name, q in positions_rad.items():
+        joint = joints.get(name)
+        if joint is None or joint.attrib["type"] not in ("revolute", "continuous", "prismatic"):
+            movable = sorted(n for n, j in joints.items() if j.attrib["type"] != "fixed")
+            raise ConfigurationError(
+                f"Can't freeze joint '{name}': the URDF has no movable joint of that name. "
+                f"Movable joints: {movable}"
+            )
+        origin = joint.find("origin")
+        if origin is None:
+            origin = ET.SubElement(joint, "origin")
+        xyz = np.array([float(v) for v in origin.attrib.get("xyz", "0 0 0").split()])
+        R = pin.rpy.rpyToMatrix(*(float(v) for v in origin.attrib.get("rpy", "0 0 0").split()))
+        axis_el = joint.find("axis")
+        axis = np.array(
+            [float(v) for v in (axis_el.attrib["xyz"] if axis_el is not None else "1 0 0").split()]
+        )
+        axis /= np.linalg.norm(axis)
+        if joint.attrib["type"] == "prismatic":
+            xyz = xyz + R @ axis * q
+        else:
+            R = R @ pin.exp3(axis * q)
+        origin.attrib["xyz"] = " ".join(f"{v:.9g}" for v in xyz)
+        origin.attrib["rpy"] = " ".join(f"{v:.12g}" for v in pin.rpy.matrixToRpy(R))
+        joint.attrib["type"] = "fixed"
+        for tag in ("axis", "limit", "dynamics", "mimic", "safety_controller", "calibration"):
+            for el in joint.findall(tag):
+                joint.remove(el)
+    _atomic_write(out, ET.tostring(root, encoding="unicode"))
+    return out
+
+
 def _rewrite_urdf(source: Path, share: Path, config: BaxterDescriptionConfig, out: Path) -> str:
     root = ET.parse(source).getroot()
     for link in root.iter("link"):
@@ -174,6 +233,13 @@ def _rewrite_urdf(source: Path, share: Path, config: BaxterDescriptionConfig, ou
             # PyBullet draws a link's collision shape when it has no visual: leave a speck.
             speck = ET.SubElement(ET.SubElement(link, "visual"), "geometry")
             ET.SubElement(speck, "sphere", radius="0.0001")
+    for link in root.findall("link"):
+        if not link.attrib["name"].endswith(("_gripper_l_finger", "_gripper_r_finger")):
+            continue
+        for collision in link.findall("collision"):
+            box = collision.find("geometry/box")
+            if box is not None and float(box.attrib["size"].split()[1]) > FINGER_BLOCK_MIN_WIDTH_M:
+                link.remove(collision)
     for visual in root.iter("visual"):
         mesh = visual.find("geometry/mesh")
         if mesh is None:

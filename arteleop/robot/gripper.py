@@ -48,18 +48,18 @@ class ElectricGripper:
         client: BulletClient,
         body_id: int,
         finger_joints: tuple[int, int],
-        finger_tip_links: tuple[int, int],
+        finger_links: tuple[int, int],
         finger_limits: JointLimits,
         config: GripperConfig | None = None,
     ) -> None:
         self._client = client
         self._body = body_id
         self._joints = finger_joints
-        self._tips = finger_tip_links
+        self._fingers = finger_links
         self.config = config or GripperConfig()
         self.stroke_m = float(finger_limits.upper[0])  # travel of each finger, open minus closed
         self._closure_command = 0.0
-        for link in finger_tip_links:
+        for link in finger_links:
             client.changeDynamics(body_id, link, lateralFriction=self.config.pad_friction)
 
     def _finger_targets(self, closure: float) -> tuple[float, float]:
@@ -97,15 +97,15 @@ class ElectricGripper:
     def pad_gap_m(self) -> float:
         """Current distance (m) between the two finger pads' collision surfaces."""
         pts = self._client.getClosestPoints(
-            self._body, self._body, 1.0, linkIndexA=self._tips[0], linkIndexB=self._tips[1]
+            self._body, self._body, 1.0, linkIndexA=self._fingers[0], linkIndexB=self._fingers[1]
         )
         return float(min(pt[8] for pt in pts)) if pts else float("inf")
 
     def touching(self, body_id: int) -> tuple[bool, bool]:
-        """Whether the (left, right) finger pad is in contact with ``body_id``."""
+        """Whether the (left, right) finger is in contact with ``body_id``."""
         return tuple(
             bool(self._client.getContactPoints(self._body, body_id, linkIndexA=link))
-            for link in self._tips
+            for link in self._fingers
         )  # type: ignore[return-value]
 
 

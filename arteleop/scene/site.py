@@ -28,6 +28,7 @@ from arteleop.robot import (
 from arteleop.robot.native_output import native_stdout_silenced
 from arteleop.scene.bodies import add_bowl, add_start_cross, add_table, add_target_circle
 from arteleop.scene.camera import HeadCamera, HeadCameraConfig, RGBDFrame
+from arteleop.scene.render_world import RenderWorld
 from arteleop.scene.workspace import Workspace
 from arteleop.transforms import pose_to_transform, quat_xyzw_to_wxyz
 
@@ -69,7 +70,12 @@ class SiteConfig:
 
 
 class RemoteSite:
-    """A running simulation of the remote site; a context manager (or call :meth:`close`)."""
+    """A running simulation of the remote site; a context manager (or call :meth:`close`).
+
+    Two PyBullet worlds: ``client`` is simulated; the head camera draws ``render_world.client``,
+    into which :meth:`capture` first copies the moving state. A body added to one world only is
+    simulated but not seen, or seen but not simulated.
+    """
 
     def __init__(self, config: SiteConfig | None = None) -> None:
         self.config = config = config or SiteConfig()
@@ -84,7 +90,9 @@ class RemoteSite:
             self.client.setGravity(0.0, 0.0, -9.81)
             self.client.setTimeStep(1.0 / config.physics_rate_hz)
             with native_stdout_silenced():
-                self.robot = Baxter(self.client, description, config.gripper)
+                self.robot = Baxter(
+                    self.client, description, config.gripper, left_arm_rad=config.rest_pose.left
+                )
             self.robot.reset(config.rest_pose)
             self.gripper_gap_range_m = self._measure_gripper_gap()
             self._check_gripper_spans_bowl(ws)
@@ -92,8 +100,19 @@ class RemoteSite:
             self.start_marker_id = add_start_cross(self.client, ws)
             self.target_marker_id = add_target_circle(self.client, ws)
             self.bowl_id = add_bowl(self.client, ws, ws.start_xy_m)
+            self.render_world = RenderWorld(
+                self.robot.urdf_path,
+                ws,
+                (
+                    self.robot.body_id,
+                    self.table_id,
+                    self.start_marker_id,
+                    self.target_marker_id,
+                    self.bowl_id,
+                ),
+            )
             self.camera = HeadCamera(
-                self.client,
+                self.render_world.client,
                 config.camera,
                 self.robot.link_transform(config.camera.mount_link),
                 np.random.default_rng(config.seed),
@@ -108,6 +127,8 @@ class RemoteSite:
                 }
             )
         except BaseException:
+            if hasattr(self, "render_world"):
+                self.render_world.close()
             self.client.disconnect()
             raise
         self._steps = 0
@@ -152,6 +173,15 @@ class RemoteSite:
 
     def capture(self, with_segmentation: bool = False) -> RGBDFrame:
         """One head-camera frame of the current state, stamped with :attr:`time_s`."""
+        robot = self.robot
+        pos, quat = self.client.getBasePositionAndOrientation(self.bowl_id)
+        self.render_world.sync(
+            dict(
+                zip(robot.joint_index, robot.joint_positions(list(robot.joint_index)), strict=True)
+            ),
+            pos,
+            quat,
+        )
         return self.camera.capture(self.time_s, with_segmentation)
 
     # -- start-up checks ------------------------------------------------------------------------
@@ -196,7 +226,8 @@ class RemoteSite:
 
     # -- lifetime -------------------------------------------------------------------------------
     def close(self) -> None:
-        """Disconnect from PyBullet."""
+        """Disconnect both PyBullet worlds."""
+        self.render_world.close()
         if self.client.isConnected():
             self.client.disconnect()
 

@@ -5,24 +5,44 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from arteleop.errors import ConfigurationError
-from arteleop.robot import GRIPPER_FRAME, RIGHT_ARM_JOINTS, BaxterKinematics
+from arteleop.robot import (
+    GRIPPER_FRAME,
+    LEFT_ARM_JOINTS,
+    RIGHT_ARM_JOINTS,
+    RIGHT_FINGER_JOINTS,
+    BaxterKinematics,
+)
 from arteleop.scene import RemoteSite
 
-FRAMES = (GRIPPER_FRAME, "head", "head_camera_link", "r_gripper_l_finger_tip", "left_gripper")
+# The gripper, frames PyBullet merged into a moving link (finger tip, tool), frames merged into
+# the base through the frozen head joint, and a frame on the frozen left arm.
+FRAMES = (
+    GRIPPER_FRAME,
+    "right_wrist",
+    "head",
+    "head_camera_link",
+    "r_gripper_l_finger_tip",
+    "left_gripper",
+    "base",
+)
 
 
 def test_pybullet_and_pinocchio_agree_on_100_random_configurations(site: RemoteSite) -> None:
+    """pinocchio on the full URDF (every joint movable) against PyBullet's frozen, merged body."""
     kin = site.kinematics
     robot = site.robot
     rng = np.random.default_rng(42)
     names = list(robot.joint_index)
+    assert sorted(names) == sorted(RIGHT_ARM_JOINTS + RIGHT_FINGER_JOINTS)
+    frozen_left = dict(zip(LEFT_ARM_JOINTS, robot.left_arm_rad, strict=True))
     lower = kin.model.lowerPositionLimit
     upper = kin.model.upperPositionLimit
     worst_pos, worst_rot = 0.0, 0.0
     for _ in range(100):
         q = {n: rng.uniform(lower[kin._q_index[n]], upper[kin._q_index[n]]) for n in names}
         robot.set_joint_positions(q)
-        for frame, T_pin in zip(FRAMES, kin.frame_transforms(q, FRAMES), strict=True):
+        T_pins = kin.frame_transforms(q | frozen_left, FRAMES)
+        for frame, T_pin in zip(FRAMES, T_pins, strict=True):
             T_pb = robot.link_transform(frame)
             worst_pos = max(worst_pos, float(np.linalg.norm(T_pb[:3, 3] - T_pin[:3, 3])))
             dR = Rotation.from_matrix(T_pb[:3, :3].T @ T_pin[:3, :3])

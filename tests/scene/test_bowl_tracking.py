@@ -34,11 +34,10 @@ def test_out_of_view_is_not_found(site: RemoteSite) -> None:
 def test_hidden_bowl_is_not_found(site: RemoteSite) -> None:
     ws = site.config.workspace
     site.step(60)
-    # A board held 20 cm above the bowl hides it from the head camera.
-    cover = site.client.createVisualShape(p.GEOM_BOX, halfExtents=[0.15, 0.15, 0.005])
-    site.client.createMultiBody(
-        0.0, -1, cover, basePosition=[*ws.start_xy_m, ws.table_top_z_m + 0.27]
-    )
+    # A board held 20 cm above the bowl hides it from the head camera (drawn only).
+    drawn = site.render_world.client
+    cover = drawn.createVisualShape(p.GEOM_BOX, halfExtents=[0.15, 0.15, 0.005])
+    drawn.createMultiBody(0.0, -1, cover, basePosition=[*ws.start_xy_m, ws.table_top_z_m + 0.27])
     track = BowlTracker(ws.bowl).track(site.capture(), ws.table_top_z_m)
     assert not track.found
     assert track.reason

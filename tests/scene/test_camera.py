@@ -3,8 +3,15 @@ from dataclasses import replace
 import numpy as np
 import pybullet as p
 import pytest
+from pybullet_utils.bullet_client import BulletClient
 
-from arteleop.robot import RIGHT_ARM_JOINTS, BaxterDescriptionConfig
+from arteleop.robot import (
+    LEFT_ARM_JOINTS,
+    RIGHT_ARM_JOINTS,
+    BaxterDescription,
+    BaxterDescriptionConfig,
+    load_baxter_description,
+)
 from arteleop.robot.description import HEAD_CAMERA_BLIND_LINKS
 from arteleop.scene import (
     DepthNoiseConfig,
@@ -95,41 +102,53 @@ def test_same_seed_same_frame(site_config: SiteConfig) -> None:
     assert not np.array_equal(a, c)
 
 
-def _links_seen(site: RemoteSite, n_poses: int = 25) -> set[str]:
-    """Robot links the head camera sees over random right-arm poses (simulator segmentation)."""
-    cam, rid = site.camera, site.robot.body_id
-    names = {i: n for n, i in site.robot.link_index.items()}
-    rng = np.random.default_rng(1)
-    lim = site.robot.right_arm_limits
-    seen: set[str] = set()
-    for _ in range(n_poses):
-        q = rng.uniform(lim.lower, lim.upper)
-        site.robot.set_joint_positions(dict(zip(RIGHT_ARM_JOINTS, q, strict=True)))
-        seg = np.asarray(
-            site.client.getCameraImage(
-                160,
-                120,
-                cam._view_gl,
-                cam._proj_gl,
-                shadow=0,
-                renderer=p.ER_TINY_RENDERER,
-                flags=p.ER_SEGMENTATION_MASK_OBJECT_AND_LINKINDEX,
-            )[4]
-        ).ravel()
-        seg = seg[seg >= 0]
-        mine = seg[(seg & ((1 << 24) - 1)) == rid]
-        seen |= {names.get(int(link), "base") for link in (mine >> 24) - 1}
-    return seen
+def _links_seen(site: RemoteSite, description: BaxterDescription, n_poses: int = 25) -> set[str]:
+    """Links of ``description`` that the site's head camera sees over random right-arm poses.
+
+    The URDF is loaded unmerged into a client of its own: the site's body merges fixed links, so
+    its segmentation can't tell the torso from the base.
+    """
+    cam = site.camera
+    client = BulletClient(connection_mode=p.DIRECT)
+    try:
+        body = client.loadURDF(str(description.urdf_path), useFixedBase=True)
+        info = [client.getJointInfo(body, i) for i in range(client.getNumJoints(body))]
+        names = {i: row[12].decode() for i, row in enumerate(info)}
+        joints = {row[1].decode(): i for i, row in enumerate(info)}
+        for name, q in zip(LEFT_ARM_JOINTS, site.robot.left_arm_rad, strict=True):
+            client.resetJointState(body, joints[name], q)
+        rng = np.random.default_rng(1)
+        lim = site.robot.right_arm_limits
+        seen: set[str] = set()
+        for _ in range(n_poses):
+            for name, q in zip(RIGHT_ARM_JOINTS, rng.uniform(lim.lower, lim.upper), strict=True):
+                client.resetJointState(body, joints[name], q)
+            seg = np.asarray(
+                client.getCameraImage(
+                    160,
+                    120,
+                    cam._view_gl,
+                    cam._proj_gl,
+                    shadow=0,
+                    renderer=p.ER_TINY_RENDERER,
+                    flags=p.ER_SEGMENTATION_MASK_OBJECT_AND_LINKINDEX,
+                )[4]
+            ).ravel()
+            seg = seg[seg >= 0]
+            mine = seg[(seg & ((1 << 24) - 1)) == body]
+            seen |= {names.get(int(link), "base") for link in (mine >> 24) - 1}
+        return seen
+    finally:
+        client.disconnect()
 
 
 def test_hidden_links_are_never_in_the_head_cameras_view(
-    site: RemoteSite, site_config: SiteConfig, description_config: BaxterDescriptionConfig
+    site: RemoteSite, description_config: BaxterDescriptionConfig
 ) -> None:
     """Links the render model hides are ones the camera never sees, and hiding adds nothing."""
-    full = replace(description_config, hidden_links=())
-    with RemoteSite(replace(site_config, robot=full)) as full_site:
-        seen_full = _links_seen(full_site)
+    full = load_baxter_description(replace(description_config, hidden_links=()))
+    seen_full = _links_seen(site, full)
     assert "right_gripper_base_link" in seen_full
     assert not seen_full & set(HEAD_CAMERA_BLIND_LINKS)
     # PyBullet draws a link's collision shape when it has no visual; the speck prevents that.
-    assert not _links_seen(site) & set(HEAD_CAMERA_BLIND_LINKS)
+    assert not _links_seen(site, site.description) & set(HEAD_CAMERA_BLIND_LINKS)
