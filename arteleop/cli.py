@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import sys
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -132,7 +133,7 @@ def analyze(cmd: AnalyzeCommand) -> int:
 
 @dataclass(frozen=True)
 class TrialCommand:
-    """Run one pick-and-place trial headless and print its outcome."""
+    """Run one pick-and-place trial and print its outcome; headless unless --view."""
 
     operator: str = "synthetic"
     """'synthetic', or a wearable recording's CSV"""
@@ -144,9 +145,16 @@ class TrialCommand:
     timeout_s: float = 120.0
     realtime: bool = False
     """pace the loop with the wall clock"""
+    view: bool = False
+    """serve the operator's view (point cloud) in the browser, in real time"""
+    host: str = "127.0.0.1"
+    """interface for --view; 0.0.0.0 lets other machines connect"""
+    port: int = 8080
+    """port for --view"""
 
 
 def trial(cmd: TrialCommand) -> int:
+    from arteleop.ar_features import OperatorView, ViewConfig
     from arteleop.operator import load_recording
     from arteleop.scene import RemoteSite
     from arteleop.teleop import (
@@ -158,15 +166,21 @@ def trial(cmd: TrialCommand) -> int:
     )
 
     config = TrialConfig(
-        modality=cmd.modality, seed=cmd.seed, timeout_s=cmd.timeout_s, realtime=cmd.realtime,
+        modality=cmd.modality, seed=cmd.seed, timeout_s=cmd.timeout_s,
+        realtime=cmd.realtime or cmd.view, render_camera=cmd.view,
         network=NetworkConfig(delay_s=cmd.delay_ms / 1000),
     )  # fmt: skip
-    with RemoteSite(config.site) as site:
+    with contextlib.ExitStack() as stack:
+        site = stack.enter_context(RemoteSite(config.site))
         if cmd.operator == "synthetic":
             source = synthetic_source(site, config)
         else:
             source = RecordingSource(load_recording(Path(cmd.operator)))
-        result = run_trial(source, config, site)
+        display = None
+        if cmd.view:
+            display = stack.enter_context(OperatorView(ViewConfig(host=cmd.host, port=cmd.port)))
+            print(f"operator's view at {display.url}")
+        result = run_trial(source, config, site, display)
     print(f"outcome              {result.outcome}")
     print(f"grasped, placed      {result.grasped}, {result.placed}")
     print(f"completion time      {result.completion_time_s:.2f} s")

@@ -126,8 +126,9 @@ class WearableSimulator:
         self._rng = rng
         err = config.errors
         self._dt = 1.0 / config.rate_hz
-        self._heading = Rotation.from_euler("z", config.torso_heading_rad)
-        self._mounting = np.asarray(config.mounting_wxyz, dtype=np.float64)
+        self._mounting = Rotation.from_quat(
+            np.asarray(config.mounting_wxyz, dtype=np.float64), scalar_first=True
+        ).as_matrix()
         self._sigma = np.radians(err.noise_deg_rms) / np.sqrt(3.0)  # per axis: RMS angle / sqrt(3)
         corr = err.noise_correlation_s * config.rate_hz
         self._a = float(np.exp(-1.0 / corr)) if corr > 0 else 0.0
@@ -157,14 +158,19 @@ class WearableSimulator:
             )[0]
             self._noise = noise[-1]
         keep = self._arrivals(n)
-        earth = Rotation.from_euler("z", bias.reshape(-1, 1)) * self._heading
+        # q_earth_sensor = Rz(heading + bias) * q_torso_segment * q_segment_sensor * noise,
+        # composed as matrices: one scipy call per factor instead of one per product.
+        heading = self.config.torso_heading_rad + bias.reshape(-1, 1)
         sensor = (
-            earth
-            * segments_torso
-            * Rotation.from_quat(np.tile(self._mounting, (n, 1)), scalar_first=True)
-            * Rotation.from_rotvec(noise.reshape(-1, 3))
+            Rotation.from_euler("z", heading).as_matrix()
+            @ segments_torso.as_matrix()
+            @ np.tile(self._mounting, (n, 1, 1))
+            @ Rotation.from_rotvec(noise.reshape(-1, 3)).as_matrix()
         )
-        return sensor.as_quat(scalar_first=True, canonical=True).reshape(n, 3, 4), keep
+        quats = Rotation.from_matrix(sensor, assume_valid=True).as_quat(
+            scalar_first=True, canonical=True
+        )
+        return quats.reshape(n, 3, 4), keep
 
     def sample(self, segments_torso: Rotation) -> NDArray[np.float64] | None:
         """(3, 4) IMU quaternions for one posture, or None if the packet is lost."""

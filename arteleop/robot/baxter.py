@@ -57,11 +57,13 @@ class Baxter:
     ``T_base_<link>``. Arm commands go through PyBullet position control with the URDF's effort
     and velocity limits; the right gripper is an :class:`ElectricGripper`.
 
-    Only the right arm and its fingers move. The left arm (at ``left_arm_rad``), its fingers
-    and the head are frozen into fixed joints and PyBullet merges the fixed links, which cuts a
-    physics step about six-fold (see benchmarks/bench_site.py). Every URDF link keeps its name
-    for :meth:`link_transform`, which composes the merged link's pose with the fixed offset
-    pinocchio reads from the same URDF.
+    By default only the right arm and its fingers move (``freeze_idle_joints``): the left arm
+    (at ``left_arm_rad``), its fingers and the head are frozen into fixed joints and PyBullet
+    merges the fixed links, which cuts a physics step about four-fold (benchmarks/bench_site.py).
+    Every URDF link keeps its name for :meth:`link_transform`, which composes the merged link's
+    pose with the fixed offset pinocchio reads from the same URDF. With
+    ``freeze_idle_joints=False`` every joint stays movable and the left arm is held at
+    ``left_arm_rad`` by its motors.
     """
 
     def __init__(
@@ -71,24 +73,27 @@ class Baxter:
         gripper_config: GripperConfig | None = None,
         control: ArmControlConfig | None = None,
         left_arm_rad: Sequence[float] = REST_POSE.left,
+        freeze_idle_joints: bool = True,
     ) -> None:
         self._client = client
         self.control = control or ArmControlConfig()
         self.left_arm_rad = tuple(float(v) for v in left_arm_rad)
-        full = BaxterKinematics(description.urdf_path)
-        full.limits(LEFT_ARM_JOINTS).check(np.asarray(self.left_arm_rad), "left arm pose")
-        frozen = {
-            **dict(zip(LEFT_ARM_JOINTS, self.left_arm_rad, strict=True)),
-            **dict.fromkeys(LEFT_FINGER_JOINTS, 0.0),
-            HEAD_PAN_JOINT: 0.0,
-        }
-        self.urdf_path = urdf = freeze_joints(description, frozen)
-        """The URDF loaded: ``description``'s with the left arm, its fingers and the head fixed."""
+        self.left_arm_limits = BaxterKinematics(description.urdf_path).limits(LEFT_ARM_JOINTS)
+        self.left_arm_limits.check(np.asarray(self.left_arm_rad), "left arm pose")
+        self.frozen = freeze_idle_joints
+        flags = p.URDF_USE_INERTIA_FROM_FILE
+        self.urdf_path = description.urdf_path
+        """The URDF loaded: ``description``'s, with the idle joints fixed if frozen."""
+        if freeze_idle_joints:
+            idle = {
+                **dict(zip(LEFT_ARM_JOINTS, self.left_arm_rad, strict=True)),
+                **dict.fromkeys(LEFT_FINGER_JOINTS, 0.0),
+                HEAD_PAN_JOINT: 0.0,
+            }
+            self.urdf_path = freeze_joints(description, idle)
+            flags |= p.URDF_MERGE_FIXED_LINKS
         self.body_id = client.loadURDF(
-            str(urdf),
-            basePosition=(0.0, 0.0, 0.0),
-            useFixedBase=True,
-            flags=p.URDF_USE_INERTIA_FROM_FILE | p.URDF_MERGE_FIXED_LINKS,
+            str(self.urdf_path), basePosition=(0.0, 0.0, 0.0), useFixedBase=True, flags=flags
         )
         self.joint_index: dict[str, int] = {}
         self.link_index: dict[str, int] = {}
@@ -103,14 +108,16 @@ class Baxter:
             if info[2] in (p.JOINT_REVOLUTE, p.JOINT_PRISMATIC):
                 self.joint_index[name] = i
                 limits[name] = (info[8], info[9], info[11], info[10])
-        self._frames = _frame_offsets(BaxterKinematics(urdf).model, link_of_joint)
+        self._frames = _frame_offsets(BaxterKinematics(self.urdf_path).model, link_of_joint)
         self.right_arm_limits = _limits(RIGHT_ARM_JOINTS, limits)
         self.gripper = ElectricGripper(
             client,
             self.body_id,
             finger_joints=tuple(self.joint_index[n] for n in RIGHT_FINGER_JOINTS),
-            # The finger tips (pads) are merged into the finger links.
-            finger_links=tuple(self.joint_index[n] for n in RIGHT_FINGER_JOINTS),
+            finger_links=(
+                self._collision_link("r_gripper_l_finger_tip"),
+                self._collision_link("r_gripper_r_finger_tip"),
+            ),
             finger_limits=_limits(RIGHT_FINGER_JOINTS, limits),
             config=gripper_config,
         )
@@ -120,13 +127,18 @@ class Baxter:
         return self._client
 
     def reset(self, pose: ArmPose) -> None:
-        """Teleport the right arm and the gripper to ``pose`` and hold it with the motors."""
-        if not np.allclose(pose.left, self.left_arm_rad, atol=1e-9):
+        """Teleport the arms and the gripper to ``pose`` and hold them with the motors."""
+        if self.frozen and not np.allclose(pose.left, self.left_arm_rad, atol=1e-9):
             raise ConfigurationError(
                 f"ArmPose.left={pose.left} differs from the left-arm pose this Baxter was built "
                 f"with ({self.left_arm_rad}); the left arm is frozen. Build Baxter (or the site's "
                 "rest_pose) with the left arm you want."
             )
+        if not self.frozen:
+            self.left_arm_limits.check(np.asarray(pose.left), "ArmPose.left")
+            self.set_joint_positions(dict(zip(LEFT_ARM_JOINTS, pose.left, strict=True)))
+            self.set_joint_positions(dict.fromkeys(LEFT_FINGER_JOINTS, 0.0))
+            self._command(LEFT_ARM_JOINTS, pose.left, self.left_arm_limits)
         self.right_arm_limits.check(np.asarray(pose.right), "ArmPose.right")
         for name, value in zip(RIGHT_ARM_JOINTS, pose.right, strict=True):
             self._client.resetJointState(self.body_id, self.joint_index[name], value)
@@ -155,6 +167,11 @@ class Baxter:
                 f"Unknown link '{frame}'. Baxter's links: {sorted(self._frames)}"
             )
         return self._frames[frame]
+
+    def _collision_link(self, link: str) -> int:
+        """The PyBullet link holding ``link``'s collision shapes: its own, or the one it was
+        merged into."""
+        return self.link_index.get(link, self.frame_link(link)[0])
 
     def link_transform(self, link: str) -> NDArray[np.float64]:
         """``T_base_link`` (4x4) of a URDF link, from the current simulator state."""

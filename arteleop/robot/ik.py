@@ -26,7 +26,6 @@ from arteleop.robot.mujoco_model import (
     body_geoms,
     build_arm_model,
 )
-from arteleop.transforms import transform_to_pose
 
 
 @dataclass(frozen=True)
@@ -138,8 +137,7 @@ class ArmIK:
     def set_target(self, T_base_gripper: ArrayLike) -> None:
         """Target pose of the gripper frame in the base frame (4x4)."""
         self._target = np.array(T_base_gripper, dtype=np.float64)
-        pos, quat = transform_to_pose(self._target)
-        self.frame_task.set_target(mink.SE3(np.concatenate([quat, pos])))
+        self.frame_task.set_target(mink.SE3.from_matrix(self._target))
 
     def gripper_transform(self) -> NDArray[np.float64]:
         """``T_base_gripper`` at the IK's current configuration."""

@@ -16,10 +16,11 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+import pinocchio as pin
 from numpy.typing import ArrayLike, NDArray
-from scipy.spatial.transform import Rotation
 
 from arteleop.errors import ConfigurationError
+from arteleop.transforms import quat_to_matrix
 
 R_DOWN = np.diag([1.0, -1.0, -1.0])
 """Gripper pointing down: tool z along -z of the base, fingers opening along -y of the base."""
@@ -46,8 +47,9 @@ class MappingConfig:
             raise ConfigurationError(f"MappingConfig.scale={self.scale} is outside [0.1, 10]")
 
 
-def _yaw(rotation: Rotation) -> float:
-    x = rotation.apply([1.0, 0.0, 0.0])
+def _yaw(quat_wxyz: ArrayLike) -> float:
+    """Heading (rad) of the hand's x axis about the vertical."""
+    x = quat_to_matrix(quat_wxyz)[:, 0]
     return float(np.arctan2(x[1], x[0]))
 
 
@@ -64,7 +66,7 @@ class HandToGripper:
 
     def gripper_target(self, hand_m: ArrayLike, hand_quat_wxyz: ArrayLike) -> NDArray[np.float64]:
         """``T_base_gripper`` target (4x4) for a hand pose in the torso frame."""
-        yaw = _yaw(Rotation.from_quat(hand_quat_wxyz, scalar_first=True)) - self.hand_yaw0_rad
+        yaw = _yaw(hand_quat_wxyz) - self.hand_yaw0_rad
         yaw = float(
             np.clip(
                 (yaw + np.pi) % (2 * np.pi) - np.pi,
@@ -73,7 +75,7 @@ class HandToGripper:
             )
         )
         T = np.eye(4)
-        T[:3, :3] = Rotation.from_euler("z", yaw).as_matrix() @ R_DOWN
+        T[:3, :3] = pin.rpy.rpyToMatrix(0.0, 0.0, yaw) @ R_DOWN
         T[:3, 3] = self.offset_m + self.config.scale * np.asarray(hand_m, dtype=np.float64)
         return T
 
@@ -97,5 +99,5 @@ class HandToGripper:
         self.offset_m = np.asarray(gripper_m, dtype=np.float64) - self.config.scale * np.asarray(
             hand_m, dtype=np.float64
         )
-        self.hand_yaw0_rad = _yaw(Rotation.from_quat(hand_quat_wxyz, scalar_first=True))
+        self.hand_yaw0_rad = _yaw(hand_quat_wxyz)
         return True

@@ -2,15 +2,18 @@
 
 from arteleop.teleop.clock import LoopClock, LoopRates, Tick
 from arteleop.teleop.controller import ControllerConfig, ControllerState, TeleopController
+from arteleop.teleop.hand_speed import HandSpeed
 from arteleop.teleop.network import NetworkConfig, NetworkLink
 from arteleop.teleop.setup import synthetic_source
 from arteleop.teleop.sources import OperatorSource, RecordingSource, SyntheticSource, WearableSample
 from arteleop.teleop.timing import StageStats, StageTimer
-from arteleop.teleop.trial import TrialConfig, TrialResult, run_trial
+from arteleop.teleop.trial import CloudDisplay, TrialConfig, TrialResult, run_trial
 
 __all__ = [
+    "CloudDisplay",
     "ControllerConfig",
     "ControllerState",
+    "HandSpeed",
     "LoopClock",
     "LoopRates",
     "NetworkConfig",

@@ -27,6 +27,7 @@ from arteleop.robot.ik import ArmIK, IKConfig, IKResult
 from arteleop.robot.mapping import HandToGripper, MappingConfig
 from arteleop.robot.trajectory import JointTrajectory, TrajectoryLimits
 from arteleop.scene import RemoteSite
+from arteleop.teleop.hand_speed import HandSpeed
 
 
 class ControllerState(Enum):
@@ -45,6 +46,7 @@ class ControllerConfig:
         grip: Grip hysteresis.
         engage_distance_m: Engage when the hand maps within this distance of the gripper...
         engage_speed_m_s: ...and the hand moves slower than this.
+        speed_window_s: Window of the hand-speed estimate (see :class:`HandSpeed`).
         max_gap_s: Missing samples repeat the last pose up to this long; then the arm holds.
     """
 
@@ -53,6 +55,7 @@ class ControllerConfig:
     grip: GripHysteresis = field(default_factory=GripHysteresis)
     engage_distance_m: float = 0.05
     engage_speed_m_s: float = 0.05
+    speed_window_s: float = 0.3
     max_gap_s: float = 0.1
 
 
@@ -88,7 +91,7 @@ class TeleopController:
         self._t0: float | None = None
         self.reconstructor: StreamingReconstructor | None = None
         self.last_hand: HandSample | None = None
-        self.hand_speed_m_s = 0.0
+        self._speed = HandSpeed(c.speed_window_s)
         self.last_ik: IKResult | None = None
         self._q_ik_prev = q0
         self.applied_sample_time_s = -np.inf  # newest operator sample acting on the arm
@@ -114,12 +117,14 @@ class TeleopController:
         hand = self.reconstructor.update(sample_time_s, sensor_quat_wxyz, grip)
         if hand is None or hand.status is SampleStatus.LOST:
             return
-        if self.last_hand is not None and hand.time_s > self.last_hand.time_s:
-            speed = np.linalg.norm(hand.hand_m - self.last_hand.hand_m) / (
-                hand.time_s - self.last_hand.time_s
-            )
-            self.hand_speed_m_s = 0.7 * self.hand_speed_m_s + 0.3 * float(speed)  # light smoothing
+        if self.last_hand is None or hand.time_s > self.last_hand.time_s:
+            self._speed.update(hand.time_s, hand.hand_m)
         self.last_hand = hand
+
+    @property
+    def hand_speed_m_s(self) -> float:
+        """The operator's hand speed (m/s) over the last ``speed_window_s``."""
+        return self._speed.speed_m_s
 
     def control_tick(self) -> None:
         """Mapping, IK and a new trajectory target, from the newest hand sample."""

@@ -25,6 +25,8 @@ class StageStats:
     latency_median_ms: float
     latency_p95_ms: float
     latency_p99_ms: float
+    latency_total_ms: float
+    """Wall time spent in the stage over the whole run."""
 
 
 class StageTimer:
@@ -51,5 +53,6 @@ class StageTimer:
             rows.append(StageStats(
                 stage, len(lat), float(np.median(s)), float(np.percentile(s, 95)),
                 float(np.median(lat)), float(np.percentile(lat, 95)), float(np.percentile(lat, 99)),
+                float(lat.sum()),
             ))  # fmt: skip
         return rows

@@ -10,9 +10,10 @@ from __future__ import annotations
 import time
 from collections import deque
 from dataclasses import dataclass, field
+from typing import Protocol
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from arteleop.ar_features import modality_cues
 from arteleop.errors import ConfigurationError
@@ -71,7 +72,13 @@ class TrialConfig:
 
 @dataclass
 class TrialResult:
-    """What happened in the trial."""
+    """What happened in the trial.
+
+    Latencies, one per camera frame, are the age of the newest operator sample the frame shows:
+    ``latency_sim_ms`` in simulated time, at the frame's capture (network, control and camera
+    rates); ``latency_wall_ms`` on the wall clock, once the frame's point cloud is on the display
+    (real-time runs that render the camera only, else empty).
+    """
 
     outcome: str
     completion_time_s: float
@@ -84,26 +91,50 @@ class TrialResult:
     hand_time_s: NDArray[np.float64]
     hand_m: NDArray[np.float64]
     latency_sim_ms: NDArray[np.float64]
+    latency_wall_ms: NDArray[np.float64]
     stages: list[StageStats]
     counts: dict[str, int]
 
 
+class CloudDisplay(Protocol):
+    """Where the camera's point cloud is shown, e.g. :class:`arteleop.ar_features.OperatorView`."""
+
+    def show_cloud(self, points_m: ArrayLike, colors: ArrayLike) -> None: ...
+
+
 def run_trial(
-    source: OperatorSource, config: TrialConfig, site: RemoteSite | None = None
+    source: OperatorSource,
+    config: TrialConfig,
+    site: RemoteSite | None = None,
+    display: CloudDisplay | None = None,
 ) -> TrialResult:
-    """Run one trial to its end; builds the site from ``config.site`` unless one is given."""
+    """Run one trial to its end; builds the site from ``config.site`` unless one is given.
+
+    With a ``display``, every camera frame's point cloud is shown on it (this needs
+    ``config.render_camera``).
+    """
+    if display is not None and not config.render_camera:
+        raise ConfigurationError(
+            "A display needs camera frames: run the trial with TrialConfig(render_camera=True)."
+        )
     own_site = site is None
     site = site or RemoteSite(config.site)
     try:
-        return _Trial(source, config, site).run()
+        return _Trial(source, config, site, display).run()
     finally:
         if own_site:
             site.close()
 
 
 class _Trial:
-    def __init__(self, source: OperatorSource, config: TrialConfig, site: RemoteSite) -> None:
-        self.source, self.config, self.site = source, config, site
+    def __init__(
+        self,
+        source: OperatorSource,
+        config: TrialConfig,
+        site: RemoteSite,
+        display: CloudDisplay | None,
+    ) -> None:
+        self.source, self.config, self.site, self.display = source, config, site, display
         rng = np.random.default_rng(config.seed)
         self.link: NetworkLink[WearableSample] = NetworkLink(config.network, rng)
         self.clock = LoopClock(config.rates, config.realtime)
@@ -117,6 +148,8 @@ class _Trial:
         self.hand_t: list[float] = []
         self.hand_p: list[NDArray[np.float64]] = []
         self.latency: list[float] = []
+        self.latency_wall: list[float] = []
+        self._sample_wall: deque[tuple[float, float]] = deque()  # (sample time, wall clock)
         self.t_start: float | None = None
         self.grasped = False
         self.grasp_attempts = 0
@@ -163,6 +196,8 @@ class _Trial:
         self.timer.record("operator_input", w0)
         if sample is None:
             return False
+        if self.config.realtime:
+            self._sample_wall.append((sample.time_s, w0))
         self.link.send(sample.time_s, sample, t)
         for _, received in self.link.receive(t):
             if received.sensor_quat_wxyz is None:
@@ -201,8 +236,13 @@ class _Trial:
             frame = site.capture()
             self.timer.record("camera", w0)
             w0 = time.perf_counter()
-            frame_to_point_cloud(frame, stride=2)
+            cloud = frame_to_point_cloud(frame, stride=2)
             self.timer.record("point_cloud", w0)
+            if self.display is not None:
+                w0 = time.perf_counter()
+                self.display.show_cloud(cloud.points_m, cloud.colors)
+                self.timer.record("display", w0)
+            self._wall_latency()
         if np.isfinite(self.control.applied_sample_time_s):
             self.latency.append(t - self.control.applied_sample_time_s)
         gripper = site.robot.link_transform(GRIPPER_FRAME)[:3, 3]
@@ -213,6 +253,16 @@ class _Trial:
             site.bowl_position_m(), site.config.workspace.target_m, self.cues,
             self.control.state is ControllerState.ENGAGED,
         ))  # fmt: skip
+
+    def _wall_latency(self) -> None:
+        """Real time only: wall-clock age of the newest applied sample when the frame showing it
+        has been shown (or turned into a point cloud, without a display)."""
+        applied = self.control.applied_sample_time_s
+        samples = self._sample_wall
+        while len(samples) > 1 and samples[1][0] <= applied:
+            samples.popleft()
+        if samples and samples[0][0] == applied:
+            self.latency_wall.append(time.perf_counter() - samples[0][1])
 
     def _view(self, t: float) -> DisplayView:
         """The newest display content that has reached the operator (return-link delay)."""
@@ -247,6 +297,7 @@ class _Trial:
             hand_time_s=np.array(self.hand_t),
             hand_m=np.array(self.hand_p).reshape(-1, 3),
             latency_sim_ms=np.array(self.latency) * 1000,
+            latency_wall_ms=np.array(self.latency_wall) * 1000,
             stages=self.timer.summary(),
             counts=counts,
         )

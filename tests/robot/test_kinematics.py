@@ -1,5 +1,7 @@
 """PyBullet and pinocchio load the same URDF and must agree on every pose."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
@@ -8,11 +10,12 @@ from arteleop.errors import ConfigurationError
 from arteleop.robot import (
     GRIPPER_FRAME,
     LEFT_ARM_JOINTS,
+    REST_POSE,
     RIGHT_ARM_JOINTS,
     RIGHT_FINGER_JOINTS,
     BaxterKinematics,
 )
-from arteleop.scene import RemoteSite
+from arteleop.scene import RemoteSite, SiteConfig
 
 # The gripper, frames PyBullet merged into a moving link (finger tip, tool), frames merged into
 # the base through the frozen head joint, and a frame on the frozen left arm.
@@ -79,3 +82,25 @@ def test_arm_targets_outside_limits_are_refused(site: RemoteSite) -> None:
         ConfigurationError, match=r"joint right_e1 = 3.0000 is outside .*-0.0500, 2.6180"
     ):
         site.robot.command_arm(q)
+
+
+def test_frozen_left_arm_refuses_another_pose(site: RemoteSite) -> None:
+    moved = replace(REST_POSE, left=(0.0, *REST_POSE.left[1:]))
+    with pytest.raises(ConfigurationError, match="left arm is frozen"):
+        site.robot.reset(moved)
+
+
+def test_unfrozen_robot_keeps_every_joint_and_the_same_gripper(
+    site: RemoteSite, site_config: SiteConfig
+) -> None:
+    with RemoteSite(replace(site_config, freeze_idle_joints=False)) as whole:
+        assert set(LEFT_ARM_JOINTS) <= set(whole.robot.joint_index)
+        assert len(whole.robot.link_index) > 2 * len(site.robot.link_index)
+        whole.step(240)
+        held = whole.robot.joint_positions(LEFT_ARM_JOINTS)
+        np.testing.assert_allclose(held, REST_POSE.left, atol=0.02)  # motors hold it up
+        np.testing.assert_allclose(whole.gripper_gap_range_m, site.gripper_gap_range_m, atol=1e-6)
+        for frame in (GRIPPER_FRAME, "head_camera_link", "left_gripper"):
+            np.testing.assert_allclose(
+                whole.robot.link_transform(frame), site.robot.link_transform(frame), atol=0.02
+            )
