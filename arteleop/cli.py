@@ -154,6 +154,8 @@ class TrialCommand:
 
 
 def trial(cmd: TrialCommand) -> int:
+    import numpy as np
+
     from arteleop.ar_features import OperatorView, ViewConfig
     from arteleop.operator import load_recording
     from arteleop.scene import RemoteSite
@@ -187,6 +189,10 @@ def trial(cmd: TrialCommand) -> int:
     print(f"placement error      {result.placement_error_m * 1000:.1f} mm (tracked), "
           f"{result.placement_error_true_m * 1000:.1f} mm (ground truth)")  # fmt: skip
     print(f"simulated time       {result.duration_s:.1f} s")
+    if len(result.latency_wall_ms):
+        lat = result.latency_wall_ms
+        print(f"latency to display   {np.median(lat):.1f} ms median, "
+              f"{np.percentile(lat, 95):.1f} ms p95 (sample to the view's update)")  # fmt: skip
     return 0 if result.outcome == "success" else 1
 
 

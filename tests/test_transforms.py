@@ -5,6 +5,7 @@ from scipy.spatial.transform import Rotation
 from arteleop.transforms import (
     invert_transform,
     pose_to_transform,
+    quat_to_matrix,
     quat_wxyz_to_xyzw,
     quat_xyzw_to_wxyz,
     transform_points,
@@ -38,3 +39,15 @@ def test_rotation_convention_is_active_w_first() -> None:
     # 90 deg about z maps x onto y.
     T = pose_to_transform([0, 0, 0], [np.cos(np.pi / 4), 0, 0, np.sin(np.pi / 4)])
     np.testing.assert_allclose(transform_points(T, [[1.0, 0, 0]]), [[0, 1.0, 0]], atol=1e-12)
+
+
+def test_quat_to_matrix_normalises_and_matches_scipy() -> None:
+    """pinocchio's conversion (fast, per sample) against scipy's (batch) on unnormalised input."""
+    rng = np.random.default_rng(0)
+    for q in Rotation.random(20, random_state=1).as_quat(scalar_first=True):
+        scaled = q * rng.uniform(0.2, 5.0)
+        np.testing.assert_allclose(
+            quat_to_matrix(scaled),
+            Rotation.from_quat(scaled, scalar_first=True).as_matrix(),
+            atol=1e-12,
+        )

@@ -8,13 +8,13 @@ knows nothing of the simulator.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from types import TracebackType
 
 import numpy as np
 import viser
 from numpy.typing import ArrayLike
 
 from arteleop.errors import ConfigurationError
+from arteleop.lifetime import Closeable
 
 CLOUD_NODE = "/camera/cloud"
 
@@ -43,7 +43,7 @@ class ViewConfig:
             raise ConfigurationError(f"ViewConfig.point_size_m={self.point_size_m} must be > 0")
 
 
-class OperatorView:
+class OperatorView(Closeable):
     """A running viser server showing the latest point cloud; a context manager."""
 
     def __init__(self, config: ViewConfig | None = None) -> None:
@@ -79,14 +79,3 @@ class OperatorView:
     def close(self) -> None:
         """Stop the server."""
         self.server.stop()
-
-    def __enter__(self) -> OperatorView:
-        return self
-
-    def __exit__(
-        self,
-        exc_type: type[BaseException] | None,
-        exc: BaseException | None,
-        tb: TracebackType | None,
-    ) -> None:
-        self.close()

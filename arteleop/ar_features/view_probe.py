@@ -11,12 +11,13 @@ from __future__ import annotations
 import threading
 import time
 from dataclasses import dataclass
-from types import TracebackType
 
 import viser
 from websockets.exceptions import ConnectionClosed
 from websockets.sync.client import connect
 from websockets.typing import Subprotocol
+
+from arteleop.lifetime import Closeable
 
 
 @dataclass(frozen=True)
@@ -27,7 +28,7 @@ class Received:
     data: bytes
 
 
-class ViewProbe:
+class ViewProbe(Closeable):
     """Receives everything the view sends, on a thread of its own; a context manager."""
 
     def __init__(self, url: str, timeout_s: float = 5.0) -> None:
@@ -71,14 +72,3 @@ class ViewProbe:
     def close(self) -> None:
         self._ws.close()
         self._thread.join(timeout=5.0)
-
-    def __enter__(self) -> ViewProbe:
-        return self
-
-    def __exit__(
-        self,
-        exc_type: type[BaseException] | None,
-        exc: BaseException | None,
-        tb: TracebackType | None,
-    ) -> None:
-        self.close()

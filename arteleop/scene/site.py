@@ -7,7 +7,6 @@ of the configuration runs in the constructor, so a bad setting stops the program
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from types import TracebackType
 
 import numpy as np
 import pybullet as p
@@ -15,6 +14,7 @@ from numpy.typing import NDArray
 from pybullet_utils.bullet_client import BulletClient
 
 from arteleop.errors import ConfigurationError, WorkspaceError
+from arteleop.lifetime import Closeable
 from arteleop.robot import (
     REST_POSE,
     ArmPose,
@@ -73,7 +73,7 @@ class SiteConfig:
             raise ConfigurationError(f"reach_margin={self.reach_margin} must be in [0, 0.5)")
 
 
-class RemoteSite:
+class RemoteSite(Closeable):
     """A running simulation of the remote site; a context manager (or call :meth:`close`).
 
     Two PyBullet worlds: ``client`` is simulated; the head camera draws ``render_world.client``,
@@ -238,14 +238,3 @@ class RemoteSite:
         self.render_world.close()
         if self.client.isConnected():
             self.client.disconnect()
-
-    def __enter__(self) -> RemoteSite:
-        return self
-
-    def __exit__(
-        self,
-        exc_type: type[BaseException] | None,
-        exc: BaseException | None,
-        tb: TracebackType | None,
-    ) -> None:
-        self.close()

@@ -199,10 +199,12 @@ class _Trial:
         if self.config.realtime:
             self._sample_wall.append((sample.time_s, w0))
         self.link.send(sample.time_s, sample, t)
+        w0 = time.perf_counter()
         for _, received in self.link.receive(t):
             if received.sensor_quat_wxyz is None:
                 self.dropped_samples += 1
             self.control.receive(received.time_s, received.sensor_quat_wxyz, received.grip)
+        self.timer.record("reconstruction", w0)
         w0 = time.perf_counter()
         self.control.control_tick()
         self.timer.record("mapping_ik", w0)
