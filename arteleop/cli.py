@@ -151,6 +151,9 @@ class TrialCommand:
     """interface for --view; 0.0.0.0 lets other machines connect"""
     port: int = 8080
     """port for --view"""
+    width_px: int = 640
+    """camera image width; 320x240 keeps 30 frames/s in real time on two cores"""
+    height_px: int = 480
 
 
 def trial(cmd: TrialCommand) -> int:
@@ -158,7 +161,7 @@ def trial(cmd: TrialCommand) -> int:
 
     from arteleop.ar_features import OperatorView, ViewConfig
     from arteleop.operator import load_recording
-    from arteleop.scene import RemoteSite
+    from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
     from arteleop.teleop import (
         NetworkConfig,
         RecordingSource,
@@ -171,6 +174,7 @@ def trial(cmd: TrialCommand) -> int:
         modality=cmd.modality, seed=cmd.seed, timeout_s=cmd.timeout_s,
         realtime=cmd.realtime or cmd.view, render_camera=cmd.view,
         network=NetworkConfig(delay_s=cmd.delay_ms / 1000),
+        site=SiteConfig(camera=HeadCameraConfig(width_px=cmd.width_px, height_px=cmd.height_px)),
     )  # fmt: skip
     with contextlib.ExitStack() as stack:
         site = stack.enter_context(RemoteSite(config.site))

@@ -190,6 +190,52 @@ class RGBDFrame:
     segmentation: NDArray[np.int32] | None = None
 
 
+@dataclass(frozen=True)
+class RenderRequest:
+    """One image to render: size (px), OpenGL view and projection matrices (16 floats each,
+    column-major, as PyBullet takes them), and whether to return the segmentation mask."""
+
+    width_px: int
+    height_px: int
+    view_gl: list[float]
+    projection_gl: list[float]
+    with_segmentation: bool = False
+
+
+@dataclass(frozen=True)
+class RawImage:
+    """The renderer's output before any sensor model.
+
+    Attributes:
+        rgba: (H, W, 4) uint8 colour.
+        zbuf: (H, W) float32 OpenGL depth buffer, 0 (near clip) .. 1 (far clip or nothing).
+        segmentation: (H, W) int32 PyBullet mask (body id + (link + 1) << 24, -1 background).
+    """
+
+    rgba: NDArray[np.uint8]
+    zbuf: NDArray[np.float32]
+    segmentation: NDArray[np.int32] | None = None
+
+
+def render(client: BulletClient, request: RenderRequest) -> RawImage:
+    """Render ``request`` in ``client`` with the CPU TinyRenderer (no shadows)."""
+    w, h = request.width_px, request.height_px
+    _, _, rgba, zbuf, seg = client.getCameraImage(
+        w,
+        h,
+        request.view_gl,
+        request.projection_gl,
+        shadow=0,
+        renderer=p.ER_TINY_RENDERER,
+        flags=0 if request.with_segmentation else p.ER_NO_SEGMENTATION_MASK,
+    )
+    return RawImage(
+        np.asarray(rgba, dtype=np.uint8).reshape(h, w, 4),
+        np.asarray(zbuf, dtype=np.float32).reshape(h, w),
+        np.asarray(seg, dtype=np.int32).reshape(h, w) if request.with_segmentation else None,
+    )
+
+
 class HeadCamera:
     """Renders RGB-D frames of a PyBullet scene with the CPU TinyRenderer."""
 
@@ -212,21 +258,22 @@ class HeadCamera:
         self._view_gl = view.T.ravel().tolist()
         self._proj_gl = self._projection.T.ravel().tolist()
 
-    def capture(self, timestamp_s: float, with_segmentation: bool = False) -> RGBDFrame:
-        """Render one frame at the current simulator state."""
+    def request(self, with_segmentation: bool = False) -> RenderRequest:
+        """What to render for one frame: image size and the camera's OpenGL matrices."""
         c = self.config
-        flags = 0 if with_segmentation else p.ER_NO_SEGMENTATION_MASK
-        _, _, rgba, zbuf, seg = self._client.getCameraImage(
-            c.width_px,
-            c.height_px,
-            self._view_gl,
-            self._proj_gl,
-            shadow=0,
-            renderer=p.ER_TINY_RENDERER,
-            flags=flags,
+        return RenderRequest(
+            c.width_px, c.height_px, self._view_gl, self._proj_gl, with_segmentation
         )
-        rgb = np.asarray(rgba, dtype=np.uint8).reshape(c.height_px, c.width_px, 4)[..., :3].copy()
-        zbuf = np.asarray(zbuf, dtype=np.float64).reshape(c.height_px, c.width_px)
+
+    def capture(self, timestamp_s: float, with_segmentation: bool = False) -> RGBDFrame:
+        """Render one frame of the client's current state."""
+        return self.frame(render(self._client, self.request(with_segmentation)), timestamp_s)
+
+    def frame(self, raw: RawImage, timestamp_s: float) -> RGBDFrame:
+        """Turn a rendered image into a frame: metric depth, the sensor's noise and range."""
+        c = self.config
+        rgb = raw.rgba[..., :3].copy()
+        zbuf = raw.zbuf.astype(np.float64)
         n, f = c.near_clip_m, c.far_clip_m
         depth = f * n / (f - (f - n) * zbuf)
         depth[zbuf >= 1.0] = 0.0  # background: nothing rendered there
@@ -234,13 +281,10 @@ class HeadCamera:
             depth.astype(np.float32), self.intrinsics.fx_px, c.noise, self._rng
         )
         depth[(depth < c.min_depth_m) | (depth > c.max_depth_m)] = 0.0
-        segmentation = (
-            np.asarray(seg, dtype=np.int32).reshape(c.height_px, c.width_px) & ((1 << 24) - 1)
-            if with_segmentation
-            else None
-        )
-        if segmentation is not None:
-            segmentation[np.asarray(seg).reshape(c.height_px, c.width_px) < 0] = -1
+        segmentation = None
+        if raw.segmentation is not None:
+            segmentation = raw.segmentation & ((1 << 24) - 1)
+            segmentation[raw.segmentation < 0] = -1
         return RGBDFrame(rgb, depth, self.intrinsics, self.T_base_camera, timestamp_s, segmentation)
 
     def locate(self, point_base_m: ArrayLike) -> tuple[float, float, float]:

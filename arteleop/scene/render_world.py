@@ -9,7 +9,8 @@ joints and the bowl's pose) copied over from the physics world before each frame
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 
 import pybullet as p
@@ -18,6 +19,16 @@ from pybullet_utils.bullet_client import BulletClient
 from arteleop.robot.native_output import native_stdout_silenced
 from arteleop.scene.bodies import add_bowl, add_start_cross, add_table, add_target_circle
 from arteleop.scene.workspace import Workspace
+
+
+@dataclass(frozen=True)
+class SceneState:
+    """What moves in the scene, in the base frame: joint positions (rad or m, by joint name) and
+    the bowl's centre-of-mass pose (PyBullet's x, y, z, w quaternion)."""
+
+    joint_positions: dict[str, float]
+    bowl_com_position_m: tuple[float, float, float]
+    bowl_com_quat_xyzw: tuple[float, float, float, float]
 
 
 class RenderWorld:
@@ -40,24 +51,19 @@ class RenderWorld:
             raise RuntimeError(
                 f"render world body ids {ids} differ from the physics world's {body_ids}"
             )
+        self.body_ids = tuple(ids)
         self._robot, self._bowl = robot, ids[-1]
         self._joint_index = {
             self.client.getJointInfo(robot, i)[1].decode(): i
             for i in range(self.client.getNumJoints(robot))
         }
 
-    def sync(
-        self,
-        joint_positions: Mapping[str, float],
-        bowl_com_position_m: Sequence[float],
-        bowl_com_quat_xyzw: Sequence[float],
-    ) -> None:
-        """Copy the moving state: joint positions (rad or m, by joint name) and the bowl's
-        centre-of-mass pose in the base frame (PyBullet's x, y, z, w quaternion)."""
-        for name, q in joint_positions.items():
+    def sync(self, state: SceneState) -> None:
+        """Copy the moving state over from the physics world."""
+        for name, q in state.joint_positions.items():
             self.client.resetJointState(self._robot, self._joint_index[name], q)
         self.client.resetBasePositionAndOrientation(
-            self._bowl, bowl_com_position_m, bowl_com_quat_xyzw
+            self._bowl, state.bowl_com_position_m, state.bowl_com_quat_xyzw
         )
 
     def close(self) -> None:

@@ -28,7 +28,8 @@ from arteleop.robot import (
 from arteleop.robot.native_output import native_stdout_silenced
 from arteleop.scene.bodies import add_bowl, add_start_cross, add_table, add_target_circle
 from arteleop.scene.camera import HeadCamera, HeadCameraConfig, RGBDFrame
-from arteleop.scene.render_world import RenderWorld
+from arteleop.scene.render_process import RenderProcess
+from arteleop.scene.render_world import RenderWorld, SceneState
 from arteleop.scene.workspace import Workspace
 from arteleop.transforms import pose_to_transform, quat_xyzw_to_wxyz
 
@@ -140,6 +141,8 @@ class RemoteSite(Closeable):
             self.client.disconnect()
             raise
         self._steps = 0
+        self._renderer: RenderProcess | None = None
+        self._requested_s = 0.0
 
     # -- time -----------------------------------------------------------------------------------
     @property
@@ -181,16 +184,47 @@ class RemoteSite(Closeable):
 
     def capture(self, with_segmentation: bool = False) -> RGBDFrame:
         """One head-camera frame of the current state, stamped with :attr:`time_s`."""
-        robot = self.robot
-        pos, quat = self.client.getBasePositionAndOrientation(self.bowl_id)
-        self.render_world.sync(
-            dict(
-                zip(robot.joint_index, robot.joint_positions(list(robot.joint_index)), strict=True)
-            ),
-            pos,
-            quat,
-        )
+        self.render_world.sync(self.scene_state())
         return self.camera.capture(self.time_s, with_segmentation)
+
+    def scene_state(self) -> SceneState:
+        """What the camera needs of the simulation's current state."""
+        robot = self.robot
+        names = list(robot.joint_index)
+        pos, quat = self.client.getBasePositionAndOrientation(self.bowl_id)
+        return SceneState(
+            dict(zip(names, robot.joint_positions(names).tolist(), strict=True)),
+            tuple(pos),
+            tuple(quat),
+        )
+
+    # -- rendering on another core --------------------------------------------------------------
+    def start_render_process(self) -> None:
+        """Start the render process now (it takes about two seconds) rather than on the first
+        :meth:`request_frame`; does nothing if it runs already."""
+        if self._renderer is None:
+            self._renderer = RenderProcess(
+                self.robot.urdf_path, self.config.workspace, self.render_world.body_ids
+            )
+
+    def request_frame(self) -> None:
+        """Start rendering the current state in a render process of its own, so the loop goes on
+        while another core renders; collect the frame with :meth:`poll_frame`. One frame at a
+        time; the process starts on the first request unless already started."""
+        self.start_render_process()
+        assert self._renderer is not None
+        self._renderer.submit(self.scene_state(), self.camera.request())
+        self._requested_s = self.time_s
+
+    @property
+    def frame_pending(self) -> bool:
+        """A requested frame is still being rendered."""
+        return self._renderer is not None and self._renderer.busy
+
+    def poll_frame(self) -> RGBDFrame | None:
+        """The requested frame if it is ready (stamped with the time it was requested)."""
+        raw = self._renderer.poll() if self._renderer is not None else None
+        return None if raw is None else self.camera.frame(raw, self._requested_s)
 
     # -- start-up checks ------------------------------------------------------------------------
     def _check_reach(self, ws: Workspace) -> None:
@@ -234,7 +268,9 @@ class RemoteSite(Closeable):
 
     # -- lifetime -------------------------------------------------------------------------------
     def close(self) -> None:
-        """Disconnect both PyBullet worlds."""
+        """Disconnect both PyBullet worlds and stop the render process."""
+        if self._renderer is not None:
+            self._renderer.close()
         self.render_world.close()
         if self.client.isConnected():
             self.client.disconnect()

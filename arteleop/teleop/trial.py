@@ -19,7 +19,13 @@ from arteleop.ar_features import modality_cues
 from arteleop.errors import ConfigurationError
 from arteleop.operator.perception import DisplayView
 from arteleop.robot import GRIPPER_FRAME
-from arteleop.scene import BowlTracker, RemoteSite, SiteConfig, frame_to_point_cloud
+from arteleop.scene import (
+    BowlTracker,
+    RemoteSite,
+    RGBDFrame,
+    SiteConfig,
+    frame_to_point_cloud,
+)
 from arteleop.teleop.clock import LoopClock, LoopRates
 from arteleop.teleop.controller import ControllerConfig, ControllerState, TeleopController
 from arteleop.teleop.network import NetworkConfig, NetworkLink
@@ -45,7 +51,10 @@ class TrialConfig:
         network: Operator-to-robot link (the display's return link has the same delay).
         realtime: Pace the loop with the wall clock instead of running as fast as possible.
         render_camera: Render every camera frame (needed for the display and for wall-clock
-            latency); otherwise frames are rendered only to track the bowl at the end.
+            latency); otherwise frames are rendered only to track the bowl at the end. In real
+            time, frames render in a process of their own, on another core, while the loop goes
+            on; a camera tick that finds the previous frame still rendering is rendered as soon
+            as that one is in, and a second such tick is skipped.
         site: The remote site.
         controller: Robot-side settings.
     """
@@ -137,6 +146,8 @@ class _Trial:
         self.source, self.config, self.site, self.display = source, config, site, display
         rng = np.random.default_rng(config.seed)
         self.link: NetworkLink[WearableSample] = NetworkLink(config.network, rng)
+        if config.realtime and config.render_camera:
+            site.start_render_process()  # before the clock starts: it takes a few seconds
         self.clock = LoopClock(config.rates, config.realtime)
         self.control = TeleopController(
             site, source.arm, source.calibration, 1.0 / config.rates.control_hz, config.controller
@@ -150,6 +161,10 @@ class _Trial:
         self.latency: list[float] = []
         self.latency_wall: list[float] = []
         self._sample_wall: deque[tuple[float, float]] = deque()  # (sample time, wall clock)
+        self._async_camera = config.realtime and config.render_camera
+        self._requested = (0.0, -np.inf)  # (wall clock, newest applied sample) of the request
+        self._frame_owed = False
+        self.frames_skipped = 0
         self.t_start: float | None = None
         self.grasped = False
         self.grasp_attempts = 0
@@ -165,6 +180,8 @@ class _Trial:
         while True:
             tick = self.clock.next()
             t = tick.time_s
+            if self._async_camera:
+                self._collect_frame()
             if t > cfg.timeout_s:
                 return self._result("timeout", t)
             if tick.camera:
@@ -233,18 +250,19 @@ class _Trial:
     def _camera(self, t: float) -> None:
         """A camera tick: the display's content now (rendered if asked), and its latency."""
         site = self.site
-        if self.config.render_camera:
+        applied = self.control.applied_sample_time_s
+        if self._async_camera:
+            if not site.frame_pending:
+                self._request_frame()
+            elif self._frame_owed:
+                self.frames_skipped += 1  # two ticks while one frame renders: drop one
+            else:
+                self._frame_owed = True  # render it as soon as the current frame is in
+        elif self.config.render_camera:
             w0 = time.perf_counter()
             frame = site.capture()
             self.timer.record("camera", w0)
-            w0 = time.perf_counter()
-            cloud = frame_to_point_cloud(frame, stride=2)
-            self.timer.record("point_cloud", w0)
-            if self.display is not None:
-                w0 = time.perf_counter()
-                self.display.show_cloud(cloud.points_m, cloud.colors)
-                self.timer.record("display", w0)
-            self._wall_latency()
+            self._show(frame, applied)
         if np.isfinite(self.control.applied_sample_time_s):
             self.latency.append(t - self.control.applied_sample_time_s)
         gripper = site.robot.link_transform(GRIPPER_FRAME)[:3, 3]
@@ -256,10 +274,35 @@ class _Trial:
             self.control.state is ControllerState.ENGAGED,
         ))  # fmt: skip
 
-    def _wall_latency(self) -> None:
-        """Real time only: wall-clock age of the newest applied sample when the frame showing it
-        has been shown (or turned into a point cloud, without a display)."""
-        applied = self.control.applied_sample_time_s
+    def _request_frame(self) -> None:
+        self.site.request_frame()
+        self._requested = (time.perf_counter(), self.control.applied_sample_time_s)
+        self._frame_owed = False
+
+    def _collect_frame(self) -> None:
+        """Real time: pick up the frame the render process has finished, if any."""
+        frame = self.site.poll_frame()
+        if frame is not None:
+            requested_wall, applied = self._requested
+            self.timer.record("camera", requested_wall)
+            if self._frame_owed:
+                self._request_frame()  # a tick came while this one rendered
+            self._show(frame, applied)
+
+    def _show(self, frame: RGBDFrame, applied: float) -> None:
+        """Point cloud and display update of a frame that shows samples up to ``applied``."""
+        w0 = time.perf_counter()
+        cloud = frame_to_point_cloud(frame, stride=2)
+        self.timer.record("point_cloud", w0)
+        if self.display is not None:
+            w0 = time.perf_counter()
+            self.display.show_cloud(cloud.points_m, cloud.colors)
+            self.timer.record("display", w0)
+        self._wall_latency(applied)
+
+    def _wall_latency(self, applied: float) -> None:
+        """Real time only: wall-clock age of the newest sample a frame shows (``applied``) once
+        the frame has been shown (or turned into a point cloud, without a display)."""
         samples = self._sample_wall
         while len(samples) > 1 and samples[1][0] <= applied:
             samples.popleft()
@@ -286,6 +329,7 @@ class _Trial:
             "samples_late": self.link.late, "samples_lost_wearable": self.dropped_samples,
             "unreachable_ticks": self.control.unreachable_ticks,
             "held_samples": self.control.reconstructor.held if self.control.reconstructor else 0,
+            "camera_frames_skipped": self.frames_skipped,
         }  # fmt: skip
         return TrialResult(
             outcome=outcome,

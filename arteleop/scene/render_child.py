@@ -1,0 +1,12 @@
+"""Entry point of the render process: ``python -m arteleop.scene.render_child FD``.
+
+A module of its own, which the package never imports, so that ``-m`` runs it fresh.
+"""
+
+import sys
+from multiprocessing.connection import Connection
+
+from arteleop.scene.render_process import serve
+
+if __name__ == "__main__":
+    serve(Connection(int(sys.argv[1])))

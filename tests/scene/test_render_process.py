@@ -1,0 +1,56 @@
+"""Rendering on another core gives the same frames as rendering in the loop."""
+
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from arteleop.robot import RIGHT_ARM_JOINTS
+from arteleop.scene import RemoteSite
+from arteleop.scene.render_process import RenderProcess, RenderProcessError
+
+
+def _wait(site: RemoteSite, timeout_s: float = 10.0):
+    end = time.monotonic() + timeout_s
+    while time.monotonic() < end:
+        frame = site.poll_frame()
+        if frame is not None:
+            return frame
+        time.sleep(0.002)
+    raise AssertionError("no frame from the render process")
+
+
+def test_frames_from_the_render_process_equal_frames_rendered_in_place(
+    noiseless_site: RemoteSite,
+) -> None:
+    site = noiseless_site
+    rng = np.random.default_rng(5)
+    lim = site.robot.right_arm_limits
+    for _ in range(2):
+        site.robot.set_joint_positions(
+            dict(zip(RIGHT_ARM_JOINTS, rng.uniform(lim.lower, lim.upper), strict=True))
+        )
+        site.place_bowl((0.6 + rng.uniform(-0.05, 0.05), -0.3))
+        site.step(3)
+        site.request_frame()
+        assert site.frame_pending
+        remote = _wait(site)
+        assert not site.frame_pending
+        here = site.capture()
+        assert remote.timestamp_s == here.timestamp_s
+        np.testing.assert_array_equal(remote.rgb, here.rgb)
+        np.testing.assert_array_equal(remote.depth_m, here.depth_m)
+
+
+def test_one_frame_at_a_time(site: RemoteSite) -> None:
+    site.request_frame()
+    with pytest.raises(RenderProcessError, match="still being rendered"):
+        site.request_frame()
+    _wait(site)
+
+
+def test_a_child_that_cannot_start_says_why(site: RemoteSite, tmp_path: Path) -> None:
+    missing = tmp_path / "no-such-robot.urdf"
+    with pytest.raises(RenderProcessError, match=r"did not start.*no-such-robot"):
+        RenderProcess(missing, site.config.workspace, site.render_world.body_ids)
