@@ -225,7 +225,8 @@ def _stages(result: TrialResult) -> None:
             f"| {s.latency_p99_ms * 1e3:.0f} | {s.latency_total_ms / result.duration_s:.1f} |"
         )
     print(
-        "\nmapping_ik is the control tick: mapping, one IK step, the trajectory's new target, the gripper command."
+        "\ncontrol_tick is the whole robot-side tick: mapping, one IK step, the trajectory's new "
+        "target and the gripper command; mapping and ik are its parts."
     )
 
 

@@ -7,6 +7,7 @@ makes the arm jump) and ENGAGED (mapping -> IK -> trajectory -> position control
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 from enum import Enum
 
@@ -28,6 +29,7 @@ from arteleop.robot.mapping import HandToGripper, MappingConfig
 from arteleop.robot.trajectory import JointTrajectory, TrajectoryLimits
 from arteleop.scene import RemoteSite
 from arteleop.teleop.hand_speed import HandSpeed
+from arteleop.teleop.timing import StageTimer
 
 
 class ControllerState(Enum):
@@ -69,8 +71,11 @@ class TeleopController:
         posture: CalibrationPosture,
         control_dt_s: float,
         config: ControllerConfig | None = None,
+        timer: StageTimer | None = None,
     ) -> None:
         self.config = c = config or ControllerConfig()
+        self.timer = timer or StageTimer()
+        """Times the ``mapping`` and ``ik`` stages of each control tick."""
         self.site = site
         self.arm = arm
         self.posture = posture
@@ -131,7 +136,9 @@ class TeleopController:
         hand = self.last_hand
         if hand is None or self.state is ControllerState.CALIBRATING:
             return
+        w0 = time.perf_counter()
         target = self.mapping.gripper_target(hand.hand_m, hand.hand_quat_wxyz)
+        self.timer.record("mapping", w0)
         if self.state is ControllerState.WAITING:
             gripper = self.site.robot.link_transform(GRIPPER_FRAME)[:3, 3]
             aligned = np.linalg.norm(target[:3, 3] - gripper) < self.config.engage_distance_m
@@ -142,8 +149,10 @@ class TeleopController:
             self.trajectory.reset(q)
             self._q_ik_prev = q
             self.state = ControllerState.ENGAGED
+        w0 = time.perf_counter()
         self.ik.set_target(target)
         result = self.ik.step(self.dt)
+        self.timer.record("ik", w0)
         self.last_ik = result
         self.unreachable_ticks += not result.reachable
         self.trajectory.set_target(result.q_rad)

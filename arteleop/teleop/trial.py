@@ -149,12 +149,17 @@ class _Trial:
         if config.realtime and config.render_camera:
             site.start_render_process()  # before the clock starts: it takes a few seconds
         self.clock = LoopClock(config.rates, config.realtime)
+        self.timer = StageTimer()
         self.control = TeleopController(
-            site, source.arm, source.calibration, 1.0 / config.rates.control_hz, config.controller
+            site,
+            source.arm,
+            source.calibration,
+            1.0 / config.rates.control_hz,
+            config.controller,
+            self.timer,
         )
         self.cues = modality_cues(config.modality)
         self.tracker = BowlTracker(site.config.workspace.bowl)
-        self.timer = StageTimer()
         self.views: deque[DisplayView] = deque(maxlen=64)
         self.hand_t: list[float] = []
         self.hand_p: list[NDArray[np.float64]] = []
@@ -224,7 +229,7 @@ class _Trial:
         self.timer.record("reconstruction", w0)
         w0 = time.perf_counter()
         self.control.control_tick()
-        self.timer.record("mapping_ik", w0)
+        self.timer.record("control_tick", w0)
         hand = self.control.last_hand
         if self.control.state is ControllerState.ENGAGED and hand is not None:
             self.hand_t.append(hand.time_s)

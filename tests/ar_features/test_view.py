@@ -76,7 +76,12 @@ def test_real_time_trial_shows_every_camera_frame_and_measures_its_latency(
     assert frames - 1 <= len(display.sizes) <= frames + 1
     assert min(display.sizes) > 1000  # the table fills most of the 80x60 strided cloud
     stages = {s.stage: s for s in result.stages}
+    # Every stage of STUDY.md section 7 reports service time and latency.
+    for stage in ("operator_input", "reconstruction", "mapping", "ik", "control_tick",
+                  "trajectory", "physics", "camera", "point_cloud", "display"):  # fmt: skip
+        assert stages[stage].rounds > 0 and stages[stage].latency_median_ms > 0, stage
     assert stages["display"].rounds == len(display.sizes)
+    assert stages["ik"].latency_total_ms < stages["control_tick"].latency_total_ms  # a part of it
     # Once the arm is engaged (after about 3 s), every frame shows a sample at most a few control
     # and camera periods old: a sample waits up to 10 ms for the control tick and up to 33 ms
     # for the camera, then the 160x120 render and cloud take a few ms.
