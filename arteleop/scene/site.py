@@ -199,21 +199,20 @@ class RemoteSite(Closeable):
         )
 
     # -- rendering on another core --------------------------------------------------------------
-    def start_render_process(self) -> None:
+    def start_render_process(self) -> RenderProcess:
         """Start the render process now (it takes about two seconds) rather than on the first
-        :meth:`request_frame`; does nothing if it runs already."""
+        :meth:`request_frame`; returns the running one if it runs already."""
         if self._renderer is None:
             self._renderer = RenderProcess(
                 self.robot.urdf_path, self.config.workspace, self.render_world.body_ids
             )
+        return self._renderer
 
     def request_frame(self) -> None:
         """Start rendering the current state in a render process of its own, so the loop goes on
         while another core renders; collect the frame with :meth:`poll_frame`. One frame at a
         time; the process starts on the first request unless already started."""
-        self.start_render_process()
-        assert self._renderer is not None
-        self._renderer.submit(self.scene_state(), self.camera.request())
+        self.start_render_process().submit(self.scene_state(), self.camera.request())
         self._requested_s = self.time_s
 
     @property
