@@ -65,16 +65,20 @@ def ik_side_by_side(n: int) -> None:
     site.close()
     print(f"\n## IK on {n} reachable targets from random configurations (same seed posture)\n")
     print(
-        "| solver | position error median (mm) | p95 (mm) | orientation error median (deg) | time per target median (ms) |"
+        "| solver | position error median (mm) | p95 (mm) | orientation error median (deg) "
+        "| time per target median (ms) | time / baseline |"
     )
-    print("| --- | ---: | ---: | ---: | ---: |")
+    print("| --- | ---: | ---: | ---: | ---: | ---: |")
+    base_time = float(np.median(np.array(rows["pybullet"])[:, 2]))
     for name, label in (
         ("pybullet", "PyBullet calculateInverseKinematics (baseline)"),
         ("mink", "mink, converged (ours)"),
     ):
         a = np.array(rows[name])
         print(
-            f"| {label} | {np.median(a[:, 0]) * 1e3:.3f} | {np.percentile(a[:, 0], 95) * 1e3:.1f} | {np.degrees(np.median(a[:, 1])):.3f} | {np.median(a[:, 2]) * 1e3:.2f} |"
+            f"| {label} | {np.median(a[:, 0]) * 1e3:.3f} | {np.percentile(a[:, 0], 95) * 1e3:.1f} "
+            f"| {np.degrees(np.median(a[:, 1])):.3f} | {np.median(a[:, 2]) * 1e3:.2f} "
+            f"| {np.median(a[:, 2]) / base_time:.2f} |"
         )
     print(
         f"\nmink, one IK step per 10 ms control tick: median {np.median(step) * 1e3:.3f} ms, p99 {np.percentile(step, 99) * 1e3:.3f} ms"
@@ -167,6 +171,10 @@ class _TimedDisplay:
         self.view.show_cloud(points_m, colors)
 
 
+ORIGINAL_LATENCY_MS = 89.0
+"""End-to-end latency the original system measured (STUDY.md), the reference for this table."""
+
+
 def latency(seconds: float) -> None:
     print(
         "\n## End-to-end latency, real-time mode, camera rendering at 30 Hz, viser view, "
@@ -175,9 +183,9 @@ def latency(seconds: float) -> None:
     print(
         "| camera | sample to frame capture, simulated, median (ms) | sample to display update, "
         "wall clock, median (ms) | p95 (ms) | show_cloud call to a connected client, median (ms) "
-        "| frames shown / skipped | real-time lag at end (ms) |"
+        "| median / original system's 89 ms | frames shown / skipped | real-time lag at end (ms) |"
     )
-    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: |")
+    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
     for w, h in ((320, 240), (640, 480)):
         site_cfg = SiteConfig(camera=HeadCameraConfig(width_px=w, height_px=h))
         config = TrialConfig(
@@ -202,7 +210,7 @@ def latency(seconds: float) -> None:
         print(
             f"| {w}x{h} | {np.median(result.latency_sim_ms):.1f} | {np.median(wall):.1f} "
             f"| {np.percentile(wall, 95):.1f} | {np.median(delivery):.2f} "
-            f"| {len(display.shown_s)} / {result.counts['camera_frames_skipped']} | {lag:.0f} |"
+            f"| {np.median(wall) / ORIGINAL_LATENCY_MS:.2f} | {len(display.shown_s)} / {result.counts['camera_frames_skipped']} | {lag:.0f} |"
         )
     print(
         "\nWall-clock latency runs from the operator sample's creation to the return of "

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
@@ -33,16 +34,21 @@ class SensorMounting:
 
         ``q_torso_segment = Rz(-heading) * q_earth_sensor * inverse(q_segment_sensor)``.
         """
-        q = np.asarray(sensor_quat_wxyz, dtype=np.float64)
-        n = q.shape[0]
-        # Composed as matrices: one scipy call per factor instead of one per product.
-        torso_earth = Rotation.from_euler("z", -self.torso_heading_rad).as_matrix()
+        q = np.asarray(sensor_quat_wxyz, dtype=np.float64).reshape(-1, 3, 4)
+        # Composed as matrices, broadcast over the samples: one scipy call per factor instead of
+        # one per product (this runs for every live sample).
         earth_sensor = Rotation.from_quat(q.reshape(-1, 4), scalar_first=True).as_matrix()
-        sensor_segment = np.tile(
-            Rotation.from_quat(self.segment_sensor_wxyz, scalar_first=True).inv().as_matrix(),
-            (n, 1, 1),
-        )
-        return Rotation.from_matrix(torso_earth @ earth_sensor @ sensor_segment, assume_valid=True)
+        torso_segment = self._torso_earth @ earth_sensor.reshape(-1, 3, 3, 3) @ self._sensor_segment
+        return Rotation.from_matrix(torso_segment.reshape(-1, 3, 3), assume_valid=True)
+
+    @cached_property
+    def _torso_earth(self) -> NDArray[np.float64]:
+        return Rotation.from_euler("z", -self.torso_heading_rad).as_matrix()
+
+    @cached_property
+    def _sensor_segment(self) -> NDArray[np.float64]:
+        """(3, 3, 3) inverse mountings, one per segment."""
+        return Rotation.from_quat(self.segment_sensor_wxyz, scalar_first=True).inv().as_matrix()
 
 
 def calibrate(recording: Recording, posture: CalibrationPosture | None = None) -> SensorMounting:

@@ -161,10 +161,12 @@ class WearableSimulator:
         # q_earth_sensor = Rz(heading + bias) * q_torso_segment * q_segment_sensor * noise,
         # composed as matrices: one scipy call per factor instead of one per product.
         heading = self.config.torso_heading_rad + bias.reshape(-1, 1)
+        segment_sensor = (segments_torso.as_matrix().reshape(n, 3, 3, 3) @ self._mounting).reshape(
+            -1, 3, 3
+        )
         sensor = (
             Rotation.from_euler("z", heading).as_matrix()
-            @ segments_torso.as_matrix()
-            @ np.tile(self._mounting, (n, 1, 1))
+            @ segment_sensor
             @ Rotation.from_rotvec(noise.reshape(-1, 3)).as_matrix()
         )
         quats = Rotation.from_matrix(sensor, assume_valid=True).as_quat(

@@ -54,11 +54,14 @@ class JointLimits:
         q = np.asarray(q, dtype=np.float64)
         if q.shape != (len(self.names),):
             raise ConfigurationError(f"{what} has shape {q.shape}, expected ({len(self.names)},)")
-        for name, v, lo, hi in zip(self.names, q, self.lower, self.upper, strict=True):
-            if not lo - 1e-9 <= v <= hi + 1e-9:
-                raise ConfigurationError(
-                    f"{what}: joint {name} = {v:.4f} is outside its limits [{lo:.4f}, {hi:.4f}]"
-                )
+        # Runs on every physics step (each arm command): one vector test, names only on failure.
+        outside = ~((self.lower - 1e-9 <= q) & (q <= self.upper + 1e-9))  # NaN counts as outside
+        if outside.any():
+            i = int(np.argmax(outside))
+            raise ConfigurationError(
+                f"{what}: joint {self.names[i]} = {q[i]:.4f} is outside its limits "
+                f"[{self.lower[i]:.4f}, {self.upper[i]:.4f}]"
+            )
 
 
 @dataclass(frozen=True)

@@ -251,6 +251,7 @@ class HeadCamera:
         self.intrinsics = config.intrinsics
         self.T_base_camera = T_base_mount @ config.T_mount_camera()
         self.T_base_camera.setflags(write=False)
+        self._T_camera_base = invert_transform(self.T_base_camera)
         self._rng = rng
         self._projection = self.intrinsics.opengl_projection(config.near_clip_m, config.far_clip_m)
         view = invert_transform(self.T_base_camera @ _T_CV_GL)
@@ -289,7 +290,7 @@ class HeadCamera:
 
     def locate(self, point_base_m: ArrayLike) -> tuple[float, float, float]:
         """Pixel (u, v) and depth z (m) of a base-frame point; u and v are nan behind the camera."""
-        pc = transform_points(invert_transform(self.T_base_camera), np.atleast_2d(point_base_m))[0]
+        pc = transform_points(self._T_camera_base, np.atleast_2d(point_base_m))[0]
         if pc[2] <= 0:
             return math.nan, math.nan, float(pc[2])
         u, v = self.intrinsics.project(pc)[0]

@@ -82,6 +82,10 @@ def test_arm_targets_outside_limits_are_refused(site: RemoteSite) -> None:
         ConfigurationError, match=r"joint right_e1 = 3.0000 is outside .*-0.0500, 2.6180"
     ):
         site.robot.command_arm(q)
+    q = site.robot.arm_positions()
+    q[5] = np.nan
+    with pytest.raises(ConfigurationError, match=r"joint right_w1 = nan is outside"):
+        site.robot.command_arm(q)
 
 
 def test_frozen_left_arm_refuses_another_pose(site: RemoteSite) -> None:
