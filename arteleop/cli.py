@@ -7,15 +7,35 @@ import sys
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import tyro
 
 from arteleop.errors import ArteleopError
 
+if TYPE_CHECKING:
+    from arteleop.operator import SyntheticSource
+    from arteleop.scene import HeadCameraConfig, RemoteSite
+    from arteleop.teleop import TrialConfig
+
 
 @dataclass(frozen=True)
-class SceneCommand:
+class CameraSize:
+    """The head camera's image size, shared by the commands that render it."""
+
+    width_px: int = 640
+    """camera image width (px); 320x240 keeps 30 frames/s in real time on two cores"""
+    height_px: int = 480
+    """camera image height (px)"""
+
+    def camera_config(self, **overrides: Any) -> HeadCameraConfig:
+        from arteleop.scene import HeadCameraConfig
+
+        return HeadCameraConfig(width_px=self.width_px, height_px=self.height_px, **overrides)
+
+
+@dataclass(frozen=True)
+class SceneCommand(CameraSize):
     """Render one head-camera frame of the remote site at rest and track the bowl."""
 
     out: Annotated[
@@ -25,21 +45,12 @@ class SceneCommand:
     """seed of the depth noise"""
     noise: bool = True
     """add Kinect-like depth noise and quantisation"""
-    width_px: int = 640
-    height_px: int = 480
 
 
 def scene(cmd: SceneCommand) -> int:
-    from arteleop.scene import (
-        DepthNoiseConfig,
-        HeadCameraConfig,
-        RemoteSite,
-        SiteConfig,
-        write_snapshot,
-    )
+    from arteleop.scene import DepthNoiseConfig, RemoteSite, SiteConfig, write_snapshot
 
-    noise = DepthNoiseConfig(enabled=cmd.noise, quantize=cmd.noise)
-    camera = HeadCameraConfig(width_px=cmd.width_px, height_px=cmd.height_px, noise=noise)
+    camera = cmd.camera_config(noise=DepthNoiseConfig(enabled=cmd.noise, quantize=cmd.noise))
     with RemoteSite(SiteConfig(camera=camera, seed=cmd.seed)) as site:
         snap = write_snapshot(site, cmd.out)
     for name, path in snap.files.items():
@@ -132,7 +143,7 @@ def analyze(cmd: AnalyzeCommand) -> int:
 
 
 @dataclass(frozen=True)
-class TrialCommand:
+class TrialCommand(CameraSize):
     """Run one pick-and-place trial and print its outcome; headless unless --view."""
 
     operator: str = "synthetic"
@@ -151,35 +162,26 @@ class TrialCommand:
     """interface for --view; 0.0.0.0 lets other machines connect"""
     port: int = 8080
     """port for --view"""
-    width_px: int = 640
-    """camera image width; 320x240 keeps 30 frames/s in real time on two cores"""
-    height_px: int = 480
 
 
 def trial(cmd: TrialCommand) -> int:
     import numpy as np
 
     from arteleop.ar_features import OperatorView, ViewConfig
-    from arteleop.operator import load_recording
-    from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
-    from arteleop.teleop import (
-        NetworkConfig,
-        RecordingSource,
-        TrialConfig,
-        run_trial,
-        synthetic_source,
-    )
+    from arteleop.operator import RecordingSource, load_recording
+    from arteleop.scene import RemoteSite, SiteConfig
+    from arteleop.teleop import NetworkConfig, TrialConfig, run_trial
 
     config = TrialConfig(
         modality=cmd.modality, seed=cmd.seed, timeout_s=cmd.timeout_s,
         realtime=cmd.realtime or cmd.view, render_camera=cmd.view,
         network=NetworkConfig(delay_s=cmd.delay_ms / 1000),
-        site=SiteConfig(camera=HeadCameraConfig(width_px=cmd.width_px, height_px=cmd.height_px)),
+        site=SiteConfig(camera=cmd.camera_config()),
     )  # fmt: skip
     with contextlib.ExitStack() as stack:
         site = stack.enter_context(RemoteSite(config.site))
         if cmd.operator == "synthetic":
-            source = synthetic_source(site, config)
+            source = _synthetic_source(site, config)
         else:
             source = RecordingSource(load_recording(Path(cmd.operator)))
         display = None
@@ -187,7 +189,7 @@ def trial(cmd: TrialCommand) -> int:
             display = stack.enter_context(OperatorView(ViewConfig(host=cmd.host, port=cmd.port)))
             print(f"operator's view at {display.url}")
         result = run_trial(source, config, site, display)
-    print(f"outcome              {result.outcome}")
+    print(f"outcome              {result.outcome.value}")
     print(f"grasped, placed      {result.grasped}, {result.placed}")
     print(f"completion time      {result.completion_time_s:.2f} s")
     print(f"placement error      {result.placement_error_m * 1000:.1f} mm (tracked), "
@@ -197,7 +199,7 @@ def trial(cmd: TrialCommand) -> int:
         lat = result.latency_wall_ms
         print(f"latency to display   {np.median(lat):.1f} ms median, "
               f"{np.percentile(lat, 95):.1f} ms p95 (sample to the view's update)")  # fmt: skip
-    return 0 if result.outcome == "success" else 1
+    return 0 if result.placed else 1
 
 
 @dataclass(frozen=True)
@@ -214,11 +216,11 @@ class OperatorSynthCommand:
 def operator_synth(cmd: OperatorSynthCommand) -> int:
     from arteleop.operator import Recording, RecordingInfo, write_recording
     from arteleop.scene import RemoteSite
-    from arteleop.teleop import TrialConfig, run_trial, synthetic_source
+    from arteleop.teleop import TrialConfig, run_trial
 
     config = TrialConfig(modality=cmd.modality, seed=cmd.seed)
     with RemoteSite(config.site) as site:
-        source = synthetic_source(site, config)
+        source = _synthetic_source(site, config)
         result = run_trial(source, config, site)
     rec = source.recorded()
     info = RecordingInfo(
@@ -228,8 +230,17 @@ def operator_synth(cmd: OperatorSynthCommand) -> int:
         subject_id=f"synthetic-{cmd.modality}-{cmd.seed}",
     )
     write_recording(Recording(rec.time_s, rec.sensor_quat_wxyz, rec.grip, info), cmd.out)
-    print(f"trial outcome {result.outcome}; wrote {len(rec.time_s)} samples to {cmd.out}")
+    print(f"trial outcome {result.outcome.value}; wrote {len(rec.time_s)} samples to {cmd.out}")
     return 0
+
+
+def _synthetic_source(site: RemoteSite, config: TrialConfig) -> SyntheticSource:
+    """The synthetic operator of a trial on ``site``, seeded from the trial's seed."""
+    from arteleop.operator import synthetic_source
+
+    rest_gripper_m = site.observe().gripper_m
+    ws = site.config.workspace
+    return synthetic_source(ws.bowl, rest_gripper_m, config.controller.mapping, config.seed)
 
 
 Command = tuple[type, Callable[[Any], int]]

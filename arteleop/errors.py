@@ -25,3 +25,19 @@ class CameraConfigError(ConfigurationError):
 
 class RecordingError(ArteleopError):
     """A wearable recording is invalid. The message names the file, the line and the value."""
+
+
+class ArmCommandError(ArteleopError):
+    """A command the arm cannot take: the wrong shape, not finite, or outside the joint limits."""
+
+
+class TrajectoryError(ArteleopError):
+    """The trajectory generator could not plan a motion to the IK's target."""
+
+
+class DisplayFrameError(ArteleopError):
+    """What the loop handed the display is malformed (shapes, values)."""
+
+
+class SimulationError(ArteleopError):
+    """The simulator's state is not what arteleop built (e.g. the two PyBullet worlds differ)."""

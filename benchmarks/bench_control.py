@@ -19,17 +19,24 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 import argparse
 import time
-from collections.abc import Callable
-from typing import Any
 
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from arteleop.ar_features import OperatorView, ViewConfig, ViewProbe
-from arteleop.robot import GRIPPER_FRAME, RIGHT_ARM_JOINTS, WORK_POSTURE
+from arteleop.ar_features import DisplayFrame, OperatorView, ViewConfig, ViewProbe
+from arteleop.operator import SyntheticSource, synthetic_source
+from arteleop.robot import GRIPPER_FRAME, RIGHT_ARM_JOINTS, WORK_POSTURE, ArmCommand
 from arteleop.robot.ik import ArmIK
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
-from arteleop.teleop import TrialConfig, TrialResult, run_trial, synthetic_source
+from arteleop.teleop import TrialConfig, TrialResult, run_trial
+
+
+def operator(site: RemoteSite, config: TrialConfig) -> SyntheticSource:
+    """The trial's synthetic operator, seeded from the trial's seed."""
+    ws = site.config.workspace
+    return synthetic_source(
+        ws.bowl, site.observe().gripper_m, config.controller.mapping, config.seed
+    )
 
 
 def ik_side_by_side(n: int) -> None:
@@ -99,7 +106,7 @@ def trial_timing(seconds: float, seeds: int) -> None:
             config = TrialConfig(modality="full", seed=seed, timeout_s=seconds, site=site_config)
             with RemoteSite(config.site) as site:
                 t0 = time.perf_counter()
-                result = run_trial(synthetic_source(site, config), config, site)
+                result = run_trial(operator(site, config), config, site)
                 wall = time.perf_counter() - t0
             speeds[name].append(result.duration_s / wall)
             durations[name].append(result.duration_s)
@@ -128,47 +135,40 @@ def trial_timing(seconds: float, seeds: int) -> None:
 def physics_replay(seconds: float) -> float:
     """Batch speed of the physics alone: record a trial's commands, replay them on a new site."""
     config = TrialConfig(modality="full", seed=0, timeout_s=seconds)
-    commands: list[tuple[int, str, object]] = []
+    commands: list[tuple[int, ArmCommand]] = []
     with RemoteSite(config.site) as site:
         rate = site.config.physics_rate_hz
+        apply = site.apply
 
-        def recorded(kind: str, command: Callable[[Any], None]) -> Callable[[Any], None]:
-            def call(value: Any) -> None:
-                commands.append((round(site.time_s * rate), kind, value))
-                command(value)
+        def recorded(command: ArmCommand) -> None:
+            commands.append((round(site.time_s * rate), command))
+            apply(command)
 
-            return call
-
-        site.robot.command_arm = recorded("arm", site.robot.command_arm)  # type: ignore[method-assign]
-        gripper = site.robot.gripper
-        gripper.command = recorded("grip", gripper.command)  # type: ignore[method-assign]
-        steps = round(run_trial(synthetic_source(site, config), config, site).duration_s * rate)
+        site.apply = recorded  # type: ignore[method-assign]
+        steps = round(run_trial(operator(site, config), config, site).duration_s * rate)
     with RemoteSite(config.site) as site:
-        by_step: dict[int, list[tuple[str, object]]] = {}
-        for k, kind, value in commands:
-            by_step.setdefault(k, []).append((kind, value))
+        by_step: dict[int, list[ArmCommand]] = {}
+        for k, command in commands:
+            by_step.setdefault(k, []).append(command)
         t0 = time.perf_counter()
         for k in range(steps):
-            for kind, value in by_step.get(k, ()):
-                if kind == "arm":
-                    site.robot.command_arm(value)
-                else:
-                    site.robot.gripper.command(value)
+            for command in by_step.get(k, ()):
+                site.apply(command)
             site.step()
         wall = time.perf_counter() - t0
     return steps / site.config.physics_rate_hz / wall
 
 
 class _TimedDisplay:
-    """The operator's view, noting when each cloud was handed to it."""
+    """The operator's view, noting when each frame was handed to it."""
 
     def __init__(self, view: OperatorView) -> None:
         self.view = view
         self.shown_s: list[float] = []
 
-    def show_cloud(self, points_m: np.ndarray, colors: np.ndarray) -> None:
+    def show(self, frame: DisplayFrame) -> None:
         self.shown_s.append(time.perf_counter())
-        self.view.show_cloud(points_m, colors)
+        self.view.show(frame)
 
 
 ORIGINAL_LATENCY_MS = 89.0
@@ -182,7 +182,7 @@ def latency(seconds: float) -> None:
     )
     print(
         "| camera | sample to frame capture, simulated, median (ms) | sample to display update, "
-        "wall clock, median (ms) | p95 (ms) | show_cloud call to a connected client, median (ms) "
+        "wall clock, median (ms) | p95 (ms) | show call to a connected client, median (ms) "
         "| median / original system's 89 ms | frames shown / skipped | real-time lag at end (ms) |"
     )
     print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
@@ -200,7 +200,7 @@ def latency(seconds: float) -> None:
             display = _TimedDisplay(view)
             site.start_render_process()  # a few seconds, not part of the run
             t0 = time.perf_counter()
-            result = run_trial(synthetic_source(site, config), config, site, display)
+            result = run_trial(operator(site, config), config, site, display)
             lag = (time.perf_counter() - t0 - result.duration_s) * 1000
             time.sleep(0.5)
             clouds = client.messages(min_bytes=20_000)
@@ -214,8 +214,8 @@ def latency(seconds: float) -> None:
         )
     print(
         "\nWall-clock latency runs from the operator sample's creation to the return of "
-        "OperatorView.show_cloud for the first frame that shows it. The client column is the "
-        "time from calling show_cloud to a websocket client (ViewProbe) holding the update; "
+        "OperatorView.show for the first frame that shows it. The client column is the "
+        "time from calling show to a websocket client (ViewProbe) holding the update; "
         "a browser then draws it within a display frame. Real time uses both cores: frames "
         "render in a process of their own; viser's server and the client are threads."
     )

@@ -1,8 +1,17 @@
 import importlib
+import subprocess
+import sys
 
 import pytest
 
-PACKAGES = ["arteleop.analysis", "arteleop.operator", "arteleop.robot", "arteleop.scene"]
+PACKAGES = [
+    "arteleop.analysis",
+    "arteleop.ar_features",
+    "arteleop.operator",
+    "arteleop.robot",
+    "arteleop.scene",
+    "arteleop.teleop",
+]
 
 
 @pytest.mark.parametrize("name", PACKAGES)
@@ -11,3 +20,21 @@ def test_every_name_in_all_exists(name: str) -> None:
     assert module.__all__ == sorted(module.__all__, key=lambda s: (not s.isupper(), s))
     for attr in module.__all__:
         assert hasattr(module, attr), f"{name}.__all__ lists {attr} but it is missing"
+
+
+def test_the_operator_package_loads_without_the_view_server() -> None:
+    """`arteleop.operator` needs the display frame, not viser's server or its websockets."""
+    code = (
+        "import sys, arteleop.operator, arteleop.ar_features; "
+        "print(sorted(m for m in ('viser', 'websockets') if m in sys.modules))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]"
+
+
+def test_the_analysis_knows_the_same_modalities_as_the_view() -> None:
+    """analysis/ imports nothing else from arteleop, so it keeps its own list: the same one."""
+    from arteleop.analysis import MODALITIES as ANALYSED
+    from arteleop.ar_features import MODALITIES
+
+    assert ANALYSED == tuple(MODALITIES)

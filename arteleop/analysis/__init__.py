@@ -10,6 +10,7 @@ from arteleop.analysis.report import write_report
 from arteleop.analysis.smoothness import (
     log_dimensionless_jerk,
     normalized_jerk,
+    path_length,
     spectral_arc_length,
 )
 from arteleop.analysis.statistics import (
@@ -50,6 +51,7 @@ __all__ = [
     "normalized_jerk",
     "order_effect",
     "pairwise",
+    "path_length",
     "rank_biserial",
     "spectral_arc_length",
     "stars",

@@ -99,6 +99,21 @@ def normalized_jerk(
     return float(np.sqrt(0.5 * integral * duration**5 / length**2))
 
 
+def path_length(
+    time_s: ArrayLike,
+    positions_m: ArrayLike,
+    plane: str | Sequence[int] = "xyz",
+    cutoff_hz: float | None = 6.0,
+) -> float:
+    """Length (m) of a trajectory's path after the same low-pass filter as the jerk metrics.
+
+    Summing raw sample-to-sample steps adds up sensor noise: a still hand measured through IMUs
+    walks metres over a minute. The filter keeps the movement and drops that noise.
+    """
+    _, p, _ = _prepare(time_s, positions_m, plane, cutoff_hz)
+    return float(np.linalg.norm(np.diff(p, axis=0), axis=1).sum())
+
+
 def log_dimensionless_jerk(
     time_s: ArrayLike,
     positions_m: ArrayLike,

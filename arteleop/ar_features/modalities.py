@@ -25,6 +25,10 @@ class ArCues:
     grip_bar: bool = False
     target_mesh: bool = False
 
+    def shows(self, cue: str | None) -> bool:
+        """Whether the layer switched by ``cue`` (an attribute's name) is on; None: always."""
+        return cue is None or bool(getattr(self, cue))
+
 
 MODALITIES: dict[str, ArCues] = {
     "none": ArCues(),

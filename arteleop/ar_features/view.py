@@ -1,22 +1,21 @@
-"""The operator's display: a viser web scene of the head camera's point cloud.
+"""The operator's display: a viser web scene of the head camera's point cloud and AR layers.
 
 The scene's world frame is Baxter's ``base`` frame (z up), so the cloud is drawn where the robot
-saw it and AR layers given in the base frame line up with it. The view takes plain arrays; it
-knows nothing of the simulator.
+saw it and AR layers given in the base frame line up with it. The view takes
+:class:`DisplayFrame` s, plain data; it knows nothing of the simulator.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-import numpy as np
 import viser
-from numpy.typing import ArrayLike
 
+from arteleop.ar_features.display_frame import DisplayFrame
+from arteleop.ar_features.layer import Layer
+from arteleop.ar_features.layers import CloudLayer
 from arteleop.errors import ConfigurationError
 from arteleop.lifetime import Closeable
-
-CLOUD_NODE = "/camera/cloud"
 
 
 @dataclass(frozen=True)
@@ -44,35 +43,28 @@ class ViewConfig:
 
 
 class OperatorView(Closeable):
-    """A running viser server showing the latest point cloud; a context manager."""
+    """A running viser server that draws display frames, layer by layer; a context manager."""
 
     def __init__(self, config: ViewConfig | None = None) -> None:
         self.config = config = config or ViewConfig()
         self.server = viser.ViserServer(host=config.host, port=config.port, verbose=False)
+        self.layers: list[Layer] = [CloudLayer(self.server.scene, config.point_size_m)]
         self.updates = 0
-        """Clouds shown so far."""
+        """Frames shown so far."""
 
     @property
     def url(self) -> str:
         """Address to open in a browser."""
         return f"http://{self.server.get_host()}:{self.server.get_port()}"
 
-    def show_cloud(self, points_m: ArrayLike, colors: ArrayLike) -> None:
-        """Replace the drawn cloud: points (N, 3) in the base frame (m), colours (N, 3) uint8.
+    def show(self, frame: DisplayFrame) -> None:
+        """Draw ``frame``: each layer its modality turns on, the others hidden.
 
         Returns once the update is handed to the server's sender, which delivers it to every
         connected browser.
         """
-        points = np.asarray(points_m, dtype=np.float32)
-        rgb = np.asarray(colors, dtype=np.uint8)
-        if points.ndim != 2 or points.shape[1] != 3 or rgb.shape != points.shape:
-            raise ValueError(
-                f"show_cloud needs points (N, 3) and colours (N, 3); got {points.shape} and "
-                f"{rgb.shape}"
-            )
-        self.server.scene.add_point_cloud(
-            CLOUD_NODE, points, rgb, point_size=self.config.point_size_m, precision="float32"
-        )
+        for layer in self.layers:
+            layer.draw(frame)
         self.server.flush()
         self.updates += 1
 

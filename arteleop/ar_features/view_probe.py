@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import viser
 from websockets.exceptions import ConnectionClosed
-from websockets.sync.client import connect
+from websockets.sync import client as websocket_client
 from websockets.typing import Subprotocol
 
 from arteleop.lifetime import Closeable
@@ -33,7 +33,7 @@ class ViewProbe(Closeable):
 
     def __init__(self, url: str, timeout_s: float = 5.0) -> None:
         ws_url = url.replace("http://", "ws://", 1)
-        self._ws = connect(
+        self._ws = websocket_client.connect(
             ws_url,
             subprotocols=[Subprotocol(f"viser-v{viser.__version__}")],
             max_size=None,

@@ -1,4 +1,5 @@
-"""The operator: a wearable IMU model of the right arm, recordings and their reconstruction."""
+"""The operator: a wearable IMU model of the right arm, recordings and their reconstruction,
+the synthetic operator and the sources that feed the loop."""
 
 from arteleop.operator.arm_model import (
     SEGMENTS,
@@ -29,7 +30,15 @@ from arteleop.operator.recording import (
     sidecar_path,
     write_recording,
 )
+from arteleop.operator.sources import (
+    OperatorSource,
+    RecordingSource,
+    SyntheticSource,
+    WearableSample,
+    synthetic_source,
+)
 from arteleop.operator.synthesis import SynthesizedRecording, record_hand_motion
+from arteleop.operator.synthetic import Expertise, OperatorParams, SyntheticOperator, TaskGeometry
 from arteleop.operator.wearable import (
     ImuErrorConfig,
     WearableConfig,
@@ -43,18 +52,26 @@ __all__ = [
     "ArmAngles",
     "ArmModel",
     "CalibrationPosture",
+    "Expertise",
     "HandSample",
     "HandTrajectory",
     "ImuErrorConfig",
     "LoadReport",
     "LoaderConfig",
+    "OperatorParams",
+    "OperatorSource",
     "Recording",
     "RecordingInfo",
+    "RecordingSource",
     "SampleStatus",
     "SensorMounting",
     "StreamingReconstructor",
     "SynthesizedRecording",
+    "SyntheticOperator",
+    "SyntheticSource",
+    "TaskGeometry",
     "WearableConfig",
+    "WearableSample",
     "WearableSignals",
     "calibrate",
     "hand_pose",
@@ -68,5 +85,6 @@ __all__ = [
     "segments_for_hand_pose",
     "sidecar_path",
     "simulate_wearable",
+    "synthetic_source",
     "write_recording",
 ]

@@ -13,39 +13,12 @@ the cues visible (assumptions, each with its reasoning, in :class:`PerceptionPar
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
-from arteleop.ar_features import ArCues
-
-
-@dataclass(frozen=True)
-class DisplayView:
-    """What the display holds at one instant (plain data from the loop), base frame (m).
-
-    Attributes:
-        time_s: Time of the view.
-        viewpoint_m: The camera's position: the operator's eye in the remote scene.
-        gripper_m: Gripper tool-frame position as rendered (the ghost shows the same).
-        gripper_in_camera: The head camera captures the gripper (in the image and depth range).
-        gripper_closure: Gripper closure, 0 open .. 1 closed.
-        bowl_m: Bowl bottom-centre position as rendered.
-        target_m: Target point on the table.
-        cues: AR layers shown.
-        engaged: The display's status indicator: the robot follows the hand.
-    """
-
-    time_s: float
-    viewpoint_m: NDArray[np.float64]
-    gripper_m: NDArray[np.float64]
-    gripper_in_camera: bool
-    gripper_closure: float
-    bowl_m: NDArray[np.float64]
-    target_m: NDArray[np.float64]
-    cues: ArCues = field(default_factory=ArCues)
-    engaged: bool = True
+from arteleop.ar_features import DisplayFrame
 
 
 @dataclass(frozen=True)
@@ -85,9 +58,10 @@ class Perceived:
 
 
 def perceive(
-    view: DisplayView, params: PerceptionParams, rng: np.random.Generator, noise_scale: float = 1.0
+    view: DisplayFrame, params: PerceptionParams, rng: np.random.Generator, noise_scale: float = 1.0
 ) -> Perceived:
-    """One look at the display: estimates with errors that depend on the visible cues."""
+    """One look at the display frame ``view``: estimates with errors that depend on the visible
+    cues."""
     cues = view.cues
     k = noise_scale
     gripper_seen = view.gripper_in_camera or cues.ghost

@@ -18,10 +18,11 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation, Slerp
 
+from arteleop.ar_features import DisplayFrame
 from arteleop.errors import ConfigurationError
 from arteleop.operator.arm_model import ArmModel, hand_pose, segment_rotations
 from arteleop.operator.minimum_jerk import minimum_jerk_profile
-from arteleop.operator.perception import DisplayView, Perceived, PerceptionParams, perceive
+from arteleop.operator.perception import Perceived, PerceptionParams, perceive
 from arteleop.operator.recording import CalibrationPosture
 
 
@@ -171,8 +172,13 @@ class SyntheticOperator:
         self.corrections_total = 0
         self._tremor_phase = rng.uniform(0, 2 * np.pi, (2, 3))
         self._grasped_at: NDArray[np.float64] | None = None
-        self._previous_view: DisplayView | None = None  # the display's last two contents
-        self._last_view: DisplayView | None = None
+        self._previous_view: DisplayFrame | None = None  # the display's last two contents
+        self._last_view: DisplayFrame | None = None
+
+    @property
+    def movement_start_s(self) -> float | None:
+        """Start time (s) of the movement under way; None between movements."""
+        return None if self._seg is None else self._seg[0]
 
     # -- planning -------------------------------------------------------------------------------
     def _fitts_s(self, distance_m: float, width_m: float) -> float:
@@ -202,7 +208,7 @@ class SyntheticOperator:
             Phase.HOME: self.task.rest_gripper_m,
         }[phase]
 
-    def _plan(self, t: float, view: DisplayView) -> None:
+    def _plan(self, t: float, view: DisplayFrame) -> None:
         """Look at the display and plan the phase's (next) movement, or move on."""
         last, previous = self._last_view, self._previous_view
         if last is not None and previous is not None:
@@ -234,9 +240,14 @@ class SyntheticOperator:
             self._wait_until = t + self.p.grip_ramp_s
 
     # -- acting ---------------------------------------------------------------------------------
-    def step(self, view: DisplayView) -> OperatorOutput:
-        """Advance to ``view.time_s`` and return the hand's pose and the grip."""
-        t = view.time_s
+    def step(self, time_s: float, view: DisplayFrame) -> OperatorOutput:
+        """The hand's pose and the grip at ``time_s`` (s), the sample's own time.
+
+        ``view`` is the newest display content that has reached the operator, which is older
+        than ``time_s`` by the camera period and the return link's delay: it informs the
+        operator's decisions, never the time at which the hand is evaluated.
+        """
+        t = time_s
         if self._seg is not None:
             t0, a, b, dur = self._seg
             s = minimum_jerk_profile((t - t0) / dur)
@@ -249,7 +260,7 @@ class SyntheticOperator:
             self._previous_view, self._last_view = self._last_view, view
         return self._output(t)
 
-    def _decide(self, t: float, view: DisplayView) -> None:
+    def _decide(self, t: float, view: DisplayFrame) -> None:
         if self.phase is Phase.CALIBRATE:
             self.phase = Phase.ALIGN
             self._start_segment(t, self._to_hand(self.task.rest_gripper_m), 0.02)

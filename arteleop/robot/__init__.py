@@ -1,6 +1,7 @@
 """Baxter: description (URDF), PyBullet body, gripper, kinematics (pinocchio) and reach."""
 
 from arteleop.robot.baxter import ArmControlConfig, Baxter
+from arteleop.robot.command import ArmCommand
 from arteleop.robot.description import (
     BaxterDescription,
     BaxterDescriptionConfig,
@@ -28,6 +29,7 @@ __all__ = [
     "RIGHT_ARM_JOINTS",
     "RIGHT_FINGER_JOINTS",
     "WORK_POSTURE",
+    "ArmCommand",
     "ArmControlConfig",
     "ArmPose",
     "Baxter",

@@ -11,7 +11,7 @@ import pybullet as p
 from numpy.typing import ArrayLike, NDArray
 from pybullet_utils.bullet_client import BulletClient
 
-from arteleop.errors import ConfigurationError
+from arteleop.errors import ArmCommandError, ConfigurationError
 from arteleop.robot.description import BaxterDescription, freeze_joints
 from arteleop.robot.gripper import ElectricGripper, GripperConfig
 from arteleop.robot.joints import (
@@ -148,7 +148,7 @@ class Baxter:
     def command_arm(self, q_rad: ArrayLike) -> None:
         """Position targets (rad) of the right arm's joints, in ``RIGHT_ARM_JOINTS`` order."""
         q = np.asarray(q_rad, dtype=np.float64)
-        self.right_arm_limits.check(q, "right arm target")
+        self.right_arm_limits.check(q, "right arm target", ArmCommandError)
         self._command(RIGHT_ARM_JOINTS, q, self.right_arm_limits)
 
     def arm_positions(self) -> NDArray[np.float64]:

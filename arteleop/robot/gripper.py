@@ -8,7 +8,7 @@ import numpy as np
 import pybullet as p
 from pybullet_utils.bullet_client import BulletClient
 
-from arteleop.errors import ConfigurationError
+from arteleop.errors import ArmCommandError, ArteleopError, ConfigurationError
 from arteleop.robot.joints import JointLimits
 
 
@@ -68,13 +68,15 @@ class ElectricGripper:
 
     def reset(self, closure: float) -> None:
         """Teleport the fingers to ``closure`` and hold them there."""
-        for j, q in zip(self._joints, self._finger_targets(_check(closure)), strict=True):
+        for j, q in zip(
+            self._joints, self._finger_targets(_check(closure, ConfigurationError)), strict=True
+        ):
             self._client.resetJointState(self._body, j, q)
         self.command(closure)
 
     def command(self, closure: float) -> None:
         """Drive the fingers towards ``closure`` (0 open, 1 closed) with limited force and speed."""
-        self._closure_command = _check(closure)
+        self._closure_command = _check(closure, ArmCommandError)
         for j, q in zip(self._joints, self._finger_targets(self._closure_command), strict=True):
             self._client.setJointMotorControl2(
                 self._body,
@@ -109,9 +111,7 @@ class ElectricGripper:
         )  # type: ignore[return-value]
 
 
-def _check(closure: float) -> float:
+def _check(closure: float, error: type[ArteleopError]) -> float:
     if not np.isfinite(closure) or not 0.0 <= closure <= 1.0:
-        raise ConfigurationError(
-            f"gripper closure must be in [0, 1] (0 open, 1 closed), got {closure}"
-        )
+        raise error(f"gripper closure must be in [0, 1] (0 open, 1 closed), got {closure}")
     return float(closure)

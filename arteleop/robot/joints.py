@@ -7,7 +7,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from arteleop.errors import ConfigurationError
+from arteleop.errors import ArteleopError, ConfigurationError
 
 RIGHT_ARM_JOINTS: tuple[str, ...] = (
     "right_s0",
@@ -49,16 +49,22 @@ class JointLimits:
             arr.setflags(write=False)
             object.__setattr__(self, field, arr)
 
-    def check(self, q: NDArray[np.float64], what: str = "configuration") -> None:
-        """Raise :class:`ConfigurationError` naming the first joint outside its limits."""
+    def check(
+        self,
+        q: NDArray[np.float64],
+        what: str = "configuration",
+        error: type[ArteleopError] = ConfigurationError,
+    ) -> None:
+        """Raise ``error`` naming the first joint outside its limits: a
+        :class:`ConfigurationError` for a configured pose, an ``ArmCommandError`` at run time."""
         q = np.asarray(q, dtype=np.float64)
         if q.shape != (len(self.names),):
-            raise ConfigurationError(f"{what} has shape {q.shape}, expected ({len(self.names)},)")
+            raise error(f"{what} has shape {q.shape}, expected ({len(self.names)},)")
         # Runs on every physics step (each arm command): one vector test, names only on failure.
         outside = ~((self.lower - 1e-9 <= q) & (q <= self.upper + 1e-9))  # NaN counts as outside
         if outside.any():
             i = int(np.argmax(outside))
-            raise ConfigurationError(
+            raise error(
                 f"{what}: joint {self.names[i]} = {q[i]:.4f} is outside its limits "
                 f"[{self.lower[i]:.4f}, {self.upper[i]:.4f}]"
             )

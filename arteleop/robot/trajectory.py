@@ -13,7 +13,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from ruckig import InputParameter, OutputParameter, Result, Ruckig
 
-from arteleop.errors import ConfigurationError
+from arteleop.errors import ConfigurationError, TrajectoryError
 from arteleop.robot.joints import JointLimits
 
 
@@ -78,7 +78,10 @@ class JointTrajectory:
         """Advance by ``dt_s``; return the new position command (rad)."""
         result = self._otg.update(self._inp, self._out)
         if result not in (Result.Working, Result.Finished):
-            raise ConfigurationError(f"ruckig could not plan a trajectory: {result}")
+            raise TrajectoryError(
+                f"ruckig could not plan a trajectory to the IK's target ({result}); the target "
+                "or the current state is outside the limits of TrajectoryLimits."
+            )
         self._out.pass_to_input(self._inp)
         return np.array(self._out.new_position)
 

@@ -1,14 +1,23 @@
 """The remote site: workspace, bowl, head RGB-D camera, point clouds, depth meshes, tracking."""
 
-from arteleop.scene.bowl import BowlSpec, CollisionBox, bowl_collision_boxes, bowl_mesh
+from arteleop.scene.bowl import (
+    GRASP_DEPTH_M,
+    BowlSpec,
+    CollisionBox,
+    bowl_collision_boxes,
+    bowl_mesh,
+)
 from arteleop.scene.bowl_tracking import BowlTrack, BowlTracker, BowlTrackerConfig
-from arteleop.scene.camera import CameraIntrinsics, HeadCamera, HeadCameraConfig, RGBDFrame
+from arteleop.scene.camera import HeadCamera, RGBDFrame
+from arteleop.scene.camera_config import CameraIntrinsics, HeadCameraConfig
+from arteleop.scene.camera_geometry import CameraGeometry
 from arteleop.scene.depth_mesh import DepthMesh, MeshReconstructor, MeshReconstructorConfig
 from arteleop.scene.depth_noise import DepthNoiseConfig, apply_depth_noise
 from arteleop.scene.pointcloud import PointCloud, depth_to_camera_points, frame_to_point_cloud
-from arteleop.scene.site import GRASP_DEPTH_M, RemoteSite, SiteConfig
+from arteleop.scene.site import RemoteSite, SiteConfig
+from arteleop.scene.site_state import SiteState
 from arteleop.scene.snapshot import SceneSnapshot, write_snapshot
-from arteleop.scene.workspace import Workspace
+from arteleop.scene.workspace import Box, Workspace
 
 __all__ = [
     "GRASP_DEPTH_M",
@@ -16,6 +25,8 @@ __all__ = [
     "BowlTrack",
     "BowlTracker",
     "BowlTrackerConfig",
+    "Box",
+    "CameraGeometry",
     "CameraIntrinsics",
     "CollisionBox",
     "DepthMesh",
@@ -29,6 +40,7 @@ __all__ = [
     "RemoteSite",
     "SceneSnapshot",
     "SiteConfig",
+    "SiteState",
     "Workspace",
     "apply_depth_noise",
     "bowl_collision_boxes",

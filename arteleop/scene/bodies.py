@@ -19,8 +19,8 @@ _MARKER_LIFT_M = 0.0005  # markers float just above the table top so they never 
 
 def add_table(client: BulletClient, ws: Workspace) -> int:
     """Static table slab whose top face is at ``ws.table_top_z_m``."""
-    half = [ws.table_size_m[0] / 2, ws.table_size_m[1] / 2, ws.table_thickness_m / 2]
-    center = [*ws.table_center_xy_m, ws.table_top_z_m - ws.table_thickness_m / 2]
+    box = ws.table_box()
+    half, center = box.half_extents_m.tolist(), box.center_m.tolist()
     col = client.createCollisionShape(p.GEOM_BOX, halfExtents=half)
     vis = client.createVisualShape(p.GEOM_BOX, halfExtents=half, rgbaColor=ws.table_rgba)
     body = client.createMultiBody(0.0, col, vis, basePosition=center)

@@ -15,6 +15,9 @@ from numpy.typing import NDArray
 
 from arteleop.errors import ConfigurationError
 
+GRASP_DEPTH_M = 0.015
+"""How far below the rim the tool frame goes to pinch the wall (m)."""
+
 
 @dataclass(frozen=True)
 class BowlSpec:
@@ -67,6 +70,15 @@ class BowlSpec:
     @property
     def bottom_radius_m(self) -> float:
         return self.bottom_diameter_m / 2
+
+    def grasp_offset_m(self, direction_xy: tuple[float, float] = (0.0, 1.0)) -> NDArray[np.float64]:
+        """Grasp point in the bowl's frame (m): the middle of the wall, ``GRASP_DEPTH_M`` below
+        the rim, on the side ``direction_xy`` points to (+y by default, where the open fingers,
+        which open along the base's y, straddle the wall)."""
+        d = np.asarray(direction_xy, dtype=np.float64)
+        d = d / np.linalg.norm(d)
+        r = self.rim_radius_m - self.wall_thickness_m / 2
+        return np.array([r * d[0], r * d[1], self.height_m - GRASP_DEPTH_M])
 
     def outer_radius_m(self, h_m: NDArray[np.float64] | float) -> NDArray[np.float64]:
         """Outer radius (m) at height ``h_m`` above the bottom face."""

@@ -8,7 +8,8 @@ import numpy as np
 import open3d as o3d
 from numpy.typing import NDArray
 
-from arteleop.scene.camera import CameraIntrinsics, RGBDFrame
+from arteleop.scene.camera import RGBDFrame
+from arteleop.scene.camera_config import CameraIntrinsics
 from arteleop.transforms import transform_points
 
 

@@ -16,6 +16,7 @@ from pathlib import Path
 import pybullet as p
 from pybullet_utils.bullet_client import BulletClient
 
+from arteleop.errors import SimulationError
 from arteleop.robot.native_output import native_stdout_silenced
 from arteleop.scene.bodies import add_bowl, add_start_cross, add_table, add_target_circle
 from arteleop.scene.workspace import Workspace
@@ -48,7 +49,7 @@ class RenderWorld:
         ]
         if ids != list(body_ids):
             self.client.disconnect()
-            raise RuntimeError(
+            raise SimulationError(
                 f"render world body ids {ids} differ from the physics world's {body_ids}"
             )
         self.body_ids = tuple(ids)

@@ -6,6 +6,7 @@ of the configuration runs in the constructor, so a bad setting stops the program
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -16,7 +17,9 @@ from pybullet_utils.bullet_client import BulletClient
 from arteleop.errors import ConfigurationError, WorkspaceError
 from arteleop.lifetime import Closeable
 from arteleop.robot import (
+    GRIPPER_FRAME,
     REST_POSE,
+    ArmCommand,
     ArmPose,
     Baxter,
     BaxterDescriptionConfig,
@@ -27,14 +30,13 @@ from arteleop.robot import (
 )
 from arteleop.robot.native_output import native_stdout_silenced
 from arteleop.scene.bodies import add_bowl, add_start_cross, add_table, add_target_circle
-from arteleop.scene.camera import HeadCamera, HeadCameraConfig, RGBDFrame
+from arteleop.scene.camera import HeadCamera, RGBDFrame
+from arteleop.scene.camera_config import HeadCameraConfig
 from arteleop.scene.render_process import RenderProcess
 from arteleop.scene.render_world import RenderWorld, SceneState
+from arteleop.scene.site_state import SiteState
 from arteleop.scene.workspace import Workspace
 from arteleop.transforms import pose_to_transform, quat_xyzw_to_wxyz
-
-GRASP_DEPTH_M = 0.015
-"""How far below the rim the tool frame goes to pinch the wall (m)."""
 
 
 @dataclass(frozen=True)
@@ -77,9 +79,13 @@ class SiteConfig:
 class RemoteSite(Closeable):
     """A running simulation of the remote site; a context manager (or call :meth:`close`).
 
-    Two PyBullet worlds: ``client`` is simulated; the head camera draws ``render_world.client``,
-    into which :meth:`capture` first copies the moving state. A body added to one world only is
-    simulated but not seen, or seen but not simulated.
+    Its surface is plain data: :meth:`observe` returns a :class:`SiteState`, :meth:`apply` takes
+    an :class:`~arteleop.robot.ArmCommand`, :meth:`step` advances the physics and
+    :meth:`capture` renders the head camera. PyBullet's client and body ids stay inside.
+
+    Two PyBullet worlds: one is simulated; the head camera draws ``render_world``'s, into which
+    :meth:`capture` first copies the moving state. A body added to one world only is simulated
+    but not seen, or seen but not simulated.
     """
 
     def __init__(self, config: SiteConfig | None = None) -> None:
@@ -90,13 +96,13 @@ class RemoteSite(Closeable):
         self._check_reach(ws)
 
         with native_stdout_silenced():
-            self.client = BulletClient(connection_mode=p.DIRECT)
+            self._client = BulletClient(connection_mode=p.DIRECT)
         try:
-            self.client.setGravity(0.0, 0.0, -9.81)
-            self.client.setTimeStep(1.0 / config.physics_rate_hz)
+            self._client.setGravity(0.0, 0.0, -9.81)
+            self._client.setTimeStep(1.0 / config.physics_rate_hz)
             with native_stdout_silenced():
                 self.robot = Baxter(
-                    self.client,
+                    self._client,
                     description,
                     config.gripper,
                     left_arm_rad=config.rest_pose.left,
@@ -105,21 +111,16 @@ class RemoteSite(Closeable):
             self.robot.reset(config.rest_pose)
             self.gripper_gap_range_m = self._measure_gripper_gap()
             self._check_gripper_spans_bowl(ws)
-            self.table_id = add_table(self.client, ws)
-            self.start_marker_id = add_start_cross(self.client, ws)
-            self.target_marker_id = add_target_circle(self.client, ws)
-            self.bowl_id = add_bowl(self.client, ws, ws.start_xy_m)
-            self.render_world = RenderWorld(
-                self.robot.urdf_path,
-                ws,
-                (
-                    self.robot.body_id,
-                    self.table_id,
-                    self.start_marker_id,
-                    self.target_marker_id,
-                    self.bowl_id,
-                ),
-            )
+            # PyBullet body ids, for the segmentation masks of tests: name -> id.
+            self._bodies = {
+                "robot": self.robot.body_id,
+                "table": add_table(self._client, ws),
+                "start_marker": add_start_cross(self._client, ws),
+                "target_marker": add_target_circle(self._client, ws),
+                "bowl": add_bowl(self._client, ws, ws.start_xy_m),
+            }
+            self._bowl_id = self._bodies["bowl"]
+            self.render_world = RenderWorld(self.robot.urdf_path, ws, tuple(self._bodies.values()))
             self.camera = HeadCamera(
                 self.render_world.client,
                 config.camera,
@@ -138,7 +139,7 @@ class RemoteSite(Closeable):
         except BaseException:
             if hasattr(self, "render_world"):
                 self.render_world.close()
-            self.client.disconnect()
+            self._client.disconnect()
             raise
         self._steps = 0
         self._renderer: RenderProcess | None = None
@@ -153,34 +154,55 @@ class RemoteSite(Closeable):
     def step(self, n: int = 1) -> None:
         """Advance the physics by ``n`` steps of ``1 / physics_rate_hz`` seconds."""
         for _ in range(n):
-            self.client.stepSimulation()
+            self._client.stepSimulation()
         self._steps += n
 
     # -- state ----------------------------------------------------------------------------------
-    def bowl_transform(self) -> NDArray[np.float64]:
+    def observe(self, links: Sequence[str] = (GRIPPER_FRAME,)) -> SiteState:
+        """The site's state now (ground truth), with ``T_base_link`` of the named ``links``."""
+        robot = self.robot
+        velocity, _ = self._client.getBaseVelocity(self._bowl_id)
+        return SiteState(
+            time_s=self.time_s,
+            arm_q_rad=robot.arm_positions(),
+            gripper_closure=robot.gripper.closure(),
+            pads_touch_bowl=robot.gripper.touching(self._bowl_id),
+            T_base_bowl=self._bowl_transform(),
+            bowl_speed_m_s=float(np.linalg.norm(velocity)),
+            camera=self.camera.geometry,
+            links={name: robot.link_transform(name) for name in links},
+        )
+
+    def apply(self, command: ArmCommand) -> None:
+        """Send a command to the arm's position control and to the gripper; the physics acts
+        on it from the next :meth:`step`. Raises ``ArmCommandError`` for joint targets outside
+        the limits."""
+        if command.q_rad is not None:
+            self.robot.command_arm(command.q_rad)
+        if command.gripper_closure is not None:
+            self.robot.gripper.command(command.gripper_closure)
+
+    def _bowl_transform(self) -> NDArray[np.float64]:
         """``T_base_bowl``: ground-truth pose of the bowl frame (centre of its bottom face)."""
-        pos, quat = self.client.getBasePositionAndOrientation(self.bowl_id)
+        pos, quat = self._client.getBasePositionAndOrientation(self._bowl_id)
         # PyBullet reports the centre of mass; shift back to the bowl's own frame.
         T_base_com = pose_to_transform(pos, quat_xyzw_to_wxyz(quat))
         T_com_bowl = np.eye(4)
         T_com_bowl[2, 3] = -self.config.workspace.bowl.center_of_mass_height_m
         return T_base_com @ T_com_bowl
 
-    def bowl_position_m(self) -> NDArray[np.float64]:
-        """Ground-truth position of the bowl frame (centre of its bottom face), base frame (m)."""
-        return self.bowl_transform()[:3, 3]
-
-    def bowl_speed_m_s(self) -> float:
-        """Linear speed of the bowl's centre of mass (m/s), ground truth."""
-        velocity, _ = self.client.getBaseVelocity(self.bowl_id)
-        return float(np.linalg.norm(velocity))
-
-    def place_bowl(self, xy_m: tuple[float, float]) -> None:
-        """Teleport the bowl upright onto the table at ``xy_m`` and stop it."""
+    def place_bowl(
+        self,
+        xy_m: tuple[float, float],
+        velocity_m_s: tuple[float, float, float] = (0.0, 0.0, 0.0),
+        angular_velocity_rad_s: tuple[float, float, float] = (0.0, 0.0, 0.0),
+    ) -> None:
+        """Teleport the bowl upright onto the table at ``xy_m``, at rest unless given the
+        velocities of its centre of mass (m/s, rad/s, base frame)."""
         ws = self.config.workspace
         com = [xy_m[0], xy_m[1], ws.table_top_z_m + ws.bowl.center_of_mass_height_m]
-        self.client.resetBasePositionAndOrientation(self.bowl_id, com, (0.0, 0.0, 0.0, 1.0))
-        self.client.resetBaseVelocity(self.bowl_id, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
+        self._client.resetBasePositionAndOrientation(self._bowl_id, com, (0.0, 0.0, 0.0, 1.0))
+        self._client.resetBaseVelocity(self._bowl_id, velocity_m_s, angular_velocity_rad_s)
 
     def capture(self, with_segmentation: bool = False) -> RGBDFrame:
         """One head-camera frame of the current state, stamped with :attr:`time_s`."""
@@ -191,7 +213,7 @@ class RemoteSite(Closeable):
         """What the camera needs of the simulation's current state."""
         robot = self.robot
         names = list(robot.joint_index)
-        pos, quat = self.client.getBasePositionAndOrientation(self.bowl_id)
+        pos, quat = self._client.getBasePositionAndOrientation(self._bowl_id)
         return SceneState(
             dict(zip(names, robot.joint_positions(names).tolist(), strict=True)),
             tuple(pos),
@@ -228,11 +250,9 @@ class RemoteSite(Closeable):
     # -- start-up checks ------------------------------------------------------------------------
     def _check_reach(self, ws: Workspace) -> None:
         reach = TopDownReach.from_kinematics(self.kinematics)
-        grasp_h = ws.bowl.height_m - GRASP_DEPTH_M
         for name, point in (("start", ws.start_m), ("target", ws.target_m)):
-            r = ws.bowl.rim_radius_m - ws.bowl.wall_thickness_m / 2
-            for dx, dy in ((r, 0.0), (-r, 0.0), (0.0, r), (0.0, -r)):  # four sides of the rim
-                tool = point + np.array([dx, dy, grasp_h])
+            for side in ((1.0, 0.0), (-1.0, 0.0), (0.0, 1.0), (0.0, -1.0)):  # four sides of the rim
+                tool = point + ws.bowl.grasp_offset_m(side)
                 if not reach.is_reachable(tool, self.config.reach_margin):
                     xy = tuple(np.round(point[:2], 3).tolist())
                     raise WorkspaceError(
@@ -271,5 +291,5 @@ class RemoteSite(Closeable):
         if self._renderer is not None:
             self._renderer.close()
         self.render_world.close()
-        if self.client.isConnected():
-            self.client.disconnect()
+        if self._client.isConnected():
+            self._client.disconnect()

@@ -55,4 +55,4 @@ def write_snapshot(site: RemoteSite, out_dir: Path) -> SceneSnapshot:
     track = BowlTracker(site.config.workspace.bowl).track(
         frame, site.config.workspace.table_top_z_m
     )
-    return SceneSnapshot(frame, track, site.bowl_position_m(), files)
+    return SceneSnapshot(frame, track, site.observe(links=()).bowl_m.copy(), files)

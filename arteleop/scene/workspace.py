@@ -12,6 +12,14 @@ from arteleop.scene.bowl import BowlSpec
 
 
 @dataclass(frozen=True)
+class Box:
+    """An axis-aligned box in the base frame: centre and half extents (m), each (3,)."""
+
+    center_m: NDArray[np.float64]
+    half_extents_m: NDArray[np.float64]
+
+
+@dataclass(frozen=True)
 class Workspace:
     """The remote workspace. All positions are in Baxter's ``base`` frame, in metres.
 
@@ -72,6 +80,12 @@ class Workspace:
                 f"Start {self.start_xy_m} and target {self.target_xy_m} are {gap:.3f} m apart, "
                 f"less than the bowl's diameter {self.bowl.diameter_m} m: the task is trivial."
             )
+
+    def table_box(self) -> Box:
+        """The table slab as a box in the base frame."""
+        half = (self.table_size_m[0] / 2, self.table_size_m[1] / 2, self.table_thickness_m / 2)
+        center = (*self.table_center_xy_m, self.table_top_z_m - self.table_thickness_m / 2)
+        return Box(np.array(center), np.array(half))
 
     def table_bounds_xy_m(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """(min corner, max corner) of the table top in x and y."""

@@ -1,33 +1,41 @@
-"""The teleoperation loop: clock, network link, robot-side controller, timing and trials."""
+"""The teleoperation loop: clock, network link, robot-side controller, task monitor, display
+feed, timing and trials."""
 
 from arteleop.teleop.clock import LoopClock, LoopRates, Tick
-from arteleop.teleop.controller import ControllerConfig, ControllerState, TeleopController
+from arteleop.teleop.controller import (
+    ControllerConfig,
+    ControllerState,
+    OperatorBody,
+    TeleopController,
+)
+from arteleop.teleop.display_feed import DisplayFeed, display_frame
 from arteleop.teleop.hand_speed import HandSpeed
+from arteleop.teleop.latency import LatencyAccount
+from arteleop.teleop.loop import run_trial
 from arteleop.teleop.network import NetworkConfig, NetworkLink
-from arteleop.teleop.setup import synthetic_source
-from arteleop.teleop.sources import OperatorSource, RecordingSource, SyntheticSource, WearableSample
+from arteleop.teleop.task_monitor import TaskMonitor
 from arteleop.teleop.timing import StageStats, StageTimer
-from arteleop.teleop.trial import CloudDisplay, TrialConfig, TrialResult, run_trial
+from arteleop.teleop.trial import Outcome, TrialConfig, TrialResult
 
 __all__ = [
-    "CloudDisplay",
     "ControllerConfig",
     "ControllerState",
+    "DisplayFeed",
     "HandSpeed",
+    "LatencyAccount",
     "LoopClock",
     "LoopRates",
     "NetworkConfig",
     "NetworkLink",
-    "OperatorSource",
-    "RecordingSource",
+    "OperatorBody",
+    "Outcome",
     "StageStats",
     "StageTimer",
-    "SyntheticSource",
+    "TaskMonitor",
     "TeleopController",
     "Tick",
     "TrialConfig",
     "TrialResult",
-    "WearableSample",
+    "display_frame",
     "run_trial",
-    "synthetic_source",
 ]

@@ -7,12 +7,13 @@ makes the arm jump) and ENGAGED (mapping -> IK -> trajectory -> position control
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass, field
 from enum import Enum
+from pathlib import Path
+from typing import Protocol
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from arteleop.operator import (
     ArmModel,
@@ -22,14 +23,23 @@ from arteleop.operator import (
     StreamingReconstructor,
 )
 from arteleop.operator.calibration import calibrate_from_hold
-from arteleop.robot import GRIPPER_FRAME, RIGHT_ARM_JOINTS, WORK_POSTURE
+from arteleop.robot import WORK_POSTURE, ArmCommand, JointLimits
 from arteleop.robot.grip_control import GripCommand, GripHysteresis
 from arteleop.robot.ik import ArmIK, IKConfig, IKResult
 from arteleop.robot.mapping import HandToGripper, MappingConfig
 from arteleop.robot.trajectory import JointTrajectory, TrajectoryLimits
-from arteleop.scene import RemoteSite
+from arteleop.scene import Box, SiteState
+from arteleop.teleop.clock import LoopRates
 from arteleop.teleop.hand_speed import HandSpeed
 from arteleop.teleop.timing import StageTimer
+
+
+class OperatorBody(Protocol):
+    """What the robot side knows of the operator's body: the arm model and the posture held
+    to calibrate the wearable (an operator source provides both)."""
+
+    arm: ArmModel
+    calibration: CalibrationPosture
 
 
 class ControllerState(Enum):
@@ -62,32 +72,46 @@ class ControllerConfig:
 
 
 class TeleopController:
-    """Turns wearable samples into robot commands for one trial."""
+    """Turns wearable samples into arm commands for one trial.
+
+    It is built from plain data (the URDF for the IK's model, the arm's joint limits, the table's
+    box) and never holds the site: each control tick reads the arm's encoders from a
+    :class:`~arteleop.scene.SiteState` and returns an :class:`~arteleop.robot.ArmCommand` for
+    the loop to apply.
+    """
 
     def __init__(
         self,
-        site: RemoteSite,
-        arm: ArmModel,
-        posture: CalibrationPosture,
-        control_dt_s: float,
+        urdf_path: Path,
+        limits: JointLimits,
+        q0_rad: ArrayLike,
+        operator: OperatorBody,
+        rates: LoopRates,
+        table: Box | None = None,
         config: ControllerConfig | None = None,
         timer: StageTimer | None = None,
     ) -> None:
+        """
+        Args:
+            urdf_path: Baxter's URDF, for the IK's model of the right arm.
+            limits: The right arm's joint limits, in ``RIGHT_ARM_JOINTS`` order.
+            q0_rad: (7,) the arm's joint positions when the trial starts (rad).
+            operator: The operator's arm model and calibration posture, for reconstruction.
+            rates: Control rate (IK ticks) and physics rate (trajectory steps).
+            table: The table's box, kept clear of the forearm and gripper by the IK.
+            config: Robot-side settings.
+            timer: Times the ``mapping`` and ``ik`` stages of each control tick.
+        """
         self.config = c = config or ControllerConfig()
         self.timer = timer or StageTimer()
-        """Times the ``mapping`` and ``ik`` stages of each control tick."""
-        self.site = site
-        self.arm = arm
-        self.posture = posture
-        self.dt = control_dt_s
-        ws = site.config.workspace
-        self._limits = limits = site.kinematics.limits(RIGHT_ARM_JOINTS)
-        center = (*ws.table_center_xy_m, ws.table_top_z_m - ws.table_thickness_m / 2)
-        half = (ws.table_size_m[0] / 2, ws.table_size_m[1] / 2, ws.table_thickness_m / 2)
-        q0 = site.robot.arm_positions()
-        self.ik = ArmIK(site.description.urdf_path, limits, WORK_POSTURE, center, half, c.ik)
+        self.arm, self.posture = operator.arm, operator.calibration
+        self.dt = 1.0 / rates.control_hz
+        self._limits = limits
+        q0 = np.asarray(q0_rad, dtype=np.float64)
+        box = (None, None) if table is None else (table.center_m, table.half_extents_m)
+        self.ik = ArmIK(urdf_path, limits, WORK_POSTURE, *box, c.ik)
         self.trajectory = JointTrajectory(
-            TrajectoryLimits.from_joint_limits(limits), 1.0 / site.config.physics_rate_hz, q0
+            TrajectoryLimits.from_joint_limits(limits), 1.0 / rates.physics_hz, q0
         )
         self.mapping = HandToGripper(c.mapping)
         self.grip = GripCommand(c.grip)
@@ -98,7 +122,6 @@ class TeleopController:
         self.last_hand: HandSample | None = None
         self._speed = HandSpeed(c.speed_window_s)
         self.last_ik: IKResult | None = None
-        self._q_ik_prev = q0
         self.applied_sample_time_s = -np.inf  # newest operator sample acting on the arm
         self.unreachable_ticks = 0
 
@@ -106,7 +129,7 @@ class TeleopController:
         self, sample_time_s: float, sensor_quat_wxyz: NDArray[np.float64] | None, grip: float
     ) -> None:
         """A wearable sample arrived (``None`` quaternions: the sample was lost or invalid)."""
-        if self.state is ControllerState.CALIBRATING:
+        if self.reconstructor is None:
             if self._t0 is None:
                 self._t0 = sample_time_s
             if sensor_quat_wxyz is not None and np.isfinite(sensor_quat_wxyz).all():
@@ -118,7 +141,6 @@ class TeleopController:
                 )
                 self.state = ControllerState.WAITING
             return
-        assert self.reconstructor is not None
         hand = self.reconstructor.update(sample_time_s, sensor_quat_wxyz, grip)
         if hand is None or hand.status is SampleStatus.LOST:
             return
@@ -131,38 +153,44 @@ class TeleopController:
         """The operator's hand speed (m/s) over the last ``speed_window_s``."""
         return self._speed.speed_m_s
 
-    def control_tick(self) -> None:
-        """Mapping, IK and a new trajectory target, from the newest hand sample."""
+    @property
+    def engaged(self) -> bool:
+        """The arm follows the operator's hand."""
+        return self.state is ControllerState.ENGAGED
+
+    def control_tick(self, state: SiteState) -> ArmCommand | None:
+        """Mapping, IK and a new trajectory target from the newest hand sample; returns the
+        gripper command once engaged (the arm's joint targets come from :meth:`physics_tick`).
+
+        ``state`` gives the arm's encoders and the gripper's pose (``GRIPPER_FRAME`` observed),
+        which engagement compares with the hand's mapped position.
+        """
         hand = self.last_hand
         if hand is None or self.state is ControllerState.CALIBRATING:
-            return
-        w0 = time.perf_counter()
-        target = self.mapping.gripper_target(hand.hand_m, hand.hand_quat_wxyz)
-        self.timer.record("mapping", w0)
+            return None
+        with self.timer.stage("mapping"):
+            target = self.mapping.gripper_target(hand.hand_m, hand.hand_quat_wxyz)
         if self.state is ControllerState.WAITING:
-            gripper = self.site.robot.link_transform(GRIPPER_FRAME)[:3, 3]
-            aligned = np.linalg.norm(target[:3, 3] - gripper) < self.config.engage_distance_m
+            offset_m = np.linalg.norm(target[:3, 3] - state.gripper_m)
+            aligned = offset_m < self.config.engage_distance_m
             if not (aligned and self.hand_speed_m_s < self.config.engage_speed_m_s):
-                return
-            q = self.site.robot.arm_positions()
-            self.ik.reset(q)
-            self.trajectory.reset(q)
-            self._q_ik_prev = q
+                return None
+            self.ik.reset(state.arm_q_rad)
+            self.trajectory.reset(state.arm_q_rad)
             self.state = ControllerState.ENGAGED
-        w0 = time.perf_counter()
-        self.ik.set_target(target)
-        result = self.ik.step(self.dt)
-        self.timer.record("ik", w0)
+        with self.timer.stage("ik"):
+            self.ik.set_target(target)
+            result = self.ik.step(self.dt)
         self.last_ik = result
         self.unreachable_ticks += not result.reachable
         self.trajectory.set_target(result.q_rad)
-        self._q_ik_prev = result.q_rad
-        self.site.robot.gripper.command(self.grip.update(hand.grip))
         self.applied_sample_time_s = hand.time_s
+        return ArmCommand(gripper_closure=self.grip.update(hand.grip))
 
-    def physics_tick(self) -> None:
-        """One trajectory step, sent to the arm's position control."""
-        if self.state is ControllerState.ENGAGED:
-            # Tracking a moving target, the trajectory can overshoot a limit by a hair.
-            lim = self._limits
-            self.site.robot.command_arm(np.clip(self.trajectory.step(), lim.lower, lim.upper))
+    def physics_tick(self) -> ArmCommand | None:
+        """One trajectory step: the arm's joint targets for the next physics step, once engaged."""
+        if self.state is not ControllerState.ENGAGED:
+            return None
+        # Tracking a moving target, the trajectory can overshoot a limit by a hair.
+        lim = self._limits
+        return ArmCommand(q_rad=np.clip(self.trajectory.step(), lim.lower, lim.upper))

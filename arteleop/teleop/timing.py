@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import time
 from collections import defaultdict
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 
 import numpy as np
@@ -44,6 +46,13 @@ class StageTimer:
             self._service[stage].append(end - self._last_end[stage])
         self._last_end[stage] = end
         self._latency[stage].append(end - start_s)
+
+    @contextmanager
+    def stage(self, stage: str) -> Iterator[None]:
+        """Time the ``with`` block as one round of ``stage``."""
+        start = time.perf_counter()
+        yield
+        self.record(stage, start)
 
     def summary(self) -> list[StageStats]:
         rows = []

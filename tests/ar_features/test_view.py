@@ -6,12 +6,13 @@ import time
 
 import numpy as np
 import pytest
-from numpy.typing import ArrayLike
 
-from arteleop.ar_features import OperatorView, ViewConfig, ViewProbe
-from arteleop.errors import ConfigurationError
+from arteleop.ar_features import DisplayFrame, OperatorView, ViewConfig, ViewProbe
+from arteleop.errors import ConfigurationError, DisplayFrameError
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
-from arteleop.teleop import TrialConfig, run_trial, synthetic_source
+from arteleop.teleop import Outcome, TrialConfig, run_trial
+from tests.ar_features.frames import display_frame
+from tests.helpers import trial_source
 
 
 def test_view_serves_this_machine_only_by_default() -> None:
@@ -28,7 +29,7 @@ def test_a_connected_browser_receives_the_exact_points() -> None:
     with OperatorView(ViewConfig(port=0)) as view, ViewProbe(view.url) as browser:
         time.sleep(0.3)  # let the connection settle before the first update
         sent_s = time.perf_counter()
-        view.show_cloud(points, colors)
+        view.show(display_frame(cloud_points_m=points, cloud_colors=colors))
         # viser sends large arrays as raw buffers beside the compressed message.
         got = browser.wait_for(points.tobytes())
         assert got is not None and got.time_s > sent_s
@@ -37,12 +38,26 @@ def test_a_connected_browser_receives_the_exact_points() -> None:
         assert view.updates == 1
 
 
-def test_bad_cloud_shapes_are_refused_with_the_shapes() -> None:
-    with OperatorView(ViewConfig(port=0)) as view:
-        with pytest.raises(ValueError, match=r"\(10, 2\)"):
-            view.show_cloud(np.zeros((10, 2)), np.zeros((10, 2), dtype=np.uint8))
-        with pytest.raises(ValueError, match=r"\(10, 3\) and \(9, 3\)"):
-            view.show_cloud(np.zeros((10, 3)), np.zeros((9, 3), dtype=np.uint8))
+def test_bad_frames_are_refused_with_the_shapes() -> None:
+    with pytest.raises(
+        DisplayFrameError, match=r"points \(N, 3\) and colours \(N, 3\); got \(10, 2\)"
+    ):
+        display_frame(cloud_points_m=np.zeros((10, 2)), cloud_colors=np.zeros((10, 2)))
+    with pytest.raises(DisplayFrameError, match=r"got \(10, 3\) and \(9, 3\)"):
+        display_frame(cloud_points_m=np.zeros((10, 3)), cloud_colors=np.zeros((9, 3)))
+    with pytest.raises(DisplayFrameError, match="needs both cloud_points_m and cloud_colors"):
+        display_frame(cloud_points_m=np.zeros((10, 3)))
+    with pytest.raises(DisplayFrameError, match=r"DisplayFrame.arm_q_rad must have shape \(7,\)"):
+        display_frame(arm_q_rad=np.zeros(6))
+
+
+def test_a_frame_is_a_read_only_copy_of_what_it_was_given() -> None:
+    q = np.zeros(7)
+    frame = display_frame(arm_q_rad=q)
+    q[0] = 1.0
+    assert frame.arm_q_rad[0] == 0.0
+    with pytest.raises(ValueError, match="read-only"):
+        frame.arm_q_rad[0] = 2.0
 
 
 def test_bad_view_settings_are_refused() -> None:
@@ -54,11 +69,14 @@ def test_bad_view_settings_are_refused() -> None:
 
 class _CountingDisplay:
     def __init__(self) -> None:
-        self.sizes: list[int] = []
+        self.frames: list[DisplayFrame] = []
 
-    def show_cloud(self, points_m: ArrayLike, colors: ArrayLike) -> None:
-        assert np.shape(points_m) == np.shape(colors)
-        self.sizes.append(len(points_m))
+    def show(self, frame: DisplayFrame) -> None:
+        self.frames.append(frame)
+
+    @property
+    def sizes(self) -> list[int]:
+        return [len(f.cloud_points_m) for f in self.frames if f.cloud_points_m is not None]
 
 
 def test_real_time_trial_shows_every_camera_frame_and_measures_its_latency(
@@ -70,10 +88,14 @@ def test_real_time_trial_shows_every_camera_frame_and_measures_its_latency(
     config = TrialConfig(seed=0, timeout_s=5.0, realtime=True, render_camera=True, site=small)
     display = _CountingDisplay()
     with RemoteSite(config.site) as site:
-        result = run_trial(synthetic_source(site, config), config, site, display)
-    assert result.outcome == "timeout"
+        result = run_trial(trial_source(site, config), config, site, display)
+    assert result.outcome is Outcome.TIMEOUT
     frames = round(config.timeout_s * config.rates.camera_hz)
-    assert frames - 1 <= len(display.sizes) <= frames + 1
+    assert frames - 1 <= len(display.frames) <= frames + 1
+    assert len(display.sizes) == len(display.frames)  # every frame shown carries its cloud
+    # Each shows the scene when it was captured: frame times advance by the camera period.
+    times = np.array([f.time_s for f in display.frames])
+    assert np.all(np.diff(times) >= 1 / config.rates.camera_hz - 1e-9)
     assert min(display.sizes) > 1000  # the table fills most of the 80x60 strided cloud
     stages = {s.stage: s for s in result.stages}
     # Every stage of STUDY.md section 7 reports service time and latency.

@@ -3,25 +3,17 @@
 import numpy as np
 import pytest
 
-from arteleop.ar_features import MODALITIES, ArCues
+from arteleop.ar_features import MODALITIES, ArCues, DisplayFrame
 from arteleop.operator import ArmModel, CalibrationPosture
-from arteleop.operator.perception import DisplayView, PerceptionParams, perceive
+from arteleop.operator.perception import PerceptionParams, perceive
 from arteleop.operator.synthetic import Expertise, SyntheticOperator, TaskGeometry
+from tests.ar_features.frames import display_frame
 
 P = PerceptionParams()
 
 
-def _view(cues: ArCues, gripper_in_camera: bool = True) -> DisplayView:
-    return DisplayView(
-        time_s=0.0,
-        viewpoint_m=np.array([0.22, 0.0, 0.89]),
-        gripper_m=np.array([0.68, -0.37, -0.05]),
-        gripper_in_camera=gripper_in_camera,
-        gripper_closure=0.0,
-        bowl_m=np.array([0.68, -0.45, -0.2]),
-        target_m=np.array([0.68, -0.10, -0.2]),
-        cues=cues,
-    )
+def _view(cues: ArCues, gripper_in_camera: bool = True) -> DisplayFrame:
+    return display_frame(cues=cues, gripper_in_camera=gripper_in_camera)
 
 
 def _errors(cues: ArCues, n: int = 4000, **kw) -> dict[str, np.ndarray]:

@@ -3,8 +3,9 @@
 import numpy as np
 import pytest
 
-from arteleop.errors import ConfigurationError
-from arteleop.scene import GRASP_DEPTH_M, RemoteSite
+from arteleop.errors import ArmCommandError
+from arteleop.robot import ArmCommand
+from arteleop.scene import RemoteSite
 from tests.helpers import ik_down, reach_down
 
 
@@ -19,8 +20,10 @@ def test_pad_gap_spans_the_stroke(site: RemoteSite) -> None:
 
 @pytest.mark.parametrize("closure", [-0.1, 1.5, float("nan")])
 def test_closure_outside_0_1_is_refused(site: RemoteSite, closure: float) -> None:
-    with pytest.raises(ConfigurationError, match=r"gripper closure must be in \[0, 1\]"):
+    with pytest.raises(ArmCommandError, match=r"gripper closure must be in \[0, 1\]"):
         site.robot.gripper.command(closure)
+    with pytest.raises(ArmCommandError, match=r"ArmCommand.gripper_closure must be in \[0, 1\]"):
+        ArmCommand(gripper_closure=closure)
 
 
 def test_closure_reading_follows_the_command(site: RemoteSite) -> None:
@@ -34,21 +37,21 @@ def test_closure_reading_follows_the_command(site: RemoteSite) -> None:
 def test_gripper_pinches_the_rim_and_lifts_the_bowl(site: RemoteSite) -> None:
     ws = site.config.workspace
     site.step(60)  # let the bowl settle
-    bowl = site.bowl_position_m()
-    rim_y = ws.bowl.rim_radius_m - ws.bowl.wall_thickness_m / 2
+    bowl = site.observe().bowl_m
     # Fingers open along base y: straddle the wall on the bowl's +y side.
-    grasp = bowl + np.array([0.0, rim_y, ws.bowl.height_m - GRASP_DEPTH_M])
+    grasp = bowl + ws.bowl.grasp_offset_m()
     assert reach_down(site, grasp) < 2e-3
     g = site.robot.gripper
     g.command(1.0)
     site.step(240)
-    assert g.touching(site.bowl_id) == (True, True)
+    assert site.observe().pads_touch_bowl == (True, True)
     # Force-limited: the fingers stop on the wall instead of pushing through it.
     assert g.pad_gap_m() > ws.bowl.wall_thickness_m - 1e-3
     # Lift 10 cm through the arm's motors; the bowl must come along.
     for dz in np.linspace(0.005, 0.10, 20):
-        site.robot.command_arm(ik_down(site, grasp + [0.0, 0.0, dz]))
+        site.apply(ArmCommand(q_rad=ik_down(site, grasp + [0.0, 0.0, dz])))
         site.step(24)
     site.step(240)
-    assert site.bowl_position_m()[2] - bowl[2] > 0.08
-    assert g.touching(site.bowl_id) == (True, True)
+    state = site.observe()
+    assert state.bowl_m[2] - bowl[2] > 0.08
+    assert state.grasped

@@ -22,10 +22,11 @@ def kin(description: BaxterDescription) -> BaxterKinematics:
 
 @pytest.fixture
 def ik(description: BaxterDescription, kin: BaxterKinematics) -> ArmIK:
-    ws = Workspace()
-    center = (*ws.table_center_xy_m, ws.table_top_z_m - ws.table_thickness_m / 2)
-    half = (ws.table_size_m[0] / 2, ws.table_size_m[1] / 2, ws.table_thickness_m / 2)
-    return ArmIK(description.urdf_path, kin.limits(RIGHT_ARM_JOINTS), REST_POSE.right, center, half)
+    table = Workspace().table_box()
+    limits = kin.limits(RIGHT_ARM_JOINTS)
+    return ArmIK(
+        description.urdf_path, limits, REST_POSE.right, table.center_m, table.half_extents_m
+    )
 
 
 def _fk(kin: BaxterKinematics, q: np.ndarray) -> np.ndarray:

@@ -6,13 +6,14 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from arteleop.errors import ConfigurationError
+from arteleop.errors import ArmCommandError, ConfigurationError
 from arteleop.robot import (
     GRIPPER_FRAME,
     LEFT_ARM_JOINTS,
     REST_POSE,
     RIGHT_ARM_JOINTS,
     RIGHT_FINGER_JOINTS,
+    ArmCommand,
     BaxterKinematics,
 )
 from arteleop.scene import RemoteSite, SiteConfig
@@ -76,16 +77,20 @@ def test_unknown_names_are_reported_with_the_valid_ones(site: RemoteSite) -> Non
 
 
 def test_arm_targets_outside_limits_are_refused(site: RemoteSite) -> None:
-    q = site.robot.arm_positions()
+    q = site.observe().arm_q_rad.copy()
     q[3] = 3.0
     with pytest.raises(
-        ConfigurationError, match=r"joint right_e1 = 3.0000 is outside .*-0.0500, 2.6180"
+        ArmCommandError,
+        match=r"^right arm target: joint right_e1 = 3.0000 is outside its limits "
+        r"\[-0.0500, 2.6180\]$",
     ):
-        site.robot.command_arm(q)
-    q = site.robot.arm_positions()
+        site.apply(ArmCommand(q_rad=q))
+    q[3] = REST_POSE.right[3]
     q[5] = np.nan
-    with pytest.raises(ConfigurationError, match=r"joint right_w1 = nan is outside"):
+    with pytest.raises(ArmCommandError, match=r"joint right_w1 = nan is outside"):
         site.robot.command_arm(q)
+    with pytest.raises(ArmCommandError, match=r"ArmCommand.q_rad must be 7 finite joint"):
+        ArmCommand(q_rad=q)
 
 
 def test_frozen_left_arm_refuses_another_pose(site: RemoteSite) -> None:

@@ -43,17 +43,17 @@ def test_collision_boxes_tile_the_wall_up_to_the_rim() -> None:
 
 
 def test_pybullet_keeps_every_collision_piece(site: RemoteSite) -> None:
-    shapes = site.client.getCollisionShapeData(site.bowl_id, -1)
+    shapes = site._client.getCollisionShapeData(site._bodies["bowl"], -1)
     assert len(shapes) == len(bowl_collision_boxes(site.config.workspace.bowl))
-    lo, hi = site.client.getAABB(site.bowl_id)
+    lo, hi = site._client.getAABB(site._bodies["bowl"])
     assert hi[2] - lo[2] == pytest.approx(0.07, abs=0.006)  # AABBs carry a small margin
-    assert site.client.getDynamicsInfo(site.bowl_id, -1)[0] == pytest.approx(0.1)
-    assert site.client.getCollisionShapeData(site.bowl_id, -1)[0][2] == p.GEOM_MESH
+    assert site._client.getDynamicsInfo(site._bodies["bowl"], -1)[0] == pytest.approx(0.1)
+    assert site._client.getCollisionShapeData(site._bodies["bowl"], -1)[0][2] == p.GEOM_MESH
 
 
 def test_bowl_rests_on_the_table(site: RemoteSite) -> None:
     site.step(240)
-    pos = site.bowl_position_m()
+    pos = site.observe().bowl_m
     ws = site.config.workspace
     np.testing.assert_allclose(pos[:2], ws.start_xy_m, atol=1e-3)
     assert pos[2] == pytest.approx(ws.table_top_z_m, abs=2e-3)

@@ -17,7 +17,7 @@ def test_tracking_error_at_most_5_mm(site: RemoteSite, where: str) -> None:
     for _ in range(3):
         track = tracker.track(site.capture(), ws.table_top_z_m)
         assert track.found, track.reason
-        assert np.linalg.norm(track.position_m - site.bowl_position_m()) <= 0.005
+        assert np.linalg.norm(track.position_m - site.observe().bowl_m) <= 0.005
 
 
 def test_out_of_view_is_not_found(site: RemoteSite) -> None:

@@ -49,7 +49,7 @@ def test_depth_matches_the_scene_geometry(noiseless_site: RemoteSite) -> None:
     frame = site.capture(with_segmentation=True)
     cloud = frame_to_point_cloud(frame)
     seg = frame.segmentation[cloud.pixels[:, 0], cloud.pixels[:, 1]]
-    table_z = cloud.points_m[seg == site.table_id, 2]
+    table_z = cloud.points_m[seg == site._bodies["table"], 2]
     assert len(table_z) > 50_000
     # All but the slab's front face (a sliver of pixels) lies on the top face.
     on_top = np.abs(table_z - site.config.workspace.table_top_z_m) < 1e-3
@@ -59,10 +59,10 @@ def test_depth_matches_the_scene_geometry(noiseless_site: RemoteSite) -> None:
         >= site.config.workspace.table_top_z_m - site.config.workspace.table_thickness_m
     )
     # The centre of the bowl's floor projects onto a bowl pixel at the right depth.
-    floor = site.bowl_position_m() + [0.0, 0.0, site.config.workspace.bowl.wall_thickness_m]
+    floor = site.observe().bowl_m + [0.0, 0.0, site.config.workspace.bowl.wall_thickness_m]
     pc = transform_points(invert_transform(frame.T_base_camera), floor[None])[0]
     u, v = np.round(frame.intrinsics.project(pc)[0]).astype(int)
-    assert frame.segmentation[v, u] == site.bowl_id
+    assert frame.segmentation[v, u] == site._bodies["bowl"]
     assert frame.depth_m[v, u] == pytest.approx(pc[2], abs=2e-3)
 
 

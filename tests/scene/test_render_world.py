@@ -28,8 +28,8 @@ def test_capture_copies_the_arm_and_the_bowl_into_the_drawn_world(site: RemoteSi
         T_drawn = pose_to_transform(state[4], quat_xyzw_to_wxyz(state[5]))
         np.testing.assert_allclose(T_drawn, site.robot.link_transform(name), atol=1e-6)
     for drawn_pose, simulated_pose in zip(
-        drawn.getBasePositionAndOrientation(site.bowl_id),
-        site.client.getBasePositionAndOrientation(site.bowl_id),
+        drawn.getBasePositionAndOrientation(site._bodies["bowl"]),
+        site._client.getBasePositionAndOrientation(site._bodies["bowl"]),
         strict=True,
     ):
         np.testing.assert_allclose(drawn_pose, simulated_pose)

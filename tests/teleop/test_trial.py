@@ -6,18 +6,18 @@ import numpy as np
 import pytest
 
 from arteleop.errors import ConfigurationError
-from arteleop.operator import ImuErrorConfig, load_recording, write_recording
+from arteleop.operator import ImuErrorConfig, RecordingSource, load_recording, write_recording
 from arteleop.scene import RemoteSite, SiteConfig
 from arteleop.teleop import (
     LoopClock,
     LoopRates,
     NetworkConfig,
     NetworkLink,
-    RecordingSource,
+    Outcome,
     TrialConfig,
     run_trial,
-    synthetic_source,
 )
+from tests.helpers import trial_source
 from tests.operator.motions import reach_and_return
 
 
@@ -26,8 +26,8 @@ def test_full_ar_places_the_bowl_within_5_cm_in_9_of_10_trials(site_config: Site
     for seed in range(10):
         config = TrialConfig(modality="full", seed=seed, site=site_config)
         with RemoteSite(config.site) as site:
-            result = run_trial(synthetic_source(site, config), config, site)
-        outcomes.append(result.outcome)
+            result = run_trial(trial_source(site, config), config, site)
+        outcomes.append(result.outcome.value)
         errors.append(result.placement_error_true_m if result.placed else np.inf)
     within = sum(e <= 0.05 for e in errors)
     assert within >= 9, f"outcomes {outcomes}, errors (m) {np.round(errors, 3)}"
@@ -40,8 +40,8 @@ def test_same_seed_same_motion_in_batch_and_real_time(site_config: SiteConfig) -
             modality="none", seed=7, site=site_config, timeout_s=3.0, realtime=realtime
         )
         with RemoteSite(config.site) as site:
-            result = run_trial(synthetic_source(site, config), config, site)
-            hands.append((result.hand_m.copy(), site.robot.arm_positions()))
+            result = run_trial(trial_source(site, config), config, site)
+            hands.append((result.hand_m.copy(), site.observe().arm_q_rad))
     np.testing.assert_array_equal(hands[0][0], hands[1][0])
     np.testing.assert_array_equal(hands[0][1], hands[1][1])
 
@@ -51,7 +51,7 @@ def test_recording_that_ends_mid_trial_stops_the_trial(site_config: SiteConfig, 
     write_recording(rec, tmp_path / "r.csv")
     config = TrialConfig(site=site_config)
     result = run_trial(RecordingSource(load_recording(tmp_path / "r.csv")), config)
-    assert result.outcome == "operator_stopped"
+    assert result.outcome is Outcome.OPERATOR_STOPPED
     assert result.duration_s == pytest.approx(rec.duration_s, abs=0.05)
 
 
@@ -63,7 +63,7 @@ def test_nan_samples_hold_the_command_and_are_counted(site_config: SiteConfig) -
     result = run_trial(
         RecordingSource(type(rec)(rec.time_s, q, rec.grip, rec.info)), TrialConfig(site=site_config)
     )
-    assert result.outcome == "operator_stopped"
+    assert result.outcome is Outcome.OPERATOR_STOPPED
     assert result.counts["held_samples"] == 5 + 10
 
 

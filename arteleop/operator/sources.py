@@ -4,20 +4,14 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Protocol
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
-from arteleop.operator import (
-    ArmModel,
-    CalibrationPosture,
-    Recording,
-    WearableConfig,
-    segment_rotations,
-    segments_for_hand_pose,
-)
-from arteleop.operator.perception import DisplayView
+from arteleop.ar_features import DisplayFrame
+from arteleop.operator.arm_model import ArmModel, segment_rotations, segments_for_hand_pose
+from arteleop.operator.recording import CalibrationPosture, Recording
 from arteleop.operator.synthetic import (
     Expertise,
     OperatorParams,
@@ -25,7 +19,11 @@ from arteleop.operator.synthetic import (
     SyntheticOperator,
     TaskGeometry,
 )
-from arteleop.operator.wearable import WearableSignals, WearableSimulator
+from arteleop.operator.wearable import WearableConfig, WearableSignals, WearableSimulator
+
+if TYPE_CHECKING:
+    from arteleop.robot.mapping import MappingConfig
+    from arteleop.scene.bowl import BowlSpec
 
 
 @dataclass(frozen=True)
@@ -44,7 +42,7 @@ class OperatorSource(Protocol):
     arm: ArmModel
     calibration: CalibrationPosture
 
-    def sample(self, time_s: float, view: DisplayView) -> WearableSample | None: ...
+    def sample(self, time_s: float, view: DisplayFrame) -> WearableSample | None: ...
 
 
 class SyntheticSource:
@@ -70,8 +68,8 @@ class SyntheticSource:
         self._calibration_segments = segment_rotations(self.calibration.angles)
         self._log: list[tuple[float, NDArray[np.float64], float]] = []
 
-    def sample(self, time_s: float, view: DisplayView) -> WearableSample | None:
-        out = self.operator.step(view)
+    def sample(self, time_s: float, view: DisplayFrame) -> WearableSample | None:
+        out = self.operator.step(time_s, view)
         if out.phase is Phase.CALIBRATE:
             segments = self._calibration_segments
         else:
@@ -98,7 +96,7 @@ class RecordingSource:
         self.calibration = recording.info.calibration
         self._i = 0
 
-    def sample(self, time_s: float, view: DisplayView) -> WearableSample | None:
+    def sample(self, time_s: float, view: DisplayFrame) -> WearableSample | None:
         rec = self.recording
         t = rec.time_s[0] + time_s
         if t > rec.time_s[-1] + 0.5 / rec.info.rate_hz:
@@ -107,3 +105,38 @@ class RecordingSource:
             self._i += 1
         quats = rec.sensor_quat_wxyz[self._i]
         return WearableSample(time_s, quats, float(rec.grip[self._i]))
+
+
+def synthetic_source(
+    bowl: BowlSpec,
+    rest_gripper_m: ArrayLike,
+    mapping: MappingConfig,
+    seed: int,
+    params: OperatorParams | None = None,
+    expertise: Expertise | None = None,
+    wearable: WearableConfig | None = None,
+) -> SyntheticSource:
+    """A synthetic operator who knows the task from instructions and familiarisation.
+
+    Args:
+        bowl: The bowl; the operator grasps it at :meth:`BowlSpec.grasp_offset_m`, a rim point
+            facing +y, where the open fingers straddle the wall.
+        rest_gripper_m: Where the gripper waits at rest (base frame, m), to align the hand on
+            before engaging.
+        mapping: The hand-to-gripper mapping the operator was taught.
+        seed: Seeds the operator and its wearable (a stream apart from the network's).
+    """
+    # Imported here: the robot package loads open3d and pinocchio, which `arteleop.operator`
+    # alone (recordings, reconstruction) has no need of.
+    from arteleop.robot.mapping import HandToGripper
+
+    task = TaskGeometry(bowl.grasp_offset_m(), np.asarray(rest_gripper_m, dtype=np.float64))
+    rng = np.random.default_rng([seed, 1])
+    return SyntheticSource(
+        task,
+        HandToGripper(mapping).hand_position_for,
+        rng,
+        wearable=wearable,
+        params=params,
+        expertise=expertise,
+    )

@@ -1,0 +1,102 @@
+"""What the operator's display shows at one instant: one plain-data frame.
+
+The view draws it and the synthetic operator perceives it, so a person and the model of one see
+the same thing. This module imports neither viser nor the simulator.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+from numpy.typing import NDArray
+
+from arteleop.ar_features.modalities import ArCues
+from arteleop.arrays import frozen_array
+from arteleop.errors import DisplayFrameError
+
+
+@dataclass(frozen=True)
+class DisplayFrame:
+    """The display's content at one instant, in Baxter's base frame (m).
+
+    Attributes:
+        time_s: When the remote system captured this content (simulated time, s).
+        T_base_camera: (4, 4) pose of the head camera's optical frame: the operator's eye.
+        arm_q_rad: (7,) right-arm joint positions from the robot's encoders (rad).
+        T_base_gripper: (4, 4) pose of the gripper's tool frame at those joint positions.
+        gripper_closure: The gripper's measured closure, 0 (open) .. 1 (closed).
+        gripper_in_camera: The head camera captures the gripper (in the image and depth range).
+        bowl_m: (3,) the bowl's frame (centre of its bottom face) as the remote system knows it.
+        target_m: (3,) the target point on the table.
+        cues: The AR layers shown.
+        engaged: The status indicator: the robot follows the operator's hand.
+        cloud_points_m: (N, 3) float32 point cloud of the camera frame, or None when this
+            instant was not rendered (batch runs render only to track the bowl).
+        cloud_colors: (N, 3) uint8 colours of the cloud's points, or None.
+    """
+
+    time_s: float
+    T_base_camera: NDArray[np.float64]
+    arm_q_rad: NDArray[np.float64]
+    T_base_gripper: NDArray[np.float64]
+    gripper_closure: float
+    gripper_in_camera: bool
+    bowl_m: NDArray[np.float64]
+    target_m: NDArray[np.float64]
+    cues: ArCues
+    engaged: bool
+    cloud_points_m: NDArray[np.float32] | None = None
+    cloud_colors: NDArray[np.uint8] | None = None
+
+    def __post_init__(self) -> None:
+        shapes = {
+            "T_base_camera": (4, 4),
+            "arm_q_rad": (7,),
+            "T_base_gripper": (4, 4),
+            "bowl_m": (3,),
+            "target_m": (3,),
+        }
+        for name, shape in shapes.items():
+            value = frozen_array(getattr(self, name))
+            if value.shape != shape:
+                raise DisplayFrameError(
+                    f"DisplayFrame.{name} must have shape {shape}, got {value.shape}"
+                )
+            object.__setattr__(self, name, value)
+        if (self.cloud_points_m is None) != (self.cloud_colors is None):
+            raise DisplayFrameError("DisplayFrame needs both cloud_points_m and cloud_colors")
+        if self.cloud_points_m is not None:
+            # Views, not copies: a 640x480 cloud is rebuilt every frame and never changed.
+            points = np.asarray(self.cloud_points_m, dtype=np.float32).view()
+            colors = np.asarray(self.cloud_colors, dtype=np.uint8).view()
+            if points.ndim != 2 or points.shape[1] != 3 or colors.shape != points.shape:
+                raise DisplayFrameError(
+                    "DisplayFrame's cloud needs points (N, 3) and colours (N, 3); got "
+                    f"{points.shape} and {colors.shape}"
+                )
+            points.setflags(write=False)
+            colors.setflags(write=False)
+            object.__setattr__(self, "cloud_points_m", points)
+            object.__setattr__(self, "cloud_colors", colors)
+
+    @property
+    def viewpoint_m(self) -> NDArray[np.float64]:
+        """The camera's optical centre: where the operator looks from (m)."""
+        return self.T_base_camera[:3, 3]
+
+    @property
+    def gripper_m(self) -> NDArray[np.float64]:
+        """The gripper's tool-frame position (m)."""
+        return self.T_base_gripper[:3, 3]
+
+    @property
+    def has_cloud(self) -> bool:
+        return self.cloud_points_m is not None
+
+
+class Display(Protocol):
+    """Where display frames go, e.g. :class:`arteleop.ar_features.OperatorView`."""
+
+    def show(self, frame: DisplayFrame) -> None: ...

@@ -1,0 +1,63 @@
+"""Where the head camera is and what it can see: plain geometry, no renderer.
+
+The loop asks it whether a point (the gripper, the bowl) is in the image and in the sensor's
+depth range, from the camera's pose and its configuration alone.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from arteleop.scene.camera_config import CameraIntrinsics, HeadCameraConfig
+from arteleop.transforms import invert_transform, transform_points
+
+
+@dataclass(frozen=True)
+class CameraGeometry:
+    """The head camera's pose and its image and depth limits.
+
+    Attributes:
+        config: Image size, field of view and depth range.
+        T_base_camera: Pose of the optical frame (x right, y down, z forward) in the base frame.
+    """
+
+    config: HeadCameraConfig
+    T_base_camera: NDArray[np.float64]
+    _T_camera_base: NDArray[np.float64] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        T = np.array(self.T_base_camera, dtype=np.float64)
+        T.setflags(write=False)
+        object.__setattr__(self, "T_base_camera", T)
+        object.__setattr__(self, "_T_camera_base", invert_transform(T))
+
+    @property
+    def intrinsics(self) -> CameraIntrinsics:
+        return self.config.intrinsics
+
+    @property
+    def position_m(self) -> NDArray[np.float64]:
+        """The optical centre in the base frame (m)."""
+        return self.T_base_camera[:3, 3]
+
+    def locate(self, point_base_m: ArrayLike) -> tuple[float, float, float]:
+        """Pixel (u, v) and depth z (m) of a base-frame point; u and v are nan behind the camera."""
+        pc = transform_points(self._T_camera_base, np.atleast_2d(point_base_m))[0]
+        if pc[2] <= 0:
+            return math.nan, math.nan, float(pc[2])
+        u, v = self.intrinsics.project(pc)[0]
+        return float(u), float(v), float(pc[2])
+
+    def sees(self, point_base_m: ArrayLike, margin_px: float = 0.0) -> bool:
+        """Whether a base-frame point is in the image (with a margin) and in the depth range."""
+        u, v, z = self.locate(point_base_m)
+        c = self.config
+        return (
+            c.min_depth_m <= z <= c.max_depth_m
+            and margin_px <= u <= c.width_px - 1 - margin_px
+            and margin_px <= v <= c.height_px - 1 - margin_px
+        )

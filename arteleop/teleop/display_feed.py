@@ -1,0 +1,140 @@
+"""The display side of the loop: one :class:`DisplayFrame` per camera tick.
+
+At each camera tick the feed builds the frame of what the remote system knows at that instant
+(the arm's encoders, the gripper, the bowl, the target, the cues, the engaged indicator). When
+the camera renders, the frame carries the point cloud and goes to the display: in place in
+batch runs; in real time, through the render process on the other core, shown when it comes
+back. The operator sees each frame once the return link's delay has passed.
+"""
+
+from __future__ import annotations
+
+import time
+from collections import deque
+from dataclasses import replace
+
+import numpy as np
+from numpy.typing import NDArray
+
+from arteleop.ar_features import ArCues, Display, DisplayFrame
+from arteleop.robot import GRIPPER_FRAME
+from arteleop.scene import RemoteSite, RGBDFrame, SiteState, frame_to_point_cloud
+from arteleop.teleop.latency import LatencyAccount
+from arteleop.teleop.timing import StageTimer
+
+CLOUD_STRIDE = 2
+"""The display's cloud keeps every second row and column of the depth image."""
+
+
+def display_frame(
+    state: SiteState, cues: ArCues, target_m: NDArray[np.float64], engaged: bool
+) -> DisplayFrame:
+    """The display's content for a site state (``GRIPPER_FRAME`` observed), without a cloud."""
+    return DisplayFrame(
+        time_s=state.time_s,
+        T_base_camera=state.camera.T_base_camera,
+        arm_q_rad=state.arm_q_rad,
+        T_base_gripper=state.link(GRIPPER_FRAME),
+        gripper_closure=state.gripper_closure,
+        gripper_in_camera=state.camera.sees(state.gripper_m),
+        bowl_m=state.bowl_m,
+        target_m=target_m,
+        cues=cues,
+        engaged=engaged,
+    )
+
+
+class DisplayFeed:
+    """Builds, renders and delivers the display frames of one trial.
+
+    Args:
+        site: The remote site, for its camera.
+        cues: The modality's AR layers.
+        render: Render every camera frame (a display or wall-clock latency needs it).
+        in_background: Render in the site's render process while the loop goes on (real time).
+        return_delay_s: Delay of the link from the robot back to the operator (s).
+        display: Where rendered frames are shown, if anywhere.
+        timer: Times the ``camera``, ``point_cloud`` and ``display`` stages.
+        latency: Collects the latency of each frame.
+    """
+
+    def __init__(
+        self,
+        site: RemoteSite,
+        cues: ArCues,
+        render: bool,
+        in_background: bool,
+        return_delay_s: float,
+        display: Display | None,
+        timer: StageTimer,
+        latency: LatencyAccount,
+    ) -> None:
+        self._site = site
+        self._cues = cues
+        self._target_m = site.config.workspace.target_m
+        self._render = render
+        self._background = in_background
+        self._delay_s = return_delay_s
+        self._display = display
+        self._timer = timer
+        self._latency = latency
+        self._history: deque[DisplayFrame] = deque(maxlen=64)
+        self._requested: tuple[float, float, DisplayFrame] | None = None  # wall, applied, frame
+        self._owed = False
+        self.frames_skipped = 0
+        """Real time: camera ticks dropped because two came while one frame rendered."""
+
+    def camera_tick(self, state: SiteState, engaged: bool, applied_sample_time_s: float) -> None:
+        """A camera tick: the display's content now (rendered if asked), and its latency."""
+        frame = display_frame(state, self._cues, self._target_m, engaged)
+        self._history.append(frame)
+        if self._background:
+            if not self._site.frame_pending:
+                self._request(frame, applied_sample_time_s)
+            elif self._owed:
+                self.frames_skipped += 1  # two ticks while one frame renders: drop one
+            else:
+                self._owed = True  # render it as soon as the current frame is in
+        elif self._render:
+            with self._timer.stage("camera"):
+                rgbd = self._site.capture()
+            self._show(frame, rgbd, applied_sample_time_s)
+        self._latency.frame_captured(state.time_s, applied_sample_time_s)
+
+    def poll(self, engaged: bool, applied_sample_time_s: float) -> None:
+        """Real time: show the frame the render process has finished, if any; start the frame
+        owed since then, of the site's state now."""
+        rgbd = self._site.poll_frame()
+        if rgbd is None or self._requested is None:
+            return
+        requested_wall, applied, frame = self._requested
+        self._timer.record("camera", requested_wall)
+        if self._owed:
+            state = self._site.observe()
+            self._request(display_frame(state, self._cues, self._target_m, engaged),
+                          applied_sample_time_s)  # fmt: skip
+        self._show(frame, rgbd, applied)
+
+    def seen_by_operator(self, t: float) -> DisplayFrame:
+        """The newest frame that has reached the operator at ``t`` (the return link's delay);
+        the oldest kept one before any has."""
+        for frame in reversed(self._history):
+            if frame.time_s <= t - self._delay_s:
+                return frame
+        return self._history[0]
+
+    def _request(self, frame: DisplayFrame, applied_sample_time_s: float) -> None:
+        self._site.request_frame()
+        self._requested = (time.perf_counter(), applied_sample_time_s, frame)
+        self._owed = False
+
+    def _show(self, frame: DisplayFrame, rgbd: RGBDFrame, applied_sample_time_s: float) -> None:
+        """Point cloud and display update of a frame showing samples up to ``applied``."""
+        with self._timer.stage("point_cloud"):
+            cloud = frame_to_point_cloud(rgbd, stride=CLOUD_STRIDE)
+        if self._display is not None:
+            with self._timer.stage("display"):
+                self._display.show(
+                    replace(frame, cloud_points_m=cloud.points_m, cloud_colors=cloud.colors)
+                )
+        self._latency.frame_shown(applied_sample_time_s)

@@ -1,0 +1,188 @@
+"""The teleoperation loop of one trial: operator -> network -> robot -> physics -> camera.
+
+One clock fires the stages at their own rates; each stage hands plain data to the next. An
+operator sample goes: ``OperatorSource.sample`` -> ``NetworkLink`` -> ``TeleopController.receive``
+(reconstruction) -> ``TeleopController.control_tick`` (mapping, IK, trajectory target; returns
+the gripper's :class:`ArmCommand`) -> ``TeleopController.physics_tick`` (the arm's joint targets)
+-> ``RemoteSite.apply`` -> ``RemoteSite.step``. The site is read only through
+``RemoteSite.observe``; the display and the operator see :class:`DisplayFrame` s.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+from numpy.typing import NDArray
+
+from arteleop.ar_features import Display, modality_cues
+from arteleop.errors import ConfigurationError
+from arteleop.operator import OperatorSource, WearableSample
+from arteleop.robot import RIGHT_ARM_JOINTS
+from arteleop.scene import BowlTracker, RemoteSite
+from arteleop.teleop.clock import LoopClock
+from arteleop.teleop.controller import TeleopController
+from arteleop.teleop.display_feed import DisplayFeed
+from arteleop.teleop.latency import LatencyAccount
+from arteleop.teleop.network import NetworkLink
+from arteleop.teleop.task_monitor import TaskMonitor
+from arteleop.teleop.timing import StageTimer
+from arteleop.teleop.trial import Outcome, TrialConfig, TrialResult
+
+
+def run_trial(
+    source: OperatorSource,
+    config: TrialConfig,
+    site: RemoteSite | None = None,
+    display: Display | None = None,
+) -> TrialResult:
+    """Run one trial to its end; builds the site from ``config.site`` unless one is given.
+
+    With a ``display``, every camera frame is shown on it (this needs ``config.render_camera``).
+    """
+    if display is not None and not config.render_camera:
+        raise ConfigurationError(
+            "A display needs camera frames: run the trial with TrialConfig(render_camera=True)."
+        )
+    own_site = site is None
+    site = site or RemoteSite(config.site)
+    try:
+        return _Loop(source, config, site, display).run()
+    finally:
+        if own_site:
+            site.close()
+
+
+class _Loop:
+    def __init__(
+        self,
+        source: OperatorSource,
+        config: TrialConfig,
+        site: RemoteSite,
+        display: Display | None,
+    ) -> None:
+        self.source, self.config, self.site = source, config, site
+        ws = site.config.workspace
+        self.link: NetworkLink[WearableSample] = NetworkLink(
+            config.network, np.random.default_rng(config.seed)
+        )
+        background = config.realtime and config.render_camera
+        if background:
+            site.start_render_process()  # before the clock starts: it takes a few seconds
+        self.clock = LoopClock(config.rates, config.realtime)
+        self.timer = StageTimer()
+        self.control = TeleopController(
+            site.description.urdf_path,
+            site.kinematics.limits(RIGHT_ARM_JOINTS),
+            site.observe(links=()).arm_q_rad,
+            source,
+            config.rates,
+            ws.table_box(),
+            config.controller,
+            self.timer,
+        )
+        self.monitor = TaskMonitor(ws, BowlTracker(ws.bowl))
+        self.latency = LatencyAccount()
+        self.feed = DisplayFeed(
+            site,
+            modality_cues(config.modality),
+            render=config.render_camera,
+            in_background=background,
+            return_delay_s=config.network.delay_s,
+            display=display,
+            timer=self.timer,
+            latency=self.latency,
+        )
+        self._background = background
+        self.hand_t: list[float] = []
+        self.hand_p: list[NDArray[np.float64]] = []
+        self.samples_lost_wearable = 0
+
+    def run(self) -> TrialResult:
+        site, control, timer = self.site, self.control, self.timer
+        while True:
+            tick = self.clock.next()
+            t = tick.time_s
+            if self._background:
+                self.feed.poll(control.engaged, control.applied_sample_time_s)
+            if t > self.config.timeout_s:
+                return self._result(Outcome.TIMEOUT, t)
+            if tick.camera:
+                state = site.observe()
+                self.feed.camera_tick(state, control.engaged, control.applied_sample_time_s)
+                outcome = self.monitor.camera(t, state, site.capture)
+                if outcome is not None:
+                    return self._result(outcome, t)
+            if tick.control and not self._control(t):
+                return self._result(Outcome.OPERATOR_STOPPED, t)
+            if tick.physics:
+                with timer.stage("trajectory"):
+                    command = control.physics_tick()
+                    if command is not None:
+                        site.apply(command)
+                with timer.stage("physics"):
+                    site.step()
+
+    def _control(self, t: float) -> bool:
+        """One control tick; False once the operator has stopped."""
+        control, timer = self.control, self.timer
+        frame = self.feed.seen_by_operator(t)
+        created_wall = time.perf_counter()
+        with timer.stage("operator_input"):
+            sample = self.source.sample(t, frame)
+        if sample is None:
+            return False
+        if self.config.realtime:
+            self.latency.sample_created(sample.time_s, created_wall)
+        self.link.send(sample.time_s, sample, t)
+        with timer.stage("reconstruction"):
+            for _, received in self.link.receive(t):
+                if received.sensor_quat_wxyz is None:
+                    self.samples_lost_wearable += 1
+                control.receive(received.time_s, received.sensor_quat_wxyz, received.grip)
+        state = self.site.observe()
+        with timer.stage("control_tick"):
+            command = control.control_tick(state)
+            if command is not None:
+                self.site.apply(command)
+        hand = control.last_hand
+        moving = None
+        if control.engaged and hand is not None:
+            self.hand_t.append(hand.time_s)
+            self.hand_p.append(hand.hand_m)
+            moving = control.hand_speed_m_s
+        self.monitor.control(t, moving, control.grip.closed, state)
+        return True
+
+    def _result(self, outcome: Outcome, t: float) -> TrialResult:
+        monitor, target = self.monitor, self.site.config.workspace.target_m
+        bowl = self.site.observe(links=()).bowl_m
+        true_err = float(np.linalg.norm(bowl[:2] - target[:2]))
+        onset = monitor.motion_onset_s
+        counts = {
+            "samples_sent": self.link.sent, "samples_lost_network": self.link.lost,
+            "samples_late": self.link.late, "samples_lost_wearable": self.samples_lost_wearable,
+            "unreachable_ticks": self.control.unreachable_ticks,
+            "held_samples": r.held if (r := self.control.reconstructor) else 0,
+            "camera_frames_skipped": self.feed.frames_skipped,
+        }  # fmt: skip
+        success = outcome is Outcome.SUCCESS
+        return TrialResult(
+            modality=self.config.modality,
+            seed=self.config.seed,
+            outcome=outcome,
+            completion_time_s=t - (onset if onset is not None else t) if success else np.nan,
+            placement_error_m=monitor.placement_error_m if success else np.nan,
+            placement_error_true_m=true_err if monitor.released else np.nan,
+            grasped=monitor.grasped,
+            placed=success,
+            grasp_attempts=monitor.grasp_attempts,
+            duration_s=t,
+            motion_onset_s=onset if onset is not None else np.nan,
+            hand_time_s=np.array(self.hand_t),
+            hand_m=np.array(self.hand_p).reshape(-1, 3),
+            latency_sim_ms=self.latency.sim_ms,
+            latency_wall_ms=self.latency.wall_ms,
+            stages=self.timer.summary(),
+            counts=counts,
+        )

@@ -1,0 +1,78 @@
+"""Watches the pick-and-place task and says when, and how, the trial ends.
+
+- Motion onset: the first control tick, once engaged, at which the operator's hand moves faster
+  than ``START_SPEED_M_S``. The completion timer starts there.
+- A grasp attempt is each closure of the gripper command; the bowl is grasped when both finger
+  pads touch it while the gripper is closed; it is released when the gripper opens after that.
+- Placement: after the release, with the bowl at rest, the head camera's tracker looks for it
+  every ``TRACKING_PERIOD_S``; the first frame in which it is found ends the trial as a success.
+- Dropped: the bowl falls below the table top.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+from arteleop.scene import BowlTracker, RGBDFrame, SiteState, Workspace
+from arteleop.teleop.trial import Outcome
+
+START_SPEED_M_S = 0.05
+"""Hand speed that marks the start of the reach (m/s)."""
+TRACKING_PERIOD_S = 0.5
+"""After the release, the bowl tracker runs on every fifteenth camera frame (2 Hz)."""
+BOWL_AT_REST_M_S = 0.01
+"""The bowl's centre of mass is at rest below this speed (m/s)."""
+DROP_DEPTH_M = 0.05
+"""A bowl this far below the table top has fallen off it (m)."""
+
+
+class TaskMonitor:
+    """The task's state over one trial: onset, grasp attempts, grasp, release, placement."""
+
+    def __init__(self, workspace: Workspace, tracker: BowlTracker) -> None:
+        self._ws = workspace
+        self._tracker = tracker
+        self.motion_onset_s: float | None = None
+        self.grasp_attempts = 0
+        self.grasped = False
+        self.released = False
+        self.placement_error_m = float("nan")
+        """Tracked bowl to target in the table's plane (m), once placed."""
+        self._was_closed = False
+        self._next_track_s = 0.0
+
+    def control(
+        self, t: float, moving_hand_m_s: float | None, gripper_closed: bool, state: SiteState
+    ) -> None:
+        """A control tick at ``t``: ``moving_hand_m_s`` is the hand's speed while engaged (None
+        before), ``gripper_closed`` the gripper command."""
+        if self.motion_onset_s is None and moving_hand_m_s is not None:
+            if moving_hand_m_s > START_SPEED_M_S:
+                self.motion_onset_s = t
+        if gripper_closed and not self._was_closed:
+            self.grasp_attempts += 1
+        if gripper_closed and state.grasped:
+            self.grasped = True
+        if self.grasped and not gripper_closed:
+            self.released = True
+        self._was_closed = gripper_closed
+
+    def camera(
+        self, t: float, state: SiteState, capture: Callable[[], RGBDFrame]
+    ) -> Outcome | None:
+        """A camera tick at ``t``: the outcome if the trial ends now. ``capture`` renders a frame
+        for the tracker (only called after the release, with the bowl at rest)."""
+        ws = self._ws
+        if self.released and t >= self._next_track_s and state.bowl_speed_m_s < BOWL_AT_REST_M_S:
+            self._next_track_s = t + TRACKING_PERIOD_S
+            track = self._tracker.track(capture(), ws.table_top_z_m)
+            if track.found and track.position_m is not None:
+                self.placement_error_m = float(
+                    np.linalg.norm(track.position_m[:2] - ws.target_m[:2])
+                )
+                return Outcome.SUCCESS
+        if state.bowl_m[2] < ws.table_top_z_m - DROP_DEPTH_M:
+            return Outcome.DROPPED
+        return None
