@@ -157,7 +157,7 @@ class TrialCommand(CameraSize):
     realtime: bool = False
     """pace the loop with the wall clock"""
     view: bool = False
-    """serve the operator's view (point cloud) in the browser, in real time"""
+    """serve the operator's view (point cloud and AR layers) in the browser, in real time"""
     host: str = "127.0.0.1"
     """interface for --view; 0.0.0.0 lets other machines connect"""
     port: int = 8080
@@ -170,7 +170,7 @@ def trial(cmd: TrialCommand) -> int:
     from arteleop.ar_features import OperatorView, ViewConfig
     from arteleop.operator import RecordingSource, load_recording
     from arteleop.scene import RemoteSite, SiteConfig
-    from arteleop.teleop import NetworkConfig, TrialConfig, run_trial
+    from arteleop.teleop import NetworkConfig, TrialConfig, run_trial, view_assets
 
     config = TrialConfig(
         modality=cmd.modality, seed=cmd.seed, timeout_s=cmd.timeout_s,
@@ -186,7 +186,8 @@ def trial(cmd: TrialCommand) -> int:
             source = RecordingSource(load_recording(Path(cmd.operator)))
         display = None
         if cmd.view:
-            display = stack.enter_context(OperatorView(ViewConfig(host=cmd.host, port=cmd.port)))
+            view_config = ViewConfig(host=cmd.host, port=cmd.port)
+            display = stack.enter_context(OperatorView(view_config, view_assets(site)))
             print(f"operator's view at {display.url}")
         result = run_trial(source, config, site, display)
     print(f"outcome              {result.outcome.value}")

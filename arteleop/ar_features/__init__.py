@@ -9,6 +9,7 @@ from __future__ import annotations
 import importlib
 from typing import TYPE_CHECKING, Any
 
+from arteleop.ar_features.assets import ViewAssets
 from arteleop.ar_features.display_frame import Display, DisplayFrame
 from arteleop.ar_features.layer import Layer
 from arteleop.ar_features.modalities import MODALITIES, ArCues, modality_cues
@@ -32,6 +33,7 @@ __all__ = [
     "Layer",
     "OperatorView",
     "Received",
+    "ViewAssets",
     "ViewConfig",
     "ViewProbe",
     "modality_cues",

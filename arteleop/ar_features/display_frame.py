@@ -29,6 +29,9 @@ class DisplayFrame:
         gripper_closure: The gripper's measured closure, 0 (open) .. 1 (closed).
         gripper_in_camera: The head camera captures the gripper (in the image and depth range).
         bowl_m: (3,) the bowl's frame (centre of its bottom face) as the remote system knows it.
+        grasp_radius_m: Radius of the ring of grasp points (the middle of the wall), about the
+            bowl's axis (m).
+        grasp_height_m: Height of that ring above the bowl's frame (m).
         target_m: (3,) the target point on the table.
         cues: The AR layers shown.
         engaged: The status indicator: the robot follows the operator's hand.
@@ -44,6 +47,8 @@ class DisplayFrame:
     gripper_closure: float
     gripper_in_camera: bool
     bowl_m: NDArray[np.float64]
+    grasp_radius_m: float
+    grasp_height_m: float
     target_m: NDArray[np.float64]
     cues: ArCues
     engaged: bool
@@ -94,6 +99,22 @@ class DisplayFrame:
     @property
     def has_cloud(self) -> bool:
         return self.cloud_points_m is not None
+
+    def grasp_point_m(self) -> NDArray[np.float64]:
+        """The grasp point closest to the gripper (m): the point of the bowl's grasp ring in
+        the gripper's direction from the bowl's axis (+y when the gripper is on the axis).
+
+        The beam and the distance bar draw it, and the synthetic operator perceives it.
+        """
+        d = self.gripper_m[:2] - self.bowl_m[:2]
+        n = float(np.hypot(d[0], d[1]))
+        d = d / n if n > 1e-9 else np.array([0.0, 1.0])
+        ring = np.array([d[0] * self.grasp_radius_m, d[1] * self.grasp_radius_m, 0.0])
+        return self.bowl_m + ring + [0.0, 0.0, self.grasp_height_m]
+
+    def grasp_distance_m(self) -> float:
+        """Distance from the gripper to :meth:`grasp_point_m` (m): the distance bar's value."""
+        return float(np.linalg.norm(self.grasp_point_m() - self.gripper_m))
 
 
 class Display(Protocol):

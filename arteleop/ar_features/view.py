@@ -7,13 +7,25 @@ saw it and AR layers given in the base frame line up with it. The view takes
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
+import numpy as np
 import viser
+from numpy.typing import NDArray
 
+from arteleop.ar_features.assets import ViewAssets
 from arteleop.ar_features.display_frame import DisplayFrame
 from arteleop.ar_features.layer import Layer
-from arteleop.ar_features.layers import CloudLayer
+from arteleop.ar_features.layers import (
+    BeamLayer,
+    CloudLayer,
+    DistanceBarLayer,
+    GhostLayer,
+    GripBarLayer,
+    TargetLayer,
+)
+from arteleop.ar_features.modalities import ArCues
+from arteleop.ar_features.panel import ModalityPanel
 from arteleop.errors import ConfigurationError
 from arteleop.lifetime import Closeable
 
@@ -29,11 +41,14 @@ class ViewConfig:
             :attr:`OperatorView.url` tells which one was bound.
         point_size_m: Diameter of a drawn point (m). A 320x240 cloud of the table at about 1.2 m
             has a point every 4 mm.
+        vertical_fov_deg: The browser camera's vertical field of view: the head camera's (the
+            Kinect's 57 deg horizontal over 640x480 pixels gives 44.3 deg).
     """
 
     host: str = "127.0.0.1"
     port: int = 8080
     point_size_m: float = 0.004
+    vertical_fov_deg: float = 44.3
 
     def __post_init__(self) -> None:
         if not 0 <= self.port <= 65535:
@@ -43,12 +58,32 @@ class ViewConfig:
 
 
 class OperatorView(Closeable):
-    """A running viser server that draws display frames, layer by layer; a context manager."""
+    """A running viser server that draws display frames, layer by layer; a context manager.
 
-    def __init__(self, config: ViewConfig | None = None) -> None:
+    With ``assets`` it draws every AR layer (ghost, beam, distance and grip bars, target) over
+    the point cloud; without, the point cloud alone. A panel switches the modality, or single
+    layers, live: the choice overrides the frames' own cues (:attr:`cues`) until the panel is
+    set back to follow the trial. The browser's camera starts at the head camera's pose, looking
+    where it looks (egocentric, as the original HMD view); "Egocentric view" returns there.
+    """
+
+    def __init__(self, config: ViewConfig | None = None, assets: ViewAssets | None = None) -> None:
         self.config = config = config or ViewConfig()
-        self.server = viser.ViserServer(host=config.host, port=config.port, verbose=False)
-        self.layers: list[Layer] = [CloudLayer(self.server.scene, config.point_size_m)]
+        self.server = server = viser.ViserServer(host=config.host, port=config.port, verbose=False)
+        server.scene.set_up_direction("+z")  # Baxter's base frame
+        server.gui.configure_theme(show_logo=False, show_share_button=False)
+        self.layers: list[Layer] = [CloudLayer(server.scene, config.point_size_m)]
+        if assets is not None:
+            self.layers += [
+                GhostLayer(server, assets),
+                TargetLayer(server.scene, assets),
+                BeamLayer(server.scene),
+                DistanceBarLayer(server.scene),
+                GripBarLayer(server.scene),
+            ]
+        self._panel = ModalityPanel(server.gui, [layer.cue for layer in self.layers if layer.cue])
+        self._T_base_camera: NDArray[np.float64] | None = None
+        server.gui.add_button("Egocentric view").on_click(lambda _: self._egocentric(True))
         self.updates = 0
         """Frames shown so far."""
 
@@ -57,16 +92,43 @@ class OperatorView(Closeable):
         """Address to open in a browser."""
         return f"http://{self.server.get_host()}:{self.server.get_port()}"
 
+    @property
+    def cues(self) -> ArCues | None:
+        """The layers the panel chose, or None while the frames' own cues are drawn."""
+        return self._panel.cues
+
     def show(self, frame: DisplayFrame) -> None:
         """Draw ``frame``: each layer its modality turns on, the others hidden.
 
         Returns once the update is handed to the server's sender, which delivers it to every
         connected browser.
         """
+        if self._T_base_camera is None:
+            self._T_base_camera = frame.T_base_camera
+            self._egocentric(move_clients=True)
+        if (cues := self._panel.cues) is not None:
+            frame = replace(frame, cues=cues)
+        else:
+            self._panel.follow(frame.cues)
         for layer in self.layers:
             layer.draw(frame)
         self.server.flush()
         self.updates += 1
+
+    def _egocentric(self, move_clients: bool) -> None:
+        """The initial camera (and, if asked, every connected browser's) at the head camera."""
+        if self._T_base_camera is None:
+            return
+        T = self._T_base_camera
+        eye, forward, up = T[:3, 3], T[:3, 2], -T[:3, 1]  # optical frame: z forward, y down
+        cameras = [self.server.initial_camera]
+        if move_clients:
+            cameras += [client.camera for client in self.server.get_clients().values()]
+        for camera in cameras:
+            camera.position = eye
+            camera.look_at = eye + forward
+            camera.up = up
+            camera.fov = np.radians(self.config.vertical_fov_deg)
 
     def close(self) -> None:
         """Stop the server."""

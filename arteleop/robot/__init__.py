@@ -11,7 +11,9 @@ from arteleop.robot.description import (
 from arteleop.robot.gripper import ElectricGripper, GripperConfig
 from arteleop.robot.joints import (
     GRIPPER_FRAME,
+    HEAD_PAN_JOINT,
     LEFT_ARM_JOINTS,
+    LEFT_FINGER_JOINTS,
     REST_POSE,
     RIGHT_ARM_JOINTS,
     RIGHT_FINGER_JOINTS,
@@ -24,7 +26,9 @@ from arteleop.robot.reach import TopDownReach
 
 __all__ = [
     "GRIPPER_FRAME",
+    "HEAD_PAN_JOINT",
     "LEFT_ARM_JOINTS",
+    "LEFT_FINGER_JOINTS",
     "REST_POSE",
     "RIGHT_ARM_JOINTS",
     "RIGHT_FINGER_JOINTS",

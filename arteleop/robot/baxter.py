@@ -16,6 +16,7 @@ from arteleop.robot.description import BaxterDescription, freeze_joints
 from arteleop.robot.gripper import ElectricGripper, GripperConfig
 from arteleop.robot.joints import (
     GRIPPER_FRAME,
+    HEAD_PAN_JOINT,
     LEFT_ARM_JOINTS,
     LEFT_FINGER_JOINTS,
     REST_POSE,
@@ -45,9 +46,6 @@ class ArmControlConfig:
 
     position_gain: float = 0.3
     velocity_gain: float = 1.0
-
-
-HEAD_PAN_JOINT = "head_pan"
 
 
 class Baxter:

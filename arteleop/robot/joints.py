@@ -21,6 +21,7 @@ RIGHT_ARM_JOINTS: tuple[str, ...] = (
 LEFT_ARM_JOINTS: tuple[str, ...] = tuple(n.replace("right_", "left_") for n in RIGHT_ARM_JOINTS)
 RIGHT_FINGER_JOINTS: tuple[str, str] = ("r_gripper_l_finger_joint", "r_gripper_r_finger_joint")
 LEFT_FINGER_JOINTS: tuple[str, str] = ("l_gripper_l_finger_joint", "l_gripper_r_finger_joint")
+HEAD_PAN_JOINT = "head_pan"
 
 GRIPPER_FRAME = "right_gripper"
 """Tool frame between the finger tips: z points out of the gripper, fingers open along y."""

@@ -8,10 +8,10 @@ from arteleop.teleop.controller import (
     OperatorBody,
     TeleopController,
 )
-from arteleop.teleop.display_feed import DisplayFeed, display_frame
+from arteleop.teleop.display_feed import DisplayFeed, display_frame, view_assets
 from arteleop.teleop.hand_speed import HandSpeed
 from arteleop.teleop.latency import LatencyAccount
-from arteleop.teleop.loop import run_trial
+from arteleop.teleop.loop import display_frame_at, run_trial
 from arteleop.teleop.network import NetworkConfig, NetworkLink
 from arteleop.teleop.task_monitor import TaskMonitor
 from arteleop.teleop.timing import StageStats, StageTimer
@@ -37,5 +37,7 @@ __all__ = [
     "TrialConfig",
     "TrialResult",
     "display_frame",
+    "display_frame_at",
     "run_trial",
+    "view_assets",
 ]

@@ -14,11 +14,24 @@ from collections import deque
 from dataclasses import replace
 
 import numpy as np
-from numpy.typing import NDArray
 
-from arteleop.ar_features import ArCues, Display, DisplayFrame
-from arteleop.robot import GRIPPER_FRAME
-from arteleop.scene import RemoteSite, RGBDFrame, SiteState, frame_to_point_cloud
+from arteleop.ar_features import ArCues, Display, DisplayFrame, ViewAssets
+from arteleop.robot import (
+    GRIPPER_FRAME,
+    HEAD_PAN_JOINT,
+    LEFT_ARM_JOINTS,
+    LEFT_FINGER_JOINTS,
+    RIGHT_ARM_JOINTS,
+    RIGHT_FINGER_JOINTS,
+)
+from arteleop.scene import (
+    RemoteSite,
+    RGBDFrame,
+    SiteState,
+    Workspace,
+    bowl_mesh,
+    frame_to_point_cloud,
+)
 from arteleop.teleop.latency import LatencyAccount
 from arteleop.teleop.timing import StageTimer
 
@@ -27,9 +40,10 @@ CLOUD_STRIDE = 2
 
 
 def display_frame(
-    state: SiteState, cues: ArCues, target_m: NDArray[np.float64], engaged: bool
+    state: SiteState, workspace: Workspace, cues: ArCues, engaged: bool
 ) -> DisplayFrame:
     """The display's content for a site state (``GRIPPER_FRAME`` observed), without a cloud."""
+    grasp = workspace.bowl.grasp_offset_m()
     return DisplayFrame(
         time_s=state.time_s,
         T_base_camera=state.camera.T_base_camera,
@@ -38,10 +52,28 @@ def display_frame(
         gripper_closure=state.gripper_closure,
         gripper_in_camera=state.camera.sees(state.gripper_m),
         bowl_m=state.bowl_m,
-        target_m=target_m,
+        grasp_radius_m=float(np.hypot(grasp[0], grasp[1])),
+        grasp_height_m=float(grasp[2]),
+        target_m=workspace.target_m,
         cues=cues,
         engaged=engaged,
     )
+
+
+def view_assets(site: RemoteSite) -> ViewAssets:
+    """What the view of ``site`` draws besides its frames: the robot as the camera renders it
+    (left arm at the rest pose, head forward) and the bowl's mesh."""
+    stroke = float(site.kinematics.limits(RIGHT_FINGER_JOINTS).upper[0])
+    fixed = {
+        HEAD_PAN_JOINT: 0.0,
+        **dict(zip(LEFT_ARM_JOINTS, site.config.rest_pose.left, strict=True)),
+        **dict.fromkeys(LEFT_FINGER_JOINTS, 0.0),
+    }
+    vertices, faces = bowl_mesh(site.config.workspace.bowl)
+    return ViewAssets(
+        site.description.urdf_path, RIGHT_ARM_JOINTS, RIGHT_FINGER_JOINTS, stroke, fixed,
+        vertices, faces,
+    )  # fmt: skip
 
 
 class DisplayFeed:
@@ -71,7 +103,7 @@ class DisplayFeed:
     ) -> None:
         self._site = site
         self._cues = cues
-        self._target_m = site.config.workspace.target_m
+        self._workspace = site.config.workspace
         self._render = render
         self._background = in_background
         self._delay_s = return_delay_s
@@ -86,7 +118,7 @@ class DisplayFeed:
 
     def camera_tick(self, state: SiteState, engaged: bool, applied_sample_time_s: float) -> None:
         """A camera tick: the display's content now (rendered if asked), and its latency."""
-        frame = display_frame(state, self._cues, self._target_m, engaged)
+        frame = display_frame(state, self._workspace, self._cues, engaged)
         self._history.append(frame)
         if self._background:
             if not self._site.frame_pending:
@@ -111,7 +143,7 @@ class DisplayFeed:
         self._timer.record("camera", requested_wall)
         if self._owed:
             state = self._site.observe()
-            self._request(display_frame(state, self._cues, self._target_m, engaged),
+            self._request(display_frame(state, self._workspace, self._cues, engaged),
                           applied_sample_time_s)  # fmt: skip
         self._show(frame, rgbd, applied)
 

@@ -11,11 +11,12 @@ the gripper's :class:`ArmCommand`) -> ``TeleopController.physics_tick`` (the arm
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 
 import numpy as np
 from numpy.typing import NDArray
 
-from arteleop.ar_features import Display, modality_cues
+from arteleop.ar_features import Display, DisplayFrame, modality_cues
 from arteleop.errors import ConfigurationError
 from arteleop.operator import OperatorSource, WearableSample
 from arteleop.robot import RIGHT_ARM_JOINTS
@@ -51,6 +52,30 @@ def run_trial(
     finally:
         if own_site:
             site.close()
+
+
+def display_frame_at(
+    source: OperatorSource, config: TrialConfig, time_s: float, site: RemoteSite | None = None
+) -> DisplayFrame:
+    """The display frame, point cloud included, that a trial shows at ``time_s`` (s): the trial
+    runs to then, rendering every camera frame; for pictures and tests of the view."""
+    config = replace(config, timeout_s=time_s + 1.0 / config.rates.camera_hz, render_camera=True)
+    frames: list[DisplayFrame] = []
+    run_trial(source, config, site, _FirstFrameFrom(time_s, frames))
+    if not frames:
+        raise ConfigurationError(
+            f"The trial ended before {time_s} s, so it shows nothing then: choose an earlier time."
+        )
+    return frames[0]
+
+
+class _FirstFrameFrom:
+    def __init__(self, time_s: float, frames: list[DisplayFrame]) -> None:
+        self._time_s, self._frames = time_s, frames
+
+    def show(self, frame: DisplayFrame) -> None:
+        if not self._frames and frame.time_s >= self._time_s - 1e-9:
+            self._frames.append(frame)
 
 
 class _Loop:

@@ -24,6 +24,8 @@ def display_frame(**overrides: Any) -> DisplayFrame:
         "gripper_closure": 0.0,
         "gripper_in_camera": True,
         "bowl_m": np.array([0.68, -0.45, -0.2]),
+        "grasp_radius_m": 0.078,
+        "grasp_height_m": 0.055,
         "target_m": np.array([0.68, -0.10, -0.2]),
         "cues": ArCues(),
         "engaged": True,

@@ -1,0 +1,80 @@
+"""Pictures of the operator's view: headless Chromium, driven by playwright, on the page.
+
+Needs playwright (the ``test`` extra) and a system Chromium (Debian: ``apt-get install
+chromium``); playwright never downloads a browser of its own here.
+"""
+
+from __future__ import annotations
+
+import shutil
+import time
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+
+import cv2
+import numpy as np
+from numpy.typing import NDArray
+
+from arteleop.errors import ArteleopError
+
+VIEWPORT = {"width": 1280, "height": 800}
+# WebGL without a GPU: SwiftShader. Background networking off: this machine has no network.
+CHROMIUM_ARGS = [
+    "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--no-sandbox",
+    "--disable-background-networking", "--disable-component-update", "--disable-sync",
+    "--no-first-run",
+]  # fmt: skip
+
+
+class BrowserError(ArteleopError):
+    """No browser to take the picture with, or the page never settled."""
+
+
+def chromium_path() -> str:
+    """The system's Chromium."""
+    path = shutil.which("chromium") or shutil.which("chromium-browser")
+    if path is None:
+        raise BrowserError(
+            "Chromium is not installed: install it with 'apt-get install chromium' (Debian)."
+        )
+    return path
+
+
+class Page:
+    """One browser tab on a view; screenshots once the drawing has settled."""
+
+    def __init__(self, page: object) -> None:
+        self._page = page
+
+    def screenshot(self, path: Path, timeout_s: float = 30.0) -> NDArray[np.uint8]:
+        """The tab's pixels (H, W, 3) RGB, once two shots half a second apart are equal."""
+        previous = None
+        end = time.monotonic() + timeout_s
+        while time.monotonic() < end:
+            time.sleep(0.5)
+            self._page.screenshot(path=str(path))  # type: ignore[attr-defined]
+            shot = cv2.cvtColor(cv2.imread(str(path)), cv2.COLOR_BGR2RGB)
+            if previous is not None and np.array_equal(shot, previous):
+                return shot
+            previous = shot
+        raise BrowserError(f"The view's page never stopped changing in {timeout_s} s.")
+
+
+@contextmanager
+def browser_page(url: str) -> Iterator[Page]:
+    """A headless Chromium tab on ``url``, the software-WebGL notice dismissed."""
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as pw:
+        browser = pw.chromium.launch(executable_path=chromium_path(), args=CHROMIUM_ARGS)
+        try:
+            page = browser.new_page(viewport=VIEWPORT)
+            page.goto(url)
+            # The notice that WebGL runs in software covers a corner of the scene.
+            notice = page.get_by_text("Software WebGL rendering detected")
+            notice.wait_for(timeout=15_000)
+            page.locator(".mantine-Notification-root button").first.click()
+            yield Page(page)
+        finally:
+            browser.close()

@@ -1,0 +1,61 @@
+"""A bar in 3D near the gripper, facing the viewer: the filled part solid, the rest of its full
+scale a translucent tint of the same colour, its value in numbers beside it. The distance and
+grip bars are two of these."""
+
+from __future__ import annotations
+
+import numpy as np
+import viser
+from numpy.typing import NDArray
+
+from arteleop.ar_features.display_frame import DisplayFrame
+from arteleop.transforms import transform_to_pose
+
+BAR_LENGTH_M = 0.10
+"""Length of a full bar (m): about 60 px at the head camera's 1.3 m from the table."""
+BAR_WIDTH_M = 0.012
+
+
+SCALE_OPACITY = 0.3
+
+
+class Bar:
+    """One bar; ``offset_m`` places its left end in the camera's frame (x right, y down)
+    relative to the gripper, so it sits beside the gripper on screen whatever the arm does. The
+    label sits left of the bar, away from the gripper."""
+
+    def __init__(
+        self,
+        scene: viser.SceneApi,
+        name: str,
+        rgb: tuple[int, int, int],
+        offset_m: tuple[float, float],
+    ) -> None:
+        self._offset = np.array([offset_m[0], offset_m[1], 0.0])
+        dims = (BAR_LENGTH_M, BAR_WIDTH_M, BAR_WIDTH_M)
+        self._frame = scene.add_box(
+            f"{name}/scale", color=rgb, dimensions=dims, opacity=SCALE_OPACITY
+        )
+        self._fill = scene.add_box(f"{name}/fill", color=rgb, dimensions=dims)
+        self._label = scene.add_label(
+            f"{name}/label", "", font_screen_scale=0.9, anchor="center-right"
+        )
+        self.handles = (self._frame, self._fill, self._label)
+
+    def show(self, frame: DisplayFrame, fraction: float, text: str) -> None:
+        """Fill ``fraction`` (0..1) of the bar and write ``text`` beside it."""
+        R = frame.T_base_camera[:3, :3]
+        start = frame.gripper_m + R @ self._offset
+        wxyz = transform_to_pose(frame.T_base_camera)[1]
+        fraction = float(np.clip(fraction, 0.0, 1.0))
+        length = max(fraction * BAR_LENGTH_M, 1e-4)
+        self._place(self._frame, start + R[:, 0] * BAR_LENGTH_M / 2, wxyz)
+        self._place(self._fill, start + R[:, 0] * length / 2, wxyz)
+        self._fill.dimensions = (length, BAR_WIDTH_M * 1.2, BAR_WIDTH_M * 1.2)
+        self._label.position = start - R[:, 0] * 0.01
+        self._label.text = text
+
+    @staticmethod
+    def _place(handle: viser.BoxHandle, center: NDArray[np.float64], wxyz: NDArray) -> None:
+        handle.position = center
+        handle.wxyz = wxyz

@@ -1,0 +1,53 @@
+"""Make the README's pictures of the operator's view: one per modality, at the same moment.
+
+Seed 0's synthetic operator under full AR, 9 s into the trial (reaching over the bowl), at the
+Kinect's 640x480; headless Chromium takes each picture (needs ``apt-get install chromium``).
+
+    python docs/make_images.py [--out docs/images]
+"""
+
+from __future__ import annotations
+
+import argparse
+from dataclasses import replace
+from pathlib import Path
+
+import cv2
+
+from arteleop.ar_features import MODALITIES, OperatorView, ViewConfig
+from arteleop.ar_features.browser import browser_page
+from arteleop.operator import synthetic_source
+from arteleop.scene import RemoteSite
+from arteleop.teleop import TrialConfig, display_frame_at, view_assets
+
+MOMENT_S = 9.0
+WIDTH_PX = 800
+"""The pictures are scaled down to this width for the README."""
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--out", type=Path, default=Path(__file__).parent / "images")
+    out: Path = parser.parse_args().out
+    out.mkdir(parents=True, exist_ok=True)
+    config = TrialConfig(seed=0)
+    with RemoteSite(config.site) as site:
+        ws = site.config.workspace
+        source = synthetic_source(ws.bowl, site.observe().gripper_m, config.controller.mapping, 0)
+        frame = display_frame_at(source, config, MOMENT_S, site)
+        assets = view_assets(site)
+    with OperatorView(ViewConfig(port=0), assets) as view:
+        view.show(frame)
+        with browser_page(view.url) as page:
+            for name, cues in MODALITIES.items():
+                view.show(replace(frame, cues=cues))
+                path = out / f"view_{name}.png"
+                shot = page.screenshot(path)
+                scale = WIDTH_PX / shot.shape[1]
+                small = cv2.resize(shot, None, fx=scale, fy=scale, interpolation=cv2.INTER_AREA)
+                cv2.imwrite(str(path), cv2.cvtColor(small, cv2.COLOR_RGB2BGR))
+                print(f"wrote {path}")
+
+
+if __name__ == "__main__":
+    main()
