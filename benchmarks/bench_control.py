@@ -123,7 +123,7 @@ def trial_timing(seconds: float, seeds: int) -> None:
             f"| {max(v):.1f} | {np.median(v) / base:.2f} |"
         )
     assert kept is not None
-    print(f"\n## Where a simulated second goes (arteleop, seed 0, {kept.outcome})\n")
+    print(f"\n## Where a simulated second goes (arteleop, seed 0, {kept.outcome.value})\n")
     _stages(kept)
     ceiling = physics_replay(seconds)
     print(
