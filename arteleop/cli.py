@@ -99,7 +99,7 @@ def operator_check(cmd: OperatorCheckCommand) -> int:
 
 @dataclass(frozen=True)
 class AnalyzeCommand:
-    """Analyse a study's files (STUDY.md §5) and write tables, figures and report.md."""
+    """Analyse a study's files (docs/study.md §5) and write tables, figures and report.md."""
 
     source: tyro.conf.Positional[Path]
     """run folder (trials.csv, participants.csv, questionnaire.csv, trajectories/) or trials CSV"""

@@ -1,4 +1,4 @@
-"""The study's statistics, as STUDY.md §5 describes the thesis's analysis, plus options.
+"""The study's statistics, as docs/study.md §5 describes the thesis's analysis, plus options.
 
 Default (the thesis): per modality and measure, drop the participant with the maximum and the
 one with the minimum value; test each distribution for normality with Lilliefors' test; compare

@@ -33,7 +33,7 @@ from arteleop.analysis.statistics import (
 )
 
 EXPERTISE_KINDS = {"avr": "avr_hours", "games": "games_hours"}
-EXPERT_MIN_BUCKET = 2  # at least two hours a week (STUDY.md §4)
+EXPERT_MIN_BUCKET = 2  # at least two hours a week (docs/study.md §4)
 
 
 @dataclass
@@ -51,7 +51,7 @@ class AnalysisResult:
 
 
 def analyse(study: StudyData, options: AnalysisOptions | None = None) -> AnalysisResult:
-    """The thesis's analysis (STUDY.md §5) with the given options."""
+    """The thesis's analysis (docs/study.md §5) with the given options."""
     options = options or AnalysisOptions()
     notes: list[str] = []
     trials = study.analysed_trials()

@@ -1,4 +1,4 @@
-"""The five AR modalities of the study (STUDY.md §3) as sets of AR layers."""
+"""The five AR modalities of the study (docs/study.md §3) as sets of AR layers."""
 
 from __future__ import annotations
 

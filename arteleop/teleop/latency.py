@@ -1,4 +1,4 @@
-"""End-to-end latency (STUDY.md's 'latency' of the whole loop): from an operator sample to the
+"""End-to-end latency (docs/study.md §7, for the whole loop): from an operator sample to the
 first display frame that shows it.
 
 - Simulated: at each camera frame's capture, its time minus the newest sample acting on the arm

@@ -98,7 +98,7 @@ def test_real_time_trial_shows_every_camera_frame_and_measures_its_latency(
     assert np.all(np.diff(times) >= 1 / config.rates.camera_hz - 1e-9)
     assert min(display.sizes) > 1000  # the table fills most of the 80x60 strided cloud
     stages = {s.stage: s for s in result.stages}
-    # Every stage of STUDY.md section 7 reports service time and latency.
+    # Every stage of docs/study.md section 7 reports service time and latency.
     for stage in ("operator_input", "reconstruction", "mapping", "ik", "control_tick",
                   "trajectory", "physics", "camera", "point_cloud", "display"):  # fmt: skip
         assert stages[stage].rounds > 0 and stages[stage].latency_median_ms > 0, stage
