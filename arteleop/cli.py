@@ -3,20 +3,31 @@
 from __future__ import annotations
 
 import contextlib
+import math
 import sys
-from collections.abc import Callable
+import time
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any, Literal
 
 import tyro
 
-from arteleop.errors import ArteleopError
+from arteleop.errors import ArteleopError, ConfigurationError
 
 if TYPE_CHECKING:
     from arteleop.operator import SyntheticSource
     from arteleop.scene import HeadCameraConfig, RemoteSite
-    from arteleop.teleop import TrialConfig
+    from arteleop.teleop import TrialConfig, TrialResult
+
+
+Modality = Literal["none", "manipulation", "embodiment", "task", "full"]
+"""The AR modalities (docs/study.md §3), as the command line offers them."""
+
+
+def _check_seed(seed: int) -> None:
+    if seed < 0:
+        raise ConfigurationError(f"--seed {seed}: a seed is a whole number, 0 or more.")
 
 
 @dataclass(frozen=True)
@@ -39,10 +50,14 @@ class SceneCommand(CameraSize):
     """Render one head-camera frame of the remote site at rest and track the bowl."""
 
     out: Annotated[
-        Path, tyro.conf.arg(help="folder for rgb.png, depth.png (16-bit mm) and cloud.ply")
+        Path,
+        tyro.conf.arg(
+            help="folder for rgb.png, depth.png (16-bit mm), depth_vis.png (false colour) and "
+            "cloud.ply (base frame, m)"
+        ),
     ] = field(default=Path("arteleop-scene"))
     seed: int = 0
-    """seed of the depth noise"""
+    """seed of the depth noise (0 or more)"""
     noise: bool = True
     """add Kinect-like depth noise and quantisation"""
 
@@ -50,6 +65,7 @@ class SceneCommand(CameraSize):
 def scene(cmd: SceneCommand) -> int:
     from arteleop.scene import DepthNoiseConfig, RemoteSite, SiteConfig, write_snapshot
 
+    _check_seed(cmd.seed)
     camera = cmd.camera_config(noise=DepthNoiseConfig(enabled=cmd.noise, quantize=cmd.noise))
     with RemoteSite(SiteConfig(camera=camera, seed=cmd.seed)) as site:
         snap = write_snapshot(site, cmd.out)
@@ -80,6 +96,7 @@ class OperatorCheckCommand:
 
 
 def operator_check(cmd: OperatorCheckCommand) -> int:
+    from arteleop.analysis import path_length
     from arteleop.operator import load_recording, reconstruct
 
     rec = load_recording(cmd.file)
@@ -92,8 +109,16 @@ def operator_check(cmd: OperatorCheckCommand) -> int:
         f"rate          {rec.info.rate_hz:g} Hz in the sidecar, {measured_hz:.2f} Hz after filling"
     )
     print(f"gaps          {report.gaps} filled by slerp ({report.filled_samples} samples)")
+    print(
+        f"lost          {report.lost_samples} samples marked lost by the wearable (filled "
+        "for this summary; a replay loses them again)"
+    )
     print(f"renormalised  {report.renormalized} quaternions")
-    print(f"hand path     {traj.path_length_m():.3f} m (reconstructed pinch point, torso frame)")
+    length = path_length(traj.time_s, traj.hand_m)
+    print(
+        f"hand path     {length:.3f} m (reconstructed pinch point, torso frame, low-pass "
+        "filtered at 6 Hz as the analysis does: summed raw, sensor noise adds metres)"
+    )
     return 0
 
 
@@ -147,31 +172,58 @@ class TrialCommand(CameraSize):
     """Run one pick-and-place trial and print its outcome; headless unless --view."""
 
     operator: str = "synthetic"
-    """'synthetic', or a wearable recording's CSV"""
-    modality: str = "full"
-    """none, manipulation, embodiment, task or full"""
+    """'synthetic' (a simulated participant), or the path of a wearable recording's CSV"""
+    modality: Modality = "full"
+    """AR modality shown to the operator (docs/study.md §3)"""
     seed: int = 0
+    """seed of every random source of the trial (0 or more)"""
     delay_ms: float = 0.0
-    """one-way network delay"""
+    """one-way network delay between operator and robot (ms)"""
     timeout_s: float = 120.0
+    """simulated time after which the trial ends as a timeout (s)"""
     realtime: bool = False
     """pace the loop with the wall clock"""
     view: bool = False
     """serve the operator's view (point cloud and AR layers) in the browser, in real time"""
+    exit_when_done: bool = False
+    """with --view: stop when the trial ends (else the view keeps its last frame until Ctrl-C)"""
     host: str = "127.0.0.1"
-    """interface for --view; 0.0.0.0 lets other machines connect"""
+    """interface for --view; 0.0.0.0 lets other machines connect (and drive the robot)"""
     port: int = 8080
-    """port for --view"""
+    """port for --view; the next free one if it is taken"""
+    quiet: bool = False
+    """print the result only, no progress"""
+
+
+def _check_trial(cmd: TrialCommand) -> None:
+    _check_seed(cmd.seed)
+    if not (math.isfinite(cmd.timeout_s) and cmd.timeout_s > 0):
+        raise ConfigurationError(
+            f"--timeout-s {cmd.timeout_s}: give the trial a positive simulated time (s)."
+        )
+    if not (math.isfinite(cmd.delay_ms) and cmd.delay_ms >= 0):
+        raise ConfigurationError(f"--delay-ms {cmd.delay_ms}: give a delay of 0 ms or more.")
+    if 2 * cmd.delay_ms / 1000 >= cmd.timeout_s:  # the operator sees a response a round trip on
+        raise ConfigurationError(
+            f"--delay-ms {cmd.delay_ms:g}: the operator would see the robot respond "
+            f"{2 * cmd.delay_ms / 1000:g} s after moving (the round trip), after --timeout-s "
+            f"{cmd.timeout_s:g} s; no trial can finish. Shorten the delay or lengthen the timeout."
+        )
+    if cmd.operator != "synthetic" and not Path(cmd.operator).is_file():
+        raise ConfigurationError(
+            f"--operator {cmd.operator}: no such file. Give 'synthetic' (a simulated "
+            "participant) or the path of a wearable recording's CSV."
+        )
 
 
 def trial(cmd: TrialCommand) -> int:
-    import numpy as np
 
     from arteleop.ar_features import OperatorView, ViewConfig
     from arteleop.operator import RecordingSource, load_recording
     from arteleop.scene import RemoteSite, SiteConfig
     from arteleop.teleop import NetworkConfig, TrialConfig, run_trial, view_assets
 
+    _check_trial(cmd)
     config = TrialConfig(
         modality=cmd.modality, seed=cmd.seed, timeout_s=cmd.timeout_s,
         realtime=cmd.realtime or cmd.view, render_camera=cmd.view,
@@ -188,8 +240,23 @@ def trial(cmd: TrialCommand) -> int:
         if cmd.view:
             view_config = ViewConfig(host=cmd.host, port=cmd.port)
             display = stack.enter_context(OperatorView(view_config, view_assets(site)))
+            for notice in display.notices():
+                print(notice, file=sys.stderr)
             print(f"operator's view at {display.url}")
-        result = run_trial(source, config, site, display)
+        with _progress(config.timeout_s, "trial", cmd.quiet) as progress:
+            result = run_trial(source, config, site, display, progress)
+        _print_trial(result)
+        if display is not None and not cmd.exit_when_done:
+            print(f"the trial is over; {display.url} shows its last frame until Ctrl-C")
+            with contextlib.suppress(KeyboardInterrupt):
+                while True:
+                    time.sleep(1.0)
+    return 0 if result.placed else 1
+
+
+def _print_trial(result: TrialResult) -> None:
+    import numpy as np
+
     print(f"outcome              {result.outcome.value}")
     print(f"grasped, placed      {result.grasped}, {result.placed}")
     print(f"completion time      {result.completion_time_s:.2f} s")
@@ -200,39 +267,59 @@ def trial(cmd: TrialCommand) -> int:
         lat = result.latency_wall_ms
         print(f"latency to display   {np.median(lat):.1f} ms median, "
               f"{np.percentile(lat, 95):.1f} ms p95 (sample to the view's update)")  # fmt: skip
-    return 0 if result.placed else 1
 
 
 @dataclass(frozen=True)
 class OperatorSynthCommand:
     """Run one synthetic trial headless and write the operator's wearable recording."""
 
-    modality: str = "full"
-    """none, manipulation, embodiment, task or full"""
+    modality: Modality = "full"
+    """AR modality shown to the synthetic operator (docs/study.md §3)"""
     seed: int = 0
+    """seed of every random source of the trial (0 or more)"""
     out: Path = Path("synthetic.csv")
     """recording CSV (its JSON sidecar is written beside it)"""
+    quiet: bool = False
+    """print the result only, no progress"""
 
 
 def operator_synth(cmd: OperatorSynthCommand) -> int:
-    from arteleop.operator import Recording, RecordingInfo, write_recording
+    from arteleop.operator import sidecar_path, write_recording
     from arteleop.scene import RemoteSite
     from arteleop.teleop import TrialConfig, run_trial
 
+    _check_seed(cmd.seed)
     config = TrialConfig(modality=cmd.modality, seed=cmd.seed)
     with RemoteSite(config.site) as site:
         source = _synthetic_source(site, config)
-        result = run_trial(source, config, site)
-    rec = source.recorded()
-    info = RecordingInfo(
-        rate_hz=source.wearable.config.rate_hz,
-        arm=source.arm,
-        calibration=source.calibration,
-        subject_id=f"synthetic-{cmd.modality}-{cmd.seed}",
+        with _progress(config.timeout_s, "trial", cmd.quiet) as progress:
+            result = run_trial(source, config, site, progress=progress)
+    rec = source.recording(subject_id=f"synthetic-{cmd.modality}-{cmd.seed}")
+    write_recording(rec, cmd.out)
+    print(f"trial outcome {result.outcome.value}")
+    print(f"wrote {cmd.out} and its sidecar {sidecar_path(cmd.out)}")
+    print(
+        f"{len(rec.time_s)} samples at {rec.info.rate_hz:g} Hz, {int(rec.lost.sum())} of them "
+        "lost by the wearable in flight (rows with the time only, lost again on replay)"
     )
-    write_recording(Recording(rec.time_s, rec.sensor_quat_wxyz, rec.grip, info), cmd.out)
-    print(f"trial outcome {result.outcome.value}; wrote {len(rec.time_s)} samples to {cmd.out}")
     return 0
+
+
+@contextlib.contextmanager
+def _progress(total_s: float, what: str, quiet: bool) -> Iterator[Callable[[float], None] | None]:
+    """A progress bar over simulated seconds, on stderr; nothing with --quiet."""
+    if quiet:
+        yield None
+        return
+    from tqdm import tqdm
+
+    with tqdm(total=round(total_s), desc=what, unit="s simulated", leave=False) as bar:
+
+        def update(t_s: float) -> None:
+            if int(t_s) > bar.n:
+                bar.update(int(t_s) - bar.n)
+
+        yield update
 
 
 def _synthetic_source(site: RemoteSite, config: TrialConfig) -> SyntheticSource:
@@ -246,41 +333,64 @@ def _synthetic_source(site: RemoteSite, config: TrialConfig) -> SyntheticSource:
 
 Command = tuple[type, Callable[[Any], int]]
 COMMANDS: dict[str, Command] = {
+    "trial": (TrialCommand, trial),
     "scene": (SceneCommand, scene),
     "analyze": (AnalyzeCommand, analyze),
-    "trial": (TrialCommand, trial),
 }
 GROUPS: dict[str, dict[str, Command]] = {
     "operator": {
-        "check": (OperatorCheckCommand, operator_check),
         "synth": (OperatorSynthCommand, operator_synth),
+        "check": (OperatorCheckCommand, operator_check),
     }
 }
-DESCRIPTION = (
-    "arteleop: study Augmented Reality in robot teleoperation, in simulation. "
-    "Command groups: 'arteleop operator check FILE.csv' validates a wearable recording; "
-    "'arteleop operator synth --modality M --seed N --out FILE.csv' records a synthetic operator."
-)
+OVERVIEW = """\
+arteleop: study Augmented Reality in robot teleoperation, in simulation (docs/study.md).
+
+commands:
+  trial            one pick-and-place trial, by a synthetic operator or a recording;
+                   --view serves the operator's view with its AR layers in the browser
+  scene            render one head-camera frame, write it, and track the bowl
+  operator synth   one synthetic trial, written as the operator's wearable recording
+  operator check   validate a wearable recording and summarise it
+  analyze          the study's statistics, figures and report from its CSV files
+
+'arteleop COMMAND --help' lists a command's options."""
 
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the `arteleop` command."""
     argv = sys.argv[1:] if argv is None else list(argv)
-    if argv and argv[0] in GROUPS:
+    if not argv or argv[0] in ("-h", "--help"):
+        print(OVERVIEW, file=sys.stdout if argv else sys.stderr)
+        return 0 if argv else 2
+    if argv[0] in GROUPS:
         commands, prog, args = GROUPS[argv[0]], f"arteleop {argv[0]}", argv[1:]
     else:
         commands, prog, args = COMMANDS, "arteleop", argv
-    cmd = tyro.extras.subcommand_cli_from_dict(
-        {name: cfg for name, (cfg, _) in commands.items()},
-        prog=prog,
-        args=args,
-        description=DESCRIPTION,
-    )
-    run = next(fn for cfg, fn in commands.values() if isinstance(cmd, cfg))
     try:
+        cmd = tyro.extras.subcommand_cli_from_dict(
+            {name: cfg for name, (cfg, _) in commands.items()},
+            prog=prog,
+            args=args,
+            description=OVERVIEW,
+        )
+        run = next(fn for cfg, fn in commands.values() if isinstance(cmd, cfg))
         return run(cmd)
     except ArteleopError as err:
         print(f"arteleop: error: {err}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("arteleop: interrupted", file=sys.stderr)
+        return 130
+    except ImportError as err:
+        if "libusb" not in str(err):
+            raise
+        print(
+            "arteleop: error: open3d needs the system library libusb-1.0, which is missing. "
+            "Install it: 'apt-get install libusb-1.0-0' on Debian or Ubuntu, 'dnf install "
+            "libusbx' on Fedora, 'brew install libusb' on macOS.",
+            file=sys.stderr,
+        )
         return 2
 
 

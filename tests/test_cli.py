@@ -17,6 +17,10 @@ def test_scene_command_writes_the_three_files(
     depth = cv2.imread(str(tmp_path / "depth.png"), cv2.IMREAD_UNCHANGED)
     cloud = o3d.io.read_point_cloud(str(tmp_path / "cloud.ply"))
     assert rgb.shape == (480, 640, 3)
+    vis = cv2.imread(str(tmp_path / "depth_vis.png"))
+    assert vis.shape == (480, 640, 3)
+    assert (vis[depth == 0] == 0).all()  # no return: black
+    assert (vis[depth > 0].max(axis=1) > 100).mean() > 0.99  # returns: in colour
     assert depth.dtype == np.uint16 and depth.shape == (480, 640)
     valid = depth[depth > 0]
     assert 800 <= valid.min() and valid.max() <= 4000  # millimetres, in the sensor's range
@@ -46,8 +50,11 @@ def test_operator_check_summarises_a_valid_recording(
     out = capsys.readouterr().out
     assert "duration      5.00 s, 501 samples" in out
     assert "gaps          0 filled" in out
+    # Ideal sensors: the filtered reconstruction's path is the true path of the smooth motion
+    # (1.5 s out and 1.5 s back, after the move from the calibration posture).
     true_path = np.linalg.norm(np.diff(syn.hand_m, axis=0), axis=1).sum()
-    assert f"hand path     {true_path:.3f} m" in out
+    shown = float(out.split("hand path")[1].split("m (")[0])
+    assert shown == pytest.approx(true_path, rel=0.01)
 
 
 def test_operator_check_fails_on_an_invalid_recording(

@@ -15,6 +15,7 @@ from numpy.typing import NDArray
 
 from arteleop.ar_features.assets import ViewAssets
 from arteleop.ar_features.display_frame import DisplayFrame
+from arteleop.ar_features.host import check_host
 from arteleop.ar_features.layer import Layer
 from arteleop.ar_features.layers import (
     BeamLayer,
@@ -69,6 +70,8 @@ class OperatorView(Closeable):
 
     def __init__(self, config: ViewConfig | None = None, assets: ViewAssets | None = None) -> None:
         self.config = config = config or ViewConfig()
+        self.host = check_host(config.host)
+        """Whether only this machine can connect, and where to open the view."""
         self.server = server = viser.ViserServer(host=config.host, port=config.port, verbose=False)
         server.scene.set_up_direction("+z")  # Baxter's base frame
         server.gui.configure_theme(show_logo=False, show_share_button=False)
@@ -89,8 +92,20 @@ class OperatorView(Closeable):
 
     @property
     def url(self) -> str:
-        """Address to open in a browser."""
-        return f"http://{self.server.get_host()}:{self.server.get_port()}"
+        """Address to open in a browser (a real address of this machine for 0.0.0.0)."""
+        return f"http://{self.host.addresses[0]}:{self.server.get_port()}"
+
+    def notices(self) -> list[str]:
+        """What the user should know about where the view is served, one line each."""
+        out = []
+        if self.config.port and self.server.get_port() != self.config.port:
+            out.append(f"port {self.config.port} is taken; serving on {self.server.get_port()}")
+        if not self.host.loopback:
+            out.append(
+                f"warning: the view is served on {self.config.host}: anyone on that network "
+                "can see it and drive the robot"
+            )
+        return out
 
     @property
     def cues(self) -> ArCues | None:

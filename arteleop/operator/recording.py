@@ -6,8 +6,10 @@ CSV columns, in this order (header line required)::
     forearm_qw, ..., forearm_qz, hand_qw, ..., hand_qz, grip
 
 Quaternions are each IMU's orientation in its earth frame, (w, x, y, z), unit length. ``grip`` is
-0 (open) to 1 (pinched). The sidecar gives the rate, the arm's segment lengths, the calibration
-posture held at the start, the subject id and the units. See docs/recording-format.md.
+0 (open) to 1 (pinched). Version 2: a sample the wearable lost in flight is a row with its time
+and every other cell empty, so that a replay loses it too. The sidecar gives the rate, the arm's
+segment lengths, the calibration posture held at the start, the subject id and the units. See
+docs/recording-format.md.
 """
 
 from __future__ import annotations
@@ -32,7 +34,9 @@ COLUMNS: tuple[str, ...] = (
     "grip",
 )
 FORMAT_NAME = "arteleop-wearable-recording"
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2
+"""2: lost samples may be marked (a row with the time only). Version 1 files read unchanged."""
+READ_VERSIONS = (1, 2)
 UNITS = {
     "time_s": "s",
     "quaternions": "unit quaternion (w, x, y, z): IMU orientation in the earth frame",
@@ -84,11 +88,13 @@ class LoadReport:
         filled_samples: Samples inserted by slerp into short gaps.
         gaps: Number of gaps filled.
         renormalized: Quaternions rescaled to unit length.
+        lost_samples: Rows marking a sample the wearable lost (version 2).
     """
 
     filled_samples: int = 0
     gaps: int = 0
     renormalized: int = 0
+    lost_samples: int = 0
 
 
 @dataclass(frozen=True)
@@ -101,6 +107,9 @@ class Recording:
         grip: (N,) pinch grip, 0 open .. 1 pinched.
         info: Rate, arm, calibration posture, subject.
         report: What loading repaired (all zeros for recordings made in memory).
+        lost: (N,) samples the wearable lost in flight. Their values are filled by slerp (grip
+            linearly) from the samples around them, for whole-recording use; a replay sends them
+            as lost, as the live wearable did. None: nothing lost.
     """
 
     time_s: NDArray[np.float64]
@@ -108,18 +117,42 @@ class Recording:
     grip: NDArray[np.float64]
     info: RecordingInfo
     report: LoadReport = field(default_factory=LoadReport)
+    lost: NDArray[np.bool_] | None = None
 
     def __post_init__(self) -> None:
         n = len(self.time_s)
-        if np.shape(self.sensor_quat_wxyz) != (n, 3, 4) or np.shape(self.grip) != (n,):
+        lost = np.zeros(n, bool) if self.lost is None else self.lost
+        if (
+            np.shape(self.sensor_quat_wxyz) != (n, 3, 4)
+            or np.shape(self.grip) != (n,)
+            or np.shape(lost) != (n,)
+        ):
             raise ConfigurationError(
                 f"Recording arrays disagree: time {np.shape(self.time_s)}, quaternions "
-                f"{np.shape(self.sensor_quat_wxyz)} (need (N, 3, 4)), grip {np.shape(self.grip)}"
+                f"{np.shape(self.sensor_quat_wxyz)} (need (N, 3, 4)), grip {np.shape(self.grip)}, "
+                f"lost {np.shape(lost)}"
             )
         for name in ("time_s", "sensor_quat_wxyz", "grip"):
             arr = np.array(getattr(self, name), dtype=np.float64)
             arr.setflags(write=False)
             object.__setattr__(self, name, arr)
+        lost = np.array(lost, dtype=bool)
+        lost.setflags(write=False)
+        object.__setattr__(self, "lost", lost)
+
+    @classmethod
+    def with_lost(
+        cls,
+        time_s: NDArray[np.float64],
+        sensor_quat_wxyz: NDArray[np.float64],
+        grip: NDArray[np.float64],
+        lost: NDArray[np.bool_],
+        info: RecordingInfo,
+    ) -> Recording:
+        """A recording whose ``lost`` samples hold no values yet: they are filled from the
+        samples around them."""
+        quats, grip = fill_lost(time_s, sensor_quat_wxyz, grip, lost)
+        return cls(time_s, quats, grip, info, lost=lost)
 
     @property
     def duration_s(self) -> float:
@@ -144,6 +177,30 @@ class LoaderConfig:
     rate_tolerance: float = 0.05
 
 
+def fill_lost(
+    time_s: NDArray[np.float64],
+    quats: NDArray[np.float64],
+    grip: NDArray[np.float64],
+    lost: NDArray[np.bool_],
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Quaternions by slerp and grip linearly at the ``lost`` samples, from the kept ones (held
+    before the first and after the last kept sample)."""
+    quats, grip = np.array(quats, dtype=np.float64), np.array(grip, dtype=np.float64)
+    lost = np.asarray(lost, dtype=bool)
+    if not lost.any():
+        return quats, grip
+    kept = ~lost
+    if kept.sum() < 2:
+        raise RecordingError("a recording needs at least 2 samples that were not lost")
+    t_kept = time_s[kept]
+    t_lost = np.clip(time_s[lost], t_kept[0], t_kept[-1])
+    for k in range(3):
+        slerp = Slerp(t_kept, Rotation.from_quat(quats[kept, k], scalar_first=True))
+        quats[lost, k] = slerp(t_lost).as_quat(scalar_first=True)
+    grip[lost] = np.interp(t_lost, t_kept, grip[kept])
+    return quats, grip
+
+
 def sidecar_path(csv_path: Path) -> Path:
     """The JSON sidecar that goes with ``csv_path``."""
     return csv_path.with_suffix(".json")
@@ -154,11 +211,15 @@ def write_recording(recording: Recording, csv_path: Path) -> None:
     csv_path = Path(csv_path)
     csv_path.parent.mkdir(parents=True, exist_ok=True)
     q = recording.sensor_quat_wxyz.reshape(len(recording.time_s), 12)
+    lost_row = [""] * (len(COLUMNS) - 1)
     with csv_path.open("w", newline="") as f:
         writer = csv.writer(f)
         writer.writerow(COLUMNS)
-        for t, quats, g in zip(recording.time_s, q, recording.grip, strict=True):
-            writer.writerow([repr(float(t)), *(repr(float(v)) for v in quats), repr(float(g))])
+        for t, quats, g, lost in zip(
+            recording.time_s, q, recording.grip, recording.lost, strict=True
+        ):
+            values = lost_row if lost else [*(repr(float(v)) for v in quats), repr(float(g))]
+            writer.writerow([repr(float(t)), *values])
     info = recording.info
     sidecar = {
         "format": FORMAT_NAME,
@@ -180,11 +241,17 @@ def load_recording(csv_path: Path, config: LoaderConfig | None = None) -> Record
     """Load and check a recording; raise :class:`RecordingError` naming the file, line and value."""
     config = config or LoaderConfig()
     csv_path = Path(csv_path)
-    info = _load_sidecar(sidecar_path(csv_path), csv_path)
     if not csv_path.is_file():
         raise RecordingError(f"{csv_path}: no such file")
+    if csv_path.stat().st_size == 0:
+        raise RecordingError(
+            f"{csv_path} is empty: a recording has a header line and at least 2 samples "
+            "(docs/recording-format.md)."
+        )
+    info = _load_sidecar(sidecar_path(csv_path), csv_path)
     rows: list[list[float]] = []
     lines: list[int] = []
+    lost: list[bool] = []
     renormalized = 0
     with csv_path.open(newline="") as f:
         reader = csv.reader(f)
@@ -194,7 +261,11 @@ def load_recording(csv_path: Path, config: LoaderConfig | None = None) -> Record
             line = reader.line_num
             if not row or all(not c.strip() for c in row):
                 continue
-            values, fixed = _parse_row(csv_path, line, row, config)
+            marked = len(row) == len(COLUMNS) and all(not c.strip() for c in row[1:])
+            if marked:  # version 2: the wearable lost this sample
+                values, fixed = [_parse_time(csv_path, line, row[0])] + [math.nan] * 13, 0
+            else:
+                values, fixed = _parse_row(csv_path, line, row, config)
             renormalized += fixed
             if rows and values[0] <= rows[-1][0]:
                 raise RecordingError(
@@ -203,15 +274,23 @@ def load_recording(csv_path: Path, config: LoaderConfig | None = None) -> Record
                 )
             rows.append(values)
             lines.append(line)
-    if len(rows) < 2:
-        raise RecordingError(f"{csv_path}: {len(rows)} sample(s); a recording needs at least 2.")
+            lost.append(marked)
+    if len(rows) - sum(lost) < 2:
+        raise RecordingError(
+            f"{csv_path}: {len(rows) - sum(lost)} sample(s); a recording needs at least 2."
+        )
     data = np.array(rows)
     time, quats, grip = data[:, 0], data[:, 1:13].reshape(-1, 3, 4), data[:, 13]
     _check_rate(csv_path, time, info.rate_hz, config)
+    quats, grip = fill_lost(time, quats, grip, np.array(lost))
+    recorded_time = time
     time, quats, grip, filled, gaps = _fill_gaps(
         csv_path, lines, time, quats, grip, info.rate_hz, config
     )
-    return Recording(time, quats, grip, info, LoadReport(filled, gaps, renormalized))
+    marks = np.zeros(len(time), bool)
+    marks[np.isin(time, recorded_time)] = lost  # samples filled into gaps are not marked lost
+    report = LoadReport(filled, gaps, renormalized, int(sum(lost)))
+    return Recording(time, quats, grip, info, report, marks)
 
 
 def _check_header(path: Path, header: list[str]) -> None:
@@ -227,6 +306,20 @@ def _check_header(path: Path, header: list[str]) -> None:
     raise RecordingError(
         f"{path}, line 1 (header): columns are out of order. Expected: {', '.join(COLUMNS)}"
     )
+
+
+def _parse_time(path: Path, line: int, text: str) -> float:
+    try:
+        t = float(text)
+    except ValueError:
+        raise RecordingError(
+            f"{path}, line {line}, column time_s: {text.strip()!r} is not a number"
+        ) from None
+    if not math.isfinite(t):
+        raise RecordingError(
+            f"{path}, line {line}, column time_s: {text.strip()!r}; expected a finite number"
+        )
+    return t
 
 
 def _parse_row(
@@ -329,10 +422,10 @@ def _load_sidecar(path: Path, csv_path: Path) -> RecordingInfo:
         data: dict[str, Any] = json.loads(path.read_text())
     except json.JSONDecodeError as err:
         raise RecordingError(f"{path}, line {err.lineno}: not valid JSON ({err.msg})") from None
-    if data.get("format") != FORMAT_NAME or data.get("version") != FORMAT_VERSION:
+    if data.get("format") != FORMAT_NAME or data.get("version") not in READ_VERSIONS:
         raise RecordingError(
             f"{path}: format {data.get('format')!r} version {data.get('version')!r}; expected "
-            f"{FORMAT_NAME!r} version {FORMAT_VERSION}"
+            f"{FORMAT_NAME!r} version {' or '.join(map(str, READ_VERSIONS))}"
         )
     try:
         posture = data["calibration_posture"]

@@ -11,7 +11,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from arteleop.ar_features import DisplayFrame
 from arteleop.operator.arm_model import ArmModel, segment_rotations, segments_for_hand_pose
-from arteleop.operator.recording import CalibrationPosture, Recording
+from arteleop.operator.recording import CalibrationPosture, Recording, RecordingInfo
 from arteleop.operator.synthetic import (
     Expertise,
     OperatorParams,
@@ -19,7 +19,7 @@ from arteleop.operator.synthetic import (
     SyntheticOperator,
     TaskGeometry,
 )
-from arteleop.operator.wearable import WearableConfig, WearableSignals, WearableSimulator
+from arteleop.operator.wearable import WearableConfig, WearableSimulator
 
 if TYPE_CHECKING:
     from arteleop.robot.mapping import MappingConfig
@@ -66,7 +66,7 @@ class SyntheticSource:
         )
         self.wearable = WearableSimulator(wearable or WearableConfig(), rng)
         self._calibration_segments = segment_rotations(self.calibration.angles)
-        self._log: list[tuple[float, NDArray[np.float64], float]] = []
+        self._log: list[tuple[float, NDArray[np.float64] | None, float]] = []
 
     def sample(self, time_s: float, view: DisplayFrame) -> WearableSample | None:
         out = self.operator.step(time_s, view)
@@ -75,20 +75,27 @@ class SyntheticSource:
         else:
             segments = segments_for_hand_pose(self.arm, out.hand_m, out.hand_rotation)
         quats = self.wearable.sample(segments)
-        if quats is not None:
-            self._log.append((time_s, quats, out.grip))
+        self._log.append((time_s, quats, out.grip))
         return WearableSample(time_s, quats, out.grip, out.hand_m)
 
-    def recorded(self) -> WearableSignals:
-        """Everything the wearable delivered so far (lost packets absent), for a recording."""
-        t, q, g = zip(*self._log, strict=True) if self._log else ((), (), ())
-        return WearableSignals(
-            np.array(t), np.array(q).reshape(-1, 3, 4), np.array(g), self.wearable.dropped
-        )
+    def recording(self, subject_id: str) -> Recording:
+        """Every sample so far as a recording, the ones the wearable lost marked as lost, so
+        that replaying it sends the robot exactly what the live trial sent."""
+        n = len(self._log)
+        time_s = np.array([t for t, _, _ in self._log])
+        lost = np.array([q is None for _, q, _ in self._log], dtype=bool)
+        quats = np.full((n, 3, 4), np.nan)
+        for i, (_, q, _) in enumerate(self._log):
+            if q is not None:
+                quats[i] = q
+        grip = np.array([g for _, _, g in self._log])
+        info = RecordingInfo(self.wearable.config.rate_hz, self.arm, self.calibration, subject_id)
+        return Recording.with_lost(time_s, quats, grip, lost, info)
 
 
 class RecordingSource:
-    """Replays a recording open loop; it starts with the recording's calibration hold."""
+    """Replays a recording open loop; it starts with the recording's calibration hold. Samples
+    marked lost are sent as lost; gaps a real recording had are sent as the loader filled them."""
 
     def __init__(self, recording: Recording) -> None:
         self.recording = recording
@@ -103,6 +110,8 @@ class RecordingSource:
             return None
         while self._i + 1 < len(rec.time_s) and rec.time_s[self._i + 1] <= t + 1e-9:
             self._i += 1
+        if rec.lost[self._i]:  # lost in flight when recorded: lost again
+            return WearableSample(time_s, None, float("nan"))
         quats = rec.sensor_quat_wxyz[self._i]
         return WearableSample(time_s, quats, float(rec.grip[self._i]))
 

@@ -1,5 +1,9 @@
 """Baxter: description (URDF), PyBullet body, gripper, kinematics (pinocchio) and reach."""
 
+# First: it loads PyBullet without the banner PyBullet prints on import.
+from arteleop.robot import native_output  # noqa: F401
+
+# isort: split
 from arteleop.robot.baxter import ArmControlConfig, Baxter
 from arteleop.robot.command import ArmCommand
 from arteleop.robot.description import (

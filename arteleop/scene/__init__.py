@@ -1,5 +1,9 @@
 """The remote site: workspace, bowl, head RGB-D camera, point clouds, depth meshes, tracking."""
 
+# First: it loads PyBullet without the banner PyBullet prints on import.
+from arteleop.robot import native_output  # noqa: F401
+
+# isort: split
 from arteleop.scene.bowl import (
     GRASP_DEPTH_M,
     BowlSpec,

@@ -11,6 +11,7 @@ the gripper's :class:`ArmCommand`) -> ``TeleopController.physics_tick`` (the arm
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import replace
 
 import numpy as np
@@ -36,10 +37,12 @@ def run_trial(
     config: TrialConfig,
     site: RemoteSite | None = None,
     display: Display | None = None,
+    progress: Callable[[float], None] | None = None,
 ) -> TrialResult:
     """Run one trial to its end; builds the site from ``config.site`` unless one is given.
 
     With a ``display``, every camera frame is shown on it (this needs ``config.render_camera``).
+    ``progress`` is called with the simulated time (s) at every camera tick.
     """
     if display is not None and not config.render_camera:
         raise ConfigurationError(
@@ -48,7 +51,7 @@ def run_trial(
     own_site = site is None
     site = site or RemoteSite(config.site)
     try:
-        return _Loop(source, config, site, display).run()
+        return _Loop(source, config, site, display, progress).run()
     finally:
         if own_site:
             site.close()
@@ -85,8 +88,10 @@ class _Loop:
         config: TrialConfig,
         site: RemoteSite,
         display: Display | None,
+        progress: Callable[[float], None] | None = None,
     ) -> None:
         self.source, self.config, self.site = source, config, site
+        self._progress = progress
         ws = site.config.workspace
         self.link: NetworkLink[WearableSample] = NetworkLink(
             config.network, np.random.default_rng(config.seed)
@@ -138,6 +143,8 @@ class _Loop:
                 outcome = self.monitor.camera(t, state, site.capture)
                 if outcome is not None:
                     return self._result(outcome, t)
+                if self._progress is not None:
+                    self._progress(t)
             if tick.control and not self._control(t):
                 return self._result(Outcome.OPERATOR_STOPPED, t)
             if tick.physics:
@@ -149,17 +156,22 @@ class _Loop:
                     site.step()
 
     def _control(self, t: float) -> bool:
-        """One control tick; False once the operator has stopped."""
+        """One control tick; False once the operator has stopped before letting go of the bowl.
+
+        An operator who stops after the release (a recording that ends there) has done the task:
+        the robot holds while the bowl settles and is tracked.
+        """
         control, timer = self.control, self.timer
         frame = self.feed.seen_by_operator(t)
         created_wall = time.perf_counter()
         with timer.stage("operator_input"):
             sample = self.source.sample(t, frame)
-        if sample is None:
+        if sample is None and not self.monitor.released:
             return False
-        if self.config.realtime:
-            self.latency.sample_created(sample.time_s, created_wall)
-        self.link.send(sample.time_s, sample, t)
+        if sample is not None:
+            if self.config.realtime:
+                self.latency.sample_created(sample.time_s, created_wall)
+            self.link.send(sample.time_s, sample, t)
         with timer.stage("reconstruction"):
             for _, received in self.link.receive(t):
                 if received.sensor_quat_wxyz is None:

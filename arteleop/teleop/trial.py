@@ -74,7 +74,7 @@ class Outcome(Enum):
     DROPPED = "dropped"
     """The bowl fell off the table."""
     OPERATOR_STOPPED = "operator_stopped"
-    """The operator source ran out (a recording ended) before the trial did."""
+    """The operator source ran out (a recording ended) before the bowl was released."""
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,55 @@
+"""Where the view can be served: checked before viser starts, which would otherwise retry
+ports forever on a host it cannot bind."""
+
+from __future__ import annotations
+
+import ipaddress
+import socket
+from dataclasses import dataclass
+
+from arteleop.errors import ArteleopError
+
+
+class ViewHostError(ArteleopError):
+    """The view cannot be served on the host asked for."""
+
+
+@dataclass(frozen=True)
+class HostCheck:
+    """What binding ``host`` means.
+
+    Attributes:
+        loopback: Only this machine can connect.
+        addresses: Addresses to open the view at, for the user.
+    """
+
+    loopback: bool
+    addresses: tuple[str, ...]
+
+
+def check_host(host: str) -> HostCheck:
+    """Resolve ``host`` and try binding it; raise :class:`ViewHostError` if it cannot be."""
+    try:
+        infos = socket.getaddrinfo(host, None, type=socket.SOCK_STREAM)
+    except OSError as err:
+        raise ViewHostError(
+            f"--host {host}: not a name or address of this machine ({err.strerror}). Use "
+            "127.0.0.1 (this machine only) or an address of one of its network interfaces."
+        ) from None
+    family, _, _, _, address = infos[0]
+    ip = address[0]
+    with socket.socket(family, socket.SOCK_STREAM) as probe:
+        try:
+            probe.bind((ip, 0))
+        except OSError as err:
+            raise ViewHostError(
+                f"--host {host}: this machine cannot serve on {ip} ({err.strerror}). Use "
+                "127.0.0.1 (this machine only) or an address of one of its network interfaces."
+            ) from None
+    unspecified = ipaddress.ip_address(ip).is_unspecified
+    loopback = ipaddress.ip_address(ip).is_loopback
+    addresses: tuple[str, ...] = (ip,)
+    if unspecified:  # every interface: name the ones a user can open
+        names = {i[4][0] for i in socket.getaddrinfo(socket.gethostname(), None, family)}
+        addresses = tuple(sorted(names - {ip})) or ("127.0.0.1",)
+    return HostCheck(loopback, addresses)

@@ -1,0 +1,179 @@
+"""The command line as a new user meets it: help, progress, bad input, Ctrl-C.
+
+Every bad input ends with one line naming the option and what it expects, exit code 2, never a
+traceback or a hang.
+"""
+
+from __future__ import annotations
+
+import signal
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+from typing import get_args
+
+import pytest
+
+from arteleop import cli
+from arteleop.ar_features import MODALITIES, OperatorView, ViewConfig
+from arteleop.cli import main
+
+ARTELEOP = [sys.executable, "-m", "arteleop.cli"]
+
+
+def _error(capsys: pytest.CaptureFixture[str], argv: list[str]) -> str:
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("arteleop: error: ") and "Traceback" not in err
+    return err.removeprefix("arteleop: error: ").strip()
+
+
+def test_bare_command_and_help_list_every_command(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main([]) == 2
+    bare = capsys.readouterr().err
+    assert main(["--help"]) == 0
+    helped = capsys.readouterr().out
+    for text in (bare, helped):
+        for command in ("trial", "scene", "operator synth", "operator check", "analyze"):
+            assert f"\n  {command} " in text, command
+
+
+def test_modality_is_offered_as_its_five_choices(capsys: pytest.CaptureFixture[str]) -> None:
+    assert get_args(cli.Modality) == tuple(MODALITIES)
+    with pytest.raises(SystemExit):
+        main(["trial", "--help"])
+    out = capsys.readouterr().out
+    assert "{none,manipulation,embodiment,task,full}" in out
+    for option in ("--seed", "--timeout-s", "--delay-ms", "--operator", "--quiet"):
+        line = next(line for line in out.splitlines() if option in line)
+        assert "(default" in line or line.strip() != option  # each has its description
+
+
+@pytest.mark.parametrize("command", [["trial"], ["scene"], ["operator", "synth"]])
+def test_negative_seed_is_refused(capsys: pytest.CaptureFixture[str], command: list[str]) -> None:
+    assert _error(capsys, [*command, "--seed", "-1"]) == (
+        "--seed -1: a seed is a whole number, 0 or more."
+    )
+
+
+@pytest.mark.parametrize(
+    ("option", "message"),
+    [
+        (["--timeout-s", "0"], "--timeout-s 0.0: give the trial a positive simulated time (s)."),
+        (["--delay-ms", "nan"], "--delay-ms nan: give a delay of 0 ms or more."),
+        (
+            ["--delay-ms", "100000"],
+            "--delay-ms 100000: the operator would see the robot respond 200 s after moving (the "
+            "round trip), after --timeout-s 120 s; no trial can finish. Shorten the delay or "
+            "lengthen the timeout.",
+        ),
+        (
+            ["--operator", "synthetc"],
+            "--operator synthetc: no such file. Give 'synthetic' (a simulated participant) or "
+            "the path of a wearable recording's CSV.",
+        ),
+    ],
+)
+def test_bad_trial_options_name_the_option(
+    capsys: pytest.CaptureFixture[str], option: list[str], message: str
+) -> None:
+    assert _error(capsys, ["trial", *option]) == message
+
+
+def test_an_empty_recording_is_called_empty(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    (tmp_path / "r.csv").write_text("")
+    message = _error(capsys, ["operator", "check", str(tmp_path / "r.csv")])
+    assert message.startswith(f"{tmp_path / 'r.csv'} is empty: a recording has a header line")
+
+
+def test_a_missing_recording_is_missing(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    assert _error(capsys, ["operator", "check", str(tmp_path / "nope.csv")]) == (
+        f"{tmp_path / 'nope.csv'}: no such file"
+    )
+
+
+@pytest.mark.parametrize("host", ["localhst", "10.255.255.1"])
+def test_a_host_that_cannot_be_bound_fails_at_once(host: str) -> None:
+    t0 = time.monotonic()
+    run = subprocess.run(
+        [*ARTELEOP, "trial", "--view", "--host", host, "--width-px", "160", "--height-px", "120"],
+        capture_output=True, text=True, timeout=60,
+    )  # fmt: skip
+    assert time.monotonic() - t0 < 30
+    assert run.returncode == 2 and "Traceback" not in run.stderr
+    assert f"arteleop: error: --host {host}: " in run.stderr
+
+
+def test_other_hosts_warn_and_a_taken_port_moves_on() -> None:
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen()
+        port = taken.getsockname()[1]
+        with OperatorView(ViewConfig(port=port)) as view:
+            assert view.notices() == [f"port {port} is taken; serving on {port + 1}"]
+    with OperatorView(ViewConfig(host="0.0.0.0", port=0)) as view:
+        (notice,) = view.notices()
+        assert "anyone on that network can see it and drive the robot" in notice
+        assert "0.0.0.0" not in view.url
+
+
+def test_a_missing_libusb_is_named(
+    capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    def missing(_: object) -> int:
+        raise ImportError("libusb-1.0.so.0: cannot open shared object file")
+
+    monkeypatch.setitem(cli.COMMANDS, "scene", (cli.SceneCommand, missing))
+    assert "'apt-get install libusb-1.0-0'" in _error(capsys, ["scene"])
+
+
+def test_pybullet_prints_no_banner() -> None:
+    run = subprocess.run(
+        [sys.executable, "-c", "import arteleop.teleop"], capture_output=True, text=True
+    )
+    assert run.stdout == run.stderr == ""
+
+
+def test_ctrl_c_ends_a_trial_cleanly() -> None:
+    proc = subprocess.Popen(
+        [*ARTELEOP, "trial", "--quiet"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+    )
+    time.sleep(6.0)  # into the trial
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=30)
+    assert proc.returncode == 130
+    assert err.strip() == "arteleop: interrupted"
+
+
+def test_progress_is_shown_unless_quiet() -> None:
+    args = [*ARTELEOP, "trial", "--timeout-s", "3", "--seed", "1"]
+    loud = subprocess.run(args, capture_output=True, text=True, timeout=120)
+    quiet = subprocess.run([*args, "--quiet"], capture_output=True, text=True, timeout=120)
+    assert "trial" in loud.stderr and "s simulated" in loud.stderr
+    assert quiet.stderr == ""
+    assert loud.stdout == quiet.stdout and "outcome              timeout" in quiet.stdout
+
+
+def test_the_view_keeps_serving_after_the_trial_until_ctrl_c() -> None:
+    proc = subprocess.Popen(
+        [*ARTELEOP, "trial", "--view", "--port", "0", "--timeout-s", "2", "--quiet",
+         "--width-px", "160", "--height-px", "120"],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+    )  # fmt: skip
+    assert proc.stdout is not None
+    lines = []
+    for line in proc.stdout:
+        lines.append(line)
+        if line.startswith("the trial is over"):
+            break
+    time.sleep(1.0)
+    assert proc.poll() is None  # still serving
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=30)
+    assert proc.returncode == 1  # the trial's outcome: a timeout
+    assert "Traceback" not in err
+    assert any(line.startswith("outcome              timeout") for line in lines)
