@@ -45,6 +45,24 @@ def quat_to_matrix(quat_wxyz: ArrayLike) -> NDArray[np.float64]:
     return pin.Quaternion(w, x, y, z).normalized().toRotationMatrix()
 
 
+def pybullet_pose_to_transform(
+    position_m: tuple[float, float, float], quat_xyzw: tuple[float, float, float, float]
+) -> NDArray[np.float64]:
+    """``T_parent_child`` from a pose as PyBullet returns it (its quaternion is (x, y, z, w),
+    unit length): the boundary conversion, on the site's per-tick path, in plain arithmetic
+    (a fifth of converting the quaternion and building the matrix through numpy)."""
+    x, y, z, w = quat_xyzw
+    px, py, pz = position_m
+    return np.array(
+        (
+            (1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w), px),
+            (2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w), py),
+            (2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y), pz),
+            (0.0, 0.0, 0.0, 1.0),
+        )
+    )
+
+
 def pose_to_transform(position_m: ArrayLike, quat_wxyz: ArrayLike) -> NDArray[np.float64]:
     """Build ``T_parent_child`` from a position (m) and a (w, x, y, z) quaternion."""
     return make_transform(quat_to_matrix(quat_wxyz), position_m)

@@ -1,6 +1,6 @@
 """Make the README's pictures of the operator's view: one per modality, at the same moment.
 
-Seed 0's synthetic operator under full AR, 9 s into the trial (reaching over the bowl), at the
+Seed 0's synthetic operator under full AR, 8 s into the trial (reaching over the bowl), at the
 Kinect's 640x480; headless Chromium takes each picture (needs ``apt-get install chromium``).
 
     python docs/make_images.py [--out docs/images]
@@ -20,7 +20,7 @@ from arteleop.operator import synthetic_source
 from arteleop.scene import RemoteSite
 from arteleop.teleop import TrialConfig, display_frame_at, view_assets
 
-MOMENT_S = 9.0
+MOMENT_S = 8.0
 WIDTH_PX = 800
 """The pictures are scaled down to this width for the README."""
 

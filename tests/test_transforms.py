@@ -5,6 +5,7 @@ from scipy.spatial.transform import Rotation
 from arteleop.transforms import (
     invert_transform,
     pose_to_transform,
+    pybullet_pose_to_transform,
     quat_to_matrix,
     quat_wxyz_to_xyzw,
     quat_xyzw_to_wxyz,
@@ -50,4 +51,16 @@ def test_quat_to_matrix_normalises_and_matches_scipy() -> None:
             quat_to_matrix(scaled),
             Rotation.from_quat(scaled, scalar_first=True).as_matrix(),
             atol=1e-12,
+        )
+
+
+def test_pybullet_poses_convert_as_the_general_path_does() -> None:
+    rng = np.random.default_rng(5)
+    for _ in range(200):
+        q_xyzw = rng.normal(size=4)
+        q_xyzw /= np.linalg.norm(q_xyzw)
+        p = rng.normal(size=3)
+        fast = pybullet_pose_to_transform(tuple(p), tuple(q_xyzw))
+        np.testing.assert_allclose(
+            fast, pose_to_transform(p, quat_xyzw_to_wxyz(q_xyzw)), atol=1e-12
         )

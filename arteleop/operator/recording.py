@@ -263,7 +263,8 @@ def load_recording(csv_path: Path, config: LoaderConfig | None = None) -> Record
                 continue
             marked = len(row) == len(COLUMNS) and all(not c.strip() for c in row[1:])
             if marked:  # version 2: the wearable lost this sample
-                values, fixed = [_parse_time(csv_path, line, row[0])] + [math.nan] * 13, 0
+                t = _parse_number(csv_path, line, "time_s", row[0])
+                values, fixed = [t] + [math.nan] * (len(COLUMNS) - 1), 0
             else:
                 values, fixed = _parse_row(csv_path, line, row, config)
             renormalized += fixed
@@ -308,18 +309,18 @@ def _check_header(path: Path, header: list[str]) -> None:
     )
 
 
-def _parse_time(path: Path, line: int, text: str) -> float:
+def _parse_number(path: Path, line: int, column: str, text: str) -> float:
     try:
-        t = float(text)
+        v = float(text)
     except ValueError:
         raise RecordingError(
-            f"{path}, line {line}, column time_s: {text.strip()!r} is not a number"
+            f"{path}, line {line}, column {column}: {text.strip()!r} is not a number"
         ) from None
-    if not math.isfinite(t):
+    if not math.isfinite(v):
         raise RecordingError(
-            f"{path}, line {line}, column time_s: {text.strip()!r}; expected a finite number"
+            f"{path}, line {line}, column {column}: {text.strip()!r}; expected a finite number"
         )
-    return t
+    return v
 
 
 def _parse_row(
@@ -329,19 +330,9 @@ def _parse_row(
         raise RecordingError(
             f"{path}, line {line}: {len(row)} fields, expected {len(COLUMNS)}: {', '.join(COLUMNS)}"
         )
-    values = []
-    for name, text in zip(COLUMNS, row, strict=True):
-        try:
-            v = float(text)
-        except ValueError:
-            raise RecordingError(
-                f"{path}, line {line}, column {name}: {text.strip()!r} is not a number"
-            ) from None
-        if not math.isfinite(v):
-            raise RecordingError(
-                f"{path}, line {line}, column {name}: {text.strip()!r}; expected a finite number"
-            )
-        values.append(v)
+    values = [
+        _parse_number(path, line, name, text) for name, text in zip(COLUMNS, row, strict=True)
+    ]
     fixed = 0
     for k, seg in enumerate(SEGMENTS):
         q = values[1 + 4 * k : 5 + 4 * k]

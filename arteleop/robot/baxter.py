@@ -28,9 +28,8 @@ from arteleop.robot.joints import (
 from arteleop.robot.kinematics import BaxterKinematics
 from arteleop.transforms import (
     invert_transform,
-    pose_to_transform,
+    pybullet_pose_to_transform,
     quat_wxyz_to_xyzw,
-    quat_xyzw_to_wxyz,
     transform_to_pose,
 )
 
@@ -177,7 +176,7 @@ class Baxter:
         if index < 0:
             return T_link_frame.copy()  # fixed to the base, which sits at the world origin
         state = self._client.getLinkState(self.body_id, index, computeForwardKinematics=True)
-        return pose_to_transform(state[4], quat_xyzw_to_wxyz(state[5])) @ T_link_frame
+        return pybullet_pose_to_transform(state[4], state[5]) @ T_link_frame
 
     def pybullet_ik(
         self,

@@ -28,7 +28,8 @@ class ArmCommand:
     def __post_init__(self) -> None:
         if self.q_rad is not None:
             q = frozen_array(self.q_rad)
-            if q.shape != (len(RIGHT_ARM_JOINTS),) or not np.all(np.isfinite(q)):
+            # The sum is finite only if every entry is: one check instead of seven.
+            if q.shape != (len(RIGHT_ARM_JOINTS),) or not np.isfinite(q.sum()):
                 raise ArmCommandError(
                     f"ArmCommand.q_rad must be {len(RIGHT_ARM_JOINTS)} finite joint positions "
                     f"(rad) in the order {RIGHT_ARM_JOINTS}; got {np.asarray(self.q_rad)!r}"

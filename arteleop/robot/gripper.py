@@ -93,8 +93,8 @@ class ElectricGripper:
 
     def closure(self) -> float:
         """Measured closure, 0..1, from the mean finger displacement."""
-        ql, qr = (self._client.getJointState(self._body, j)[0] for j in self._joints)
-        return float(np.clip(1.0 - 0.5 * (ql - qr) / self.stroke_m, 0.0, 1.0))
+        (ql, *_), (qr, *_) = self._client.getJointStates(self._body, self._joints)
+        return min(1.0, max(0.0, 1.0 - 0.5 * (ql - qr) / self.stroke_m))
 
     def pad_gap_m(self) -> float:
         """Current distance (m) between the two finger pads' collision surfaces."""

@@ -36,7 +36,7 @@ from arteleop.scene.render_process import RenderProcess
 from arteleop.scene.render_world import RenderWorld, SceneState
 from arteleop.scene.site_state import SiteState
 from arteleop.scene.workspace import Workspace
-from arteleop.transforms import pose_to_transform, quat_xyzw_to_wxyz
+from arteleop.transforms import pybullet_pose_to_transform
 
 
 @dataclass(frozen=True)
@@ -186,10 +186,9 @@ class RemoteSite(Closeable):
         """``T_base_bowl``: ground-truth pose of the bowl frame (centre of its bottom face)."""
         pos, quat = self._client.getBasePositionAndOrientation(self._bowl_id)
         # PyBullet reports the centre of mass; shift back to the bowl's own frame.
-        T_base_com = pose_to_transform(pos, quat_xyzw_to_wxyz(quat))
-        T_com_bowl = np.eye(4)
-        T_com_bowl[2, 3] = -self.config.workspace.bowl.center_of_mass_height_m
-        return T_base_com @ T_com_bowl
+        T = pybullet_pose_to_transform(pos, quat)
+        T[:3, 3] -= T[:3, 2] * self.config.workspace.bowl.center_of_mass_height_m
+        return T
 
     def place_bowl(
         self,

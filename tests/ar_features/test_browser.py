@@ -22,12 +22,14 @@ from arteleop.ar_features import (
     ViewConfig,
 )
 from arteleop.ar_features.browser import VIEWPORT, BrowserError, browser_page, chromium_path
+from arteleop.ar_features.layers.beam import BEAM_WIDTH_PX
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
 from arteleop.teleop import TrialConfig, display_frame_at, view_assets
 from tests.helpers import trial_source
 
-MOMENT_S = 9.0
-"""Seed 0 reaches over the bowl at the start then: bowl, gripper and target all in view."""
+MOMENT_S = 8.0
+"""Seed 0 reaches over the bowl at the start then, 10 cm above it: bowl, gripper, beam and target
+all in view."""
 PANEL_X_PX = 940
 """The project's panel covers the page right of this column."""
 
@@ -85,7 +87,16 @@ def test_layers_appear_under_full_and_not_under_none(
                 shots[name] = page.screenshot(tmp_path / f"{name}.png")
     none, full = _classes(shots["none"]), _classes(shots["full"])
     assert none == {"red": 0, "green": 0, "blue": 0}, none
-    assert full["red"] >= 50, full  # the beam
+    # The beam: red pixels along the projected segment from the gripper to the grasp point.
+    fov = config.vertical_fov_deg
+    ends = _pixel(frame, frame.gripper_m, fov), _pixel(frame, frame.grasp_point_m(), fov)
+    length_px = float(np.hypot(*(ends[1] - ends[0])))
+    assert length_px > 10, "premise: the beam is long enough to see at this moment"
+    assert full["red"] >= 0.5 * length_px * BEAM_WIDTH_PX, (full, length_px)
+    r, g, b = (shots["full"][..., k].astype(int) for k in range(3))
+    v_red, u_red = np.nonzero((r > 200) & (g < 70) & (b < 70))
+    midpoint = (ends[0] + ends[1]) / 2
+    assert np.hypot(u_red.mean() - midpoint[0], v_red.mean() - midpoint[1]) < 10
     assert full["green"] >= 2000, full  # the target mesh and the distance bar
     assert full["blue"] >= 300, full  # the grip bar (open: its translucent full scale)
     # The ghost changes the image where the arm is, and not on the table far from it. It shows

@@ -7,7 +7,14 @@ import numpy as np
 import pytest
 
 from arteleop.errors import RecordingError
-from arteleop.operator import COLUMNS, ImuErrorConfig, load_recording, sidecar_path, write_recording
+from arteleop.operator import (
+    COLUMNS,
+    ImuErrorConfig,
+    Recording,
+    load_recording,
+    sidecar_path,
+    write_recording,
+)
 from tests.operator.motions import reach_and_return
 
 
@@ -157,3 +164,21 @@ def test_sidecar_rate_must_match_the_samples(good: Path) -> None:
         RecordingError, match=r"samples come at 100.00 Hz but good.json says rate_hz = 50.0"
     ):
         load_recording(good)
+
+
+def test_lost_samples_are_marked_and_come_back_marked(tmp_path: Path) -> None:
+    rec = reach_and_return(errors=ImuErrorConfig.ideal()).recording
+    lost = np.zeros(len(rec.time_s), bool)
+    lost[[200, 201, 350]] = True
+    unknown = np.where(lost[:, None, None], np.nan, rec.sensor_quat_wxyz)  # never received
+    write_recording(
+        Recording.with_lost(rec.time_s, unknown, rec.grip, lost, rec.info), tmp_path / "r.csv"
+    )
+    row = (tmp_path / "r.csv").read_text().splitlines()[1 + 200]
+    assert row == f"{float(rec.time_s[200])!r}" + "," * 13
+    back = load_recording(tmp_path / "r.csv")
+    np.testing.assert_array_equal(back.lost, lost)
+    assert (back.report.lost_samples, back.report.gaps) == (3, 0)
+    np.testing.assert_array_equal(back.sensor_quat_wxyz[~lost], rec.sensor_quat_wxyz[~lost])
+    # Filled by slerp from their neighbours: within 0.003 (about 0.2 deg) of the smooth motion.
+    np.testing.assert_allclose(back.sensor_quat_wxyz[lost], rec.sensor_quat_wxyz[lost], atol=3e-3)
