@@ -18,7 +18,7 @@ from arteleop.errors import ArteleopError, ConfigurationError
 if TYPE_CHECKING:
     from arteleop.operator import SyntheticSource
     from arteleop.scene import HeadCameraConfig, RemoteSite
-    from arteleop.teleop import TrialConfig, TrialResult
+    from arteleop.teleop import TrialConfig, TrialProgress, TrialResult
 
 
 Modality = Literal["none", "manipulation", "embodiment", "task", "full"]
@@ -195,7 +195,7 @@ class TrialCommand(CameraSize):
     """print the result only, no progress"""
 
 
-def _check_trial(cmd: TrialCommand) -> None:
+def _check_trial(cmd: TrialCommand | TeleopCommand) -> None:
     _check_seed(cmd.seed)
     if not (math.isfinite(cmd.timeout_s) and cmd.timeout_s > 0):
         raise ConfigurationError(
@@ -209,10 +209,12 @@ def _check_trial(cmd: TrialCommand) -> None:
             f"{2 * cmd.delay_ms / 1000:g} s after moving (the round trip), after --timeout-s "
             f"{cmd.timeout_s:g} s; no trial can finish. Shorten the delay or lengthen the timeout."
         )
-    if cmd.operator != "synthetic" and not Path(cmd.operator).is_file():
+    names = ("synthetic", "live") if isinstance(cmd, TeleopCommand) else ("synthetic",)
+    if cmd.operator not in names and not Path(cmd.operator).is_file():
+        live = ", 'live' (drive the robot from the page)" if "live" in names else ""
         raise ConfigurationError(
             f"--operator {cmd.operator}: no such file. Give 'synthetic' (a simulated "
-            "participant) or the path of a wearable recording's CSV."
+            f"participant){live} or the path of a wearable recording's CSV."
         )
 
 
@@ -306,7 +308,9 @@ def operator_synth(cmd: OperatorSynthCommand) -> int:
 
 
 @contextlib.contextmanager
-def _progress(total_s: float, what: str, quiet: bool) -> Iterator[Callable[[float], None] | None]:
+def _progress(
+    total_s: float, what: str, quiet: bool
+) -> Iterator[Callable[[TrialProgress], None] | None]:
     """A progress bar over simulated seconds, on stderr; nothing with --quiet."""
     if quiet:
         yield None
@@ -315,9 +319,9 @@ def _progress(total_s: float, what: str, quiet: bool) -> Iterator[Callable[[floa
 
     with tqdm(total=round(total_s), desc=what, unit="s simulated", leave=False) as bar:
 
-        def update(t_s: float) -> None:
-            if int(t_s) > bar.n:
-                bar.update(int(t_s) - bar.n)
+        def update(status: TrialProgress) -> None:
+            if int(status.time_s) > bar.n:
+                bar.update(int(status.time_s) - bar.n)
 
         yield update
 
@@ -331,9 +335,61 @@ def _synthetic_source(site: RemoteSite, config: TrialConfig) -> SyntheticSource:
     return synthetic_source(ws.bowl, rest_gripper_m, config.controller.mapping, config.seed)
 
 
+@dataclass(frozen=True)
+class TeleopCommand:
+    """Teleoperate the simulated Baxter in real time in the browser, trial after trial."""
+
+    operator: str = "synthetic"
+    """'synthetic' (a new simulated participant each trial), 'live' (drive the gripper with a
+    gizmo and a grip slider in the page), or the path of a wearable recording's CSV"""
+    modality: Modality = "full"
+    """AR modality of the trials (docs/study.md §3); the page's panel can switch layers live"""
+    seed: int = 0
+    """seed of the first trial (0 or more); each next trial takes the next one"""
+    delay_ms: float = 0.0
+    """one-way network delay between operator and robot (ms)"""
+    timeout_s: float = 120.0
+    """simulated time after which a trial ends as a timeout (s)"""
+    width_px: int = 320
+    """camera image width (px); 320x240 keeps 30 frames/s in real time on two cores"""
+    height_px: int = 240
+    """camera image height (px)"""
+    host: str = "127.0.0.1"
+    """interface to serve the page on; 0.0.0.0 lets other machines connect (and drive the robot)"""
+    port: int = 8080
+    """port to serve the page on; the next free one if it is taken"""
+
+
+def teleop(cmd: TeleopCommand) -> int:
+    from arteleop.ar_features import ViewConfig
+    from arteleop.scene import RemoteSite, SiteConfig
+    from arteleop.teleop import NetworkConfig, TeleopApp, TeleopAppConfig, TrialConfig
+    from arteleop.teleop.live_app import trial_summary
+
+    _check_trial(cmd)
+    camera = CameraSize(cmd.width_px, cmd.height_px).camera_config()
+    trial_config = TrialConfig(
+        modality=cmd.modality, seed=cmd.seed, timeout_s=cmd.timeout_s,
+        network=NetworkConfig(delay_s=cmd.delay_ms / 1000), site=SiteConfig(camera=camera),
+    )  # fmt: skip
+    config = TeleopAppConfig(cmd.operator, trial_config, ViewConfig(host=cmd.host, port=cmd.port))
+    with RemoteSite(trial_config.site) as site, TeleopApp(config, site) as app:
+        for notice in app.view.notices():
+            print(notice, file=sys.stderr)
+        print(f"operator's view at {app.view.url} (Ctrl-C stops)")
+
+        def report(result: TrialResult) -> None:
+            state, summary = trial_summary(result)
+            print(f"trial {len(app.results)}: {state}; {summary}")
+
+        app.run(report)
+    return 0
+
+
 Command = tuple[type, Callable[[Any], int]]
 COMMANDS: dict[str, Command] = {
     "trial": (TrialCommand, trial),
+    "teleop": (TeleopCommand, teleop),
     "scene": (SceneCommand, scene),
     "analyze": (AnalyzeCommand, analyze),
 }
@@ -349,6 +405,8 @@ arteleop: study Augmented Reality in robot teleoperation, in simulation (docs/st
 commands:
   trial            one pick-and-place trial, by a synthetic operator or a recording;
                    --view serves the operator's view with its AR layers in the browser
+  teleop           teleoperate in real time in the browser, trial after trial: a synthetic
+                   participant, a recording, or you (--operator live: gizmo and grip slider)
   scene            render one head-camera frame, write it, and track the bowl
   operator synth   one synthetic trial, written as the operator's wearable recording
   operator check   validate a wearable recording and summarise it

@@ -1,7 +1,9 @@
-"""Make the README's pictures of the operator's view: one per modality, at the same moment.
+"""Make the README's pictures: the head camera's image and depth at rest, and the operator's
+view under each modality at the same moment.
 
 Seed 0's synthetic operator under full AR, 8 s into the trial (reaching over the bowl), at the
-Kinect's 640x480; headless Chromium takes each picture (needs ``apt-get install chromium``).
+Kinect's 640x480; headless Chromium takes each picture of the view (needs ``apt-get install
+chromium``).
 
     python docs/make_images.py [--out docs/images]
 """
@@ -9,6 +11,7 @@ Kinect's 640x480; headless Chromium takes each picture (needs ``apt-get install 
 from __future__ import annotations
 
 import argparse
+import tempfile
 from dataclasses import replace
 from pathlib import Path
 
@@ -17,7 +20,7 @@ import cv2
 from arteleop.ar_features import MODALITIES, OperatorView, ViewConfig
 from arteleop.ar_features.browser import browser_page
 from arteleop.operator import synthetic_source
-from arteleop.scene import RemoteSite
+from arteleop.scene import RemoteSite, write_snapshot
 from arteleop.teleop import TrialConfig, display_frame_at, view_assets
 
 MOMENT_S = 8.0
@@ -31,6 +34,12 @@ def main() -> None:
     out: Path = parser.parse_args().out
     out.mkdir(parents=True, exist_ok=True)
     config = TrialConfig(seed=0)
+    with RemoteSite(config.site) as site, tempfile.TemporaryDirectory() as tmp:
+        snapshot = write_snapshot(site, Path(tmp))
+        for name in ("rgb.png", "depth_vis.png"):
+            path = out / f"camera_{name}"
+            _write(path, cv2.imread(str(snapshot.files[name])), WIDTH_PX / 2)
+            print(f"wrote {path}")
     with RemoteSite(config.site) as site:
         ws = site.config.workspace
         source = synthetic_source(ws.bowl, site.observe().gripper_m, config.controller.mapping, 0)
@@ -43,10 +52,14 @@ def main() -> None:
                 view.show(replace(frame, cues=cues))
                 path = out / f"view_{name}.png"
                 shot = page.screenshot(path)
-                scale = WIDTH_PX / shot.shape[1]
-                small = cv2.resize(shot, None, fx=scale, fy=scale, interpolation=cv2.INTER_AREA)
-                cv2.imwrite(str(path), cv2.cvtColor(small, cv2.COLOR_RGB2BGR))
+                _write(path, cv2.cvtColor(shot, cv2.COLOR_RGB2BGR), WIDTH_PX)
                 print(f"wrote {path}")
+
+
+def _write(path: Path, bgr: cv2.typing.MatLike, width_px: float) -> None:
+    """Write an image scaled down to ``width_px``."""
+    scale = width_px / bgr.shape[1]
+    cv2.imwrite(str(path), cv2.resize(bgr, None, fx=scale, fy=scale, interpolation=cv2.INTER_AREA))
 
 
 if __name__ == "__main__":

@@ -36,7 +36,7 @@ def test_bare_command_and_help_list_every_command(capsys: pytest.CaptureFixture[
     assert main(["--help"]) == 0
     helped = capsys.readouterr().out
     for text in (bare, helped):
-        for command in ("trial", "scene", "operator synth", "operator check", "analyze"):
+        for command in ("trial", "teleop", "scene", "operator synth", "operator check", "analyze"):
             assert f"\n  {command} " in text, command
 
 
@@ -51,7 +51,7 @@ def test_modality_is_offered_as_its_five_choices(capsys: pytest.CaptureFixture[s
         assert "(default" in line or line.strip() != option  # each has its description
 
 
-@pytest.mark.parametrize("command", [["trial"], ["scene"], ["operator", "synth"]])
+@pytest.mark.parametrize("command", [["trial"], ["teleop"], ["scene"], ["operator", "synth"]])
 def test_negative_seed_is_refused(capsys: pytest.CaptureFixture[str], command: list[str]) -> None:
     assert _error(capsys, [*command, "--seed", "-1"]) == (
         "--seed -1: a seed is a whole number, 0 or more."
@@ -80,6 +80,16 @@ def test_bad_trial_options_name_the_option(
     capsys: pytest.CaptureFixture[str], option: list[str], message: str
 ) -> None:
     assert _error(capsys, ["trial", *option]) == message
+
+
+def test_teleop_offers_live_input(capsys: pytest.CaptureFixture[str]) -> None:
+    assert _error(capsys, ["teleop", "--operator", "livee"]) == (
+        "--operator livee: no such file. Give 'synthetic' (a simulated participant), 'live' "
+        "(drive the robot from the page) or the path of a wearable recording's CSV."
+    )
+    assert _error(capsys, ["teleop", "--timeout-s", "-1"]) == (
+        "--timeout-s -1.0: give the trial a positive simulated time (s)."
+    )
 
 
 def test_an_empty_recording_is_called_empty(

@@ -23,9 +23,10 @@ def test_every_name_in_all_exists(name: str) -> None:
 
 
 def test_the_operator_package_loads_without_the_view_server() -> None:
-    """`arteleop.operator` needs the display frame, not viser's server or its websockets."""
+    """`arteleop.operator` needs the display frame, not viser's server or its websockets; the
+    loop's package loads the live application's server only when asked for it."""
     code = (
-        "import sys, arteleop.operator, arteleop.ar_features; "
+        "import sys, arteleop.operator, arteleop.ar_features, arteleop.teleop; "
         "print(sorted(m for m in ('viser', 'websockets') if m in sys.modules))"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)

@@ -28,7 +28,9 @@ class DisplayFrame:
         T_base_gripper: (4, 4) pose of the gripper's tool frame at those joint positions.
         gripper_closure: The gripper's measured closure, 0 (open) .. 1 (closed).
         gripper_in_camera: The head camera captures the gripper (in the image and depth range).
-        bowl_m: (3,) the bowl's frame (centre of its bottom face) as the remote system knows it.
+        bowl_m: (3,) the bowl's frame (centre of its bottom face) as the head camera tracks it,
+            or None when the tracker has no estimate (the bowl is out of view or hidden, e.g.
+            by the arm): the display never falls back to the simulator's truth.
         grasp_radius_m: Radius of the ring of grasp points (the middle of the wall), about the
             bowl's axis (m).
         grasp_height_m: Height of that ring above the bowl's frame (m).
@@ -46,7 +48,7 @@ class DisplayFrame:
     T_base_gripper: NDArray[np.float64]
     gripper_closure: float
     gripper_in_camera: bool
-    bowl_m: NDArray[np.float64]
+    bowl_m: NDArray[np.float64] | None
     grasp_radius_m: float
     grasp_height_m: float
     target_m: NDArray[np.float64]
@@ -64,6 +66,8 @@ class DisplayFrame:
             "target_m": (3,),
         }
         for name, shape in shapes.items():
+            if name == "bowl_m" and self.bowl_m is None:
+                continue
             value = frozen_array(getattr(self, name))
             if value.shape != shape:
                 raise DisplayFrameError(
@@ -100,21 +104,31 @@ class DisplayFrame:
     def has_cloud(self) -> bool:
         return self.cloud_points_m is not None
 
-    def grasp_point_m(self) -> NDArray[np.float64]:
-        """The grasp point closest to the gripper (m): the point of the bowl's grasp ring in
-        the gripper's direction from the bowl's axis (+y when the gripper is on the axis).
+    @property
+    def bowl_found(self) -> bool:
+        """The tracker has an estimate of the bowl in this frame."""
+        return self.bowl_m is not None
+
+    def grasp_point_m(self) -> NDArray[np.float64] | None:
+        """The grasp point closest to the gripper (m): the point of the tracked bowl's grasp
+        ring in the gripper's direction from the bowl's axis (+y when the gripper is on the
+        axis); None when the bowl is not tracked.
 
         The beam and the distance bar draw it, and the synthetic operator perceives it.
         """
+        if self.bowl_m is None:
+            return None
         d = self.gripper_m[:2] - self.bowl_m[:2]
         n = float(np.hypot(d[0], d[1]))
         d = d / n if n > 1e-9 else np.array([0.0, 1.0])
         ring = np.array([d[0] * self.grasp_radius_m, d[1] * self.grasp_radius_m, 0.0])
         return self.bowl_m + ring + [0.0, 0.0, self.grasp_height_m]
 
-    def grasp_distance_m(self) -> float:
-        """Distance from the gripper to :meth:`grasp_point_m` (m): the distance bar's value."""
-        return float(np.linalg.norm(self.grasp_point_m() - self.gripper_m))
+    def grasp_distance_m(self) -> float | None:
+        """Distance from the gripper to :meth:`grasp_point_m` (m), the distance bar's value;
+        None when the bowl is not tracked."""
+        grasp = self.grasp_point_m()
+        return None if grasp is None else float(np.linalg.norm(grasp - self.gripper_m))
 
 
 class Display(Protocol):

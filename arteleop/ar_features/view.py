@@ -7,6 +7,8 @@ saw it and AR layers given in the base frame line up with it. The view takes
 
 from __future__ import annotations
 
+import contextlib
+import io
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -72,7 +74,11 @@ class OperatorView(Closeable):
         self.config = config = config or ViewConfig()
         self.host = check_host(config.host)
         """Whether only this machine can connect, and where to open the view."""
-        self.server = server = viser.ViserServer(host=config.host, port=config.port, verbose=False)
+        # viser prints its own banner whatever ``verbose`` says; the caller prints the address.
+        with contextlib.redirect_stdout(io.StringIO()):
+            self.server = server = viser.ViserServer(
+                host=config.host, port=config.port, verbose=False
+            )
         server.scene.set_up_direction("+z")  # Baxter's base frame
         server.gui.configure_theme(show_logo=False, show_share_button=False)
         self.layers: list[Layer] = [CloudLayer(server.scene, config.point_size_m)]
@@ -147,4 +153,5 @@ class OperatorView(Closeable):
 
     def close(self) -> None:
         """Stop the server."""
-        self.server.stop()
+        with contextlib.redirect_stdout(io.StringIO()):  # its "Server stopped"
+            self.server.stop()

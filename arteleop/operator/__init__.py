@@ -11,6 +11,7 @@ from arteleop.operator.arm_model import (
     segments_for_hand_pose,
 )
 from arteleop.operator.calibration import SensorMounting, calibrate
+from arteleop.operator.live import HandTarget, LiveOperator
 from arteleop.operator.minimum_jerk import minimum_jerk, minimum_jerk_profile
 from arteleop.operator.reconstruction import (
     HandSample,
@@ -31,14 +32,23 @@ from arteleop.operator.recording import (
     write_recording,
 )
 from arteleop.operator.sources import (
+    HandModel,
     OperatorSource,
     RecordingSource,
     SyntheticSource,
     WearableSample,
+    WornSource,
+    live_source,
     synthetic_source,
 )
 from arteleop.operator.synthesis import SynthesizedRecording, record_hand_motion
-from arteleop.operator.synthetic import Expertise, OperatorParams, SyntheticOperator, TaskGeometry
+from arteleop.operator.synthetic import (
+    Expertise,
+    OperatorParams,
+    Phase,
+    SyntheticOperator,
+    TaskGeometry,
+)
 from arteleop.operator.wearable import (
     ImuErrorConfig,
     WearableConfig,
@@ -53,13 +63,17 @@ __all__ = [
     "ArmModel",
     "CalibrationPosture",
     "Expertise",
+    "HandModel",
     "HandSample",
+    "HandTarget",
     "HandTrajectory",
     "ImuErrorConfig",
+    "LiveOperator",
     "LoadReport",
     "LoaderConfig",
     "OperatorParams",
     "OperatorSource",
+    "Phase",
     "Recording",
     "RecordingInfo",
     "RecordingSource",
@@ -73,9 +87,11 @@ __all__ = [
     "WearableConfig",
     "WearableSample",
     "WearableSignals",
+    "WornSource",
     "calibrate",
     "hand_pose",
     "joint_positions",
+    "live_source",
     "load_recording",
     "minimum_jerk",
     "minimum_jerk_profile",

@@ -4,6 +4,9 @@ The operator never reads the simulator's state. Each time they look, they estima
 the bowl and the target from what the display shows; the error of each estimate depends only on
 the cues visible (assumptions, each with its reasoning, in :class:`PerceptionParams`):
 
+- the bowl is seen only when the camera shows it, the same condition under which the tracker
+  finds it (``DisplayFrame.bowl_m``); hidden by the arm, it is not seen, and the operator relies
+  on memory (:class:`~arteleop.operator.synthetic.SyntheticOperator`);
 - the point cloud alone gives good lateral but poor depth judgement along the line of sight;
 - the distance bar gives the gripper-to-grasp-point distance, the beam its direction;
 - the target mesh turns placement into a coincidence judgement;
@@ -48,10 +51,11 @@ class PerceptionParams:
 
 @dataclass(frozen=True)
 class Perceived:
-    """The operator's estimates at one look, base frame (m)."""
+    """The operator's estimates at one look, base frame (m); ``bowl_m`` is None when the
+    display does not show the bowl."""
 
     gripper_m: NDArray[np.float64]
-    bowl_m: NDArray[np.float64]
+    bowl_m: NDArray[np.float64] | None
     target_m: NDArray[np.float64]
     gripper_seen: bool
     closure_known: bool
@@ -73,25 +77,64 @@ def perceive(
         lateral -= d * (lateral @ d)
         return point + d * rng.normal(0.0, depth_sd * k) + lateral
 
-    bowl = seen(view.bowl_m, params.depth_sd_m, params.lateral_sd_m)
-    if gripper_seen:
-        # With the bar and beam, the gripper is judged relative to the grasp point.
+    tracked = view.bowl_m
+    bowl = None if tracked is None else seen(tracked, params.depth_sd_m, params.lateral_sd_m)
+    if gripper_seen and tracked is not None and bowl is not None:
+        # With the bar and beam, the gripper is judged relative to the grasp point; both show
+        # nothing while the bowl is not tracked.
         depth_sd = params.bar_sd_m if cues.distance_bar else params.depth_sd_m
         lateral_sd = params.beam_sd_m if cues.beam else params.lateral_sd_m
-        gripper = bowl + seen(view.gripper_m, depth_sd, lateral_sd) - view.bowl_m
+        gripper = bowl + seen(view.gripper_m, depth_sd, lateral_sd) - tracked
+    elif gripper_seen:
+        gripper = seen(view.gripper_m, params.depth_sd_m, params.lateral_sd_m)
     else:
         gripper = view.gripper_m + rng.normal(0.0, params.proprioception_sd_m * k, 3)
-    if cues.target_mesh:
+    if cues.target_mesh and tracked is not None and bowl is not None:
         # Coincidence of the real and the virtual bowl: judged relative to the bowl.
         target = (
             bowl
             + view.target_m
-            - view.bowl_m
+            - tracked
             + np.append(rng.normal(0.0, params.target_mesh_sd_m * k, 2), 0.0)
         )
+    elif cues.target_mesh:  # no bowl in view to make it coincide with: a point like any other
+        target = seen(view.target_m, params.depth_sd_m, params.lateral_sd_m)
     else:
         # The marker is a point of the cloud like any other, then centred on by eye.
         marker = seen(view.target_m, params.depth_sd_m, params.lateral_sd_m)
         target = marker + np.append(rng.normal(0.0, params.target_marker_sd_m * k, 2), 0.0)
     closure_known = cues.grip_bar or view.gripper_in_camera or cues.ghost
     return Perceived(gripper, bowl, target, gripper_seen, closure_known)
+
+
+class BowlMemory:
+    """Where the operator believes the bowl is: where a look last showed it, and while it is
+    held, where it sits relative to the gripper (it moves with the hand)."""
+
+    def __init__(self) -> None:
+        self._last_seen_m: NDArray[np.float64] | None = None
+        self._in_hand_m: NDArray[np.float64] | None = None
+
+    def bowl_m(self, seen: Perceived) -> NDArray[np.float64] | None:
+        """The bowl after a look: as seen when shown, else as remembered; None before it was
+        ever seen."""
+        if seen.bowl_m is not None:
+            self._last_seen_m = seen.bowl_m
+            return seen.bowl_m
+        if self._in_hand_m is not None:
+            return seen.gripper_m + self._in_hand_m
+        return self._last_seen_m
+
+    def grasp(self, seen: Perceived, bowl_m: NDArray[np.float64] | None) -> None:
+        """The operator has closed the gripper on the bowl believed at ``bowl_m``."""
+        self._in_hand_m = None if bowl_m is None else bowl_m - seen.gripper_m
+
+    def release(self) -> None:
+        self._in_hand_m = None
+
+    def left_behind(self, seen: Perceived, distance_m: float = 0.05) -> bool:
+        """A look shows the bowl held a moment ago more than ``distance_m`` from where the hand
+        should carry it: the grasp missed and the bowl stayed behind."""
+        if seen.bowl_m is None or self._in_hand_m is None:
+            return False
+        return bool(np.linalg.norm(seen.bowl_m - (seen.gripper_m + self._in_hand_m)) > distance_m)

@@ -11,9 +11,11 @@ from numpy.typing import ArrayLike, NDArray
 
 from arteleop.ar_features import DisplayFrame
 from arteleop.operator.arm_model import ArmModel, segment_rotations, segments_for_hand_pose
+from arteleop.operator.live import HandTarget, LiveOperator
 from arteleop.operator.recording import CalibrationPosture, Recording, RecordingInfo
 from arteleop.operator.synthetic import (
     Expertise,
+    OperatorOutput,
     OperatorParams,
     Phase,
     SyntheticOperator,
@@ -45,25 +47,27 @@ class OperatorSource(Protocol):
     def sample(self, time_s: float, view: DisplayFrame) -> WearableSample | None: ...
 
 
-class SyntheticSource:
-    """A :class:`SyntheticOperator` wearing the simulated wearable."""
+class HandModel(Protocol):
+    """Whatever moves the operator's hand: a synthetic operator, or a person through the GUI."""
+
+    def step(self, time_s: float, view: DisplayFrame) -> OperatorOutput: ...
+
+
+class WornSource:
+    """A hand, as a :class:`HandModel` moves it, wearing the simulated wearable: the samples
+    are the IMUs' quaternions, with the wearable's errors and losses."""
 
     def __init__(
         self,
-        task: TaskGeometry,
-        hand_for_gripper: Callable[[NDArray[np.float64]], NDArray[np.float64]],
+        operator: HandModel,
         rng: np.random.Generator,
-        arm: ArmModel | None = None,
-        calibration: CalibrationPosture | None = None,
+        arm: ArmModel,
+        calibration: CalibrationPosture,
         wearable: WearableConfig | None = None,
-        params: OperatorParams | None = None,
-        expertise: Expertise | None = None,
     ) -> None:
-        self.arm = arm or ArmModel()
-        self.calibration = calibration or CalibrationPosture()
-        self.operator = SyntheticOperator(
-            task, hand_for_gripper, self.arm, self.calibration, rng, params, expertise
-        )
+        self.arm = arm
+        self.calibration = calibration
+        self.operator = operator
         self.wearable = WearableSimulator(wearable or WearableConfig(), rng)
         self._calibration_segments = segment_rotations(self.calibration.angles)
         self._log: list[tuple[float, NDArray[np.float64] | None, float]] = []
@@ -91,6 +95,30 @@ class SyntheticSource:
         grip = np.array([g for _, _, g in self._log])
         info = RecordingInfo(self.wearable.config.rate_hz, self.arm, self.calibration, subject_id)
         return Recording.with_lost(time_s, quats, grip, lost, info)
+
+
+class SyntheticSource(WornSource):
+    """A :class:`SyntheticOperator` wearing the simulated wearable."""
+
+    operator: SyntheticOperator
+
+    def __init__(
+        self,
+        task: TaskGeometry,
+        hand_for_gripper: Callable[[NDArray[np.float64]], NDArray[np.float64]],
+        rng: np.random.Generator,
+        arm: ArmModel | None = None,
+        calibration: CalibrationPosture | None = None,
+        wearable: WearableConfig | None = None,
+        params: OperatorParams | None = None,
+        expertise: Expertise | None = None,
+    ) -> None:
+        arm = arm or ArmModel()
+        calibration = calibration or CalibrationPosture()
+        operator = SyntheticOperator(
+            task, hand_for_gripper, arm, calibration, rng, params, expertise
+        )
+        super().__init__(operator, rng, arm, calibration, wearable)
 
 
 class RecordingSource:
@@ -149,3 +177,13 @@ def synthetic_source(
         params=params,
         expertise=expertise,
     )
+
+
+def live_source(target: HandTarget, mapping: MappingConfig, seed: int) -> WornSource:
+    """A person driving the hand through ``target`` (a gizmo and a slider in the view), wearing
+    the simulated wearable (seeded) so that the robot gets what IMUs would send."""
+    from arteleop.robot.mapping import HandToGripper
+
+    arm, calibration = ArmModel(), CalibrationPosture()
+    operator = LiveOperator(target, HandToGripper(mapping).hand_position_for, arm, calibration)
+    return WornSource(operator, np.random.default_rng([seed, 1]), arm, calibration)

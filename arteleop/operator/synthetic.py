@@ -22,7 +22,7 @@ from arteleop.ar_features import DisplayFrame
 from arteleop.errors import ConfigurationError
 from arteleop.operator.arm_model import ArmModel, hand_pose, segment_rotations
 from arteleop.operator.minimum_jerk import minimum_jerk_profile
-from arteleop.operator.perception import Perceived, PerceptionParams, perceive
+from arteleop.operator.perception import BowlMemory, Perceived, PerceptionParams, perceive
 from arteleop.operator.recording import CalibrationPosture
 
 
@@ -44,6 +44,8 @@ class OperatorParams:
         tremor_amplitude_m: Physiological tremor, per axis, below a millimetre.
         tremor_hz: Its two frequency components, in the 8-12 Hz band.
         max_corrections: Corrective sub-movements per phase before carrying on regardless.
+        max_regrasps: Times the operator goes back for a bowl that a missed grasp left behind,
+            seen on the table while lifting or carrying.
         grip_ramp_s: Time to squeeze or release the pinch sensor.
         grasp_wait_known_s: Wait after closing when the closure is visible (grip bar or gripper).
         grasp_wait_unknown_s: Wait when it is not: the operator must infer it.
@@ -63,6 +65,7 @@ class OperatorParams:
     tremor_amplitude_m: float = 0.0003
     tremor_hz: tuple[float, float] = (9.0, 11.0)
     max_corrections: int = 4
+    max_regrasps: int = 2
     grip_ramp_s: float = 0.3
     grasp_wait_known_s: float = 0.4
     grasp_wait_unknown_s: float = 1.0
@@ -172,6 +175,8 @@ class SyntheticOperator:
         self.corrections_total = 0
         self._tremor_phase = rng.uniform(0, 2 * np.pi, (2, 3))
         self._grasped_at: NDArray[np.float64] | None = None
+        self._bowl_memory = BowlMemory()
+        self.regrasps = 0
         self._previous_view: DisplayFrame | None = None  # the display's last two contents
         self._last_view: DisplayFrame | None = None
 
@@ -190,10 +195,18 @@ class SyntheticOperator:
         goal = hand_goal + self._rng.normal(0.0, noise / np.sqrt(3), 3)
         self._seg = (t, self._hand.copy(), goal, self._fitts_s(max(d, 1e-3), width_m))
 
-    def _goal_gripper(self, phase: Phase, seen: Perceived) -> NDArray[np.float64]:
-        grasp = seen.bowl_m + self.task.grasp_offset_m
-        # Carrying, the operator puts the bowl it sees over the target it sees.
-        place = seen.gripper_m + seen.target_m - seen.bowl_m
+    def _look(self, view: DisplayFrame) -> tuple[Perceived, NDArray[np.float64] | None]:
+        """One look at the display: the estimates, and the bowl as seen or remembered (None
+        before it was ever seen)."""
+        seen = perceive(view, self.p.perception, self._rng, self._noise)
+        return seen, self._bowl_memory.bowl_m(seen)
+
+    def _goal_gripper(
+        self, phase: Phase, seen: Perceived, bowl_m: NDArray[np.float64]
+    ) -> NDArray[np.float64]:
+        grasp = bowl_m + self.task.grasp_offset_m
+        # Carrying, the operator puts the bowl it sees (or remembers) over the target it sees.
+        place = seen.gripper_m + seen.target_m - bowl_m
         place[2] = seen.target_m[2] + self.task.grasp_offset_m[2] + 0.005
         up = np.array([0.0, 0.0, 1.0])
         lift_from = self._grasped_at if self._grasped_at is not None else grasp
@@ -216,8 +229,15 @@ class SyntheticOperator:
             if moved / (last.time_s - previous.time_s) > self.p.settle_speed_m_s:
                 self._wait_until = t + 0.05  # the arm is still catching up: look again shortly
                 return
-        seen = perceive(view, self.p.perception, self._rng, self._noise)
-        goal = self._goal_gripper(self.phase, seen)
+        seen, bowl = self._look(view)
+        if bowl is None:  # never seen yet: look again shortly
+            self._wait_until = t + 0.1
+            return
+        carrying = self.phase in (Phase.LIFT, Phase.TRANSPORT)
+        if carrying and self.regrasps < self.p.max_regrasps and self._bowl_memory.left_behind(seen):
+            self._regrasp(t, seen)
+            return
+        goal = self._goal_gripper(self.phase, seen, bowl)
         error = goal - seen.gripper_m
         width = _TOLERANCE[self.phase]
         if np.linalg.norm(error) <= width / 2 or self._corrections > self.p.max_corrections:
@@ -231,6 +251,18 @@ class SyntheticOperator:
             self._to_hand(seen.gripper_m + error) - self._to_hand(seen.gripper_m)
         )
         self._start_segment(t, hand_goal, width)
+
+    def _regrasp(self, t: float, seen: Perceived) -> None:
+        """The bowl stayed on the table: open the hand and reach for it again."""
+        self.regrasps += 1
+        self._bowl_memory.release()
+        self._bowl_memory.bowl_m(seen)  # where it was seen just now
+        self._grip = 0.0
+        self._grasped_at = None
+        self.phase = Phase.REACH
+        self._corrections = 0
+        self._seg = None
+        self._wait_until = t + self.p.grip_ramp_s
 
     def _advance(self, t: float) -> None:
         self.phase = self._phases[self._phases.index(self.phase) + 1]
@@ -277,9 +309,12 @@ class SyntheticOperator:
         elif self.phase in (Phase.CLOSE, Phase.OPEN):
             closing = self.phase is Phase.CLOSE
             self._grip = 1.0 if closing else 0.0
-            seen = perceive(view, self.p.perception, self._rng, self._noise)
+            seen, bowl = self._look(view)
             if closing:
                 self._grasped_at = seen.gripper_m
+                self._bowl_memory.grasp(seen, bowl)
+            else:
+                self._bowl_memory.release()
             wait = self.p.grasp_wait_known_s if seen.closure_known else self.p.grasp_wait_unknown_s
             self._advance(t)
             self._wait_until = t + wait

@@ -11,6 +11,7 @@ from arteleop.scene.bowl import (
     bowl_collision_boxes,
     bowl_mesh,
 )
+from arteleop.scene.bowl_sight import BowlSight, BowlSightConfig
 from arteleop.scene.bowl_tracking import BowlTrack, BowlTracker, BowlTrackerConfig
 from arteleop.scene.camera import HeadCamera, RGBDFrame
 from arteleop.scene.camera_config import CameraIntrinsics, HeadCameraConfig
@@ -25,6 +26,8 @@ from arteleop.scene.workspace import Box, Workspace
 
 __all__ = [
     "GRASP_DEPTH_M",
+    "BowlSight",
+    "BowlSightConfig",
     "BowlSpec",
     "BowlTrack",
     "BowlTracker",

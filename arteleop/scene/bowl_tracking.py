@@ -34,6 +34,10 @@ class BowlTrackerConfig:
         min_points: Fewest bowl points, at 640x480, for an answer (scaled with the image area).
         max_rms_m: Largest RMS distance of inlier points to the fitted wall (m).
         min_inlier_fraction: Fraction of points that must lie within 3 * max_rms_m of the wall.
+        min_coverage_deg: The points must surround the fitted axis over at least this many
+            degrees (in 30-degree sectors). A bowl in full view shows the near side of its outer
+            wall and the far side of its inner wall: all the way round. A partly hidden bowl
+            shows an arc, which a bowl at many other places fits as well.
         stride: Use every stride-th pixel (1 = all).
         max_fit_points: The fit uses at most this many points, evenly spread over the bowl.
     """
@@ -44,6 +48,7 @@ class BowlTrackerConfig:
     min_points: int = 300
     max_rms_m: float = 0.006
     min_inlier_fraction: float = 0.7
+    min_coverage_deg: float = 270.0
     stride: int = 1
     max_fit_points: int = 800
 
@@ -85,6 +90,7 @@ class BowlTracker:
         profile = spec.profile(12)
         self._seg_a = profile[:-1]  # (M, 2) start of each cross-section segment, (r, h)
         self._seg_d = np.diff(profile, axis=0)
+        self._seg_len2 = (self._seg_d**2).sum(-1)
         self._hue_deg = 360.0 * colorsys.rgb_to_hsv(*spec.rgba[:3])[0]
 
     def segment(self, frame: RGBDFrame) -> NDArray[np.bool_]:
@@ -100,8 +106,14 @@ class BowlTracker:
             & (frame.depth_m > 0)
         )
 
-    def track(self, frame: RGBDFrame, table_top_z_m: float) -> BowlTrack:
-        """Estimate the bowl's position in ``frame``; the bowl is assumed upright."""
+    def track(
+        self, frame: RGBDFrame, table_top_z_m: float, near_m: NDArray[np.float64] | None = None
+    ) -> BowlTrack:
+        """Estimate the bowl's position in ``frame``; the bowl is assumed upright.
+
+        ``near_m``, the previous estimate (base frame, m), starts the fit there: tracking frame
+        to frame converges in a few iterations.
+        """
         c = self.config
         mask = self.segment(frame)
         cloud = frame_to_point_cloud(frame, c.stride)
@@ -117,10 +129,14 @@ class BowlTracker:
                 "the bowl is out of view or hidden",
             )
         fit_pts = pts[:: max(1, len(pts) // c.max_fit_points)]
-        x0 = np.array([*np.median(pts[:, :2], axis=0), table_top_z_m])
+        if near_m is None:
+            x0 = np.array([*np.median(pts[:, :2], axis=0), table_top_z_m])
+        else:
+            x0 = np.asarray(near_m, dtype=np.float64)
         fit = least_squares(
             self._residuals,
             x0,
+            jac=self._jacobian,
             args=(fit_pts,),
             loss="soft_l1",
             f_scale=self.spec.wall_thickness_m,
@@ -137,16 +153,55 @@ class BowlTracker:
                 f"{inliers.mean():.0%} inliers): it may be tipped over, held or partly hidden",
                 rms,
             )
+        coverage_deg = _coverage_deg(pts[inliers, :2] - fit.x[:2])
+        if coverage_deg < c.min_coverage_deg:
+            return self._not_found(
+                frame,
+                len(pts),
+                f"the bowl's points span only {coverage_deg:.0f} of 360 degrees around its axis, "
+                f"need {c.min_coverage_deg:.0f}: it is partly hidden",
+                rms,
+            )
         return BowlTrack(True, fit.x, len(pts), rms, "", frame.timestamp_s)
 
     def _residuals(self, x: NDArray[np.float64], pts: NDArray[np.float64]) -> NDArray[np.float64]:
         """Distance (m) of each point to the wall cross-section, for a bowl with bottom centre x."""
-        rh = np.column_stack([np.hypot(pts[:, 0] - x[0], pts[:, 1] - x[1]), pts[:, 2] - x[2]])
+        return np.linalg.norm(self._offsets(x, pts)[0], axis=1)
+
+    def _jacobian(self, x: NDArray[np.float64], pts: NDArray[np.float64]) -> NDArray[np.float64]:
+        """d residual / d x, (N, 3): the residual is the length of the offset from the nearest
+        point of the cross-section, and moving the axis by dx moves each point's (r, h) by
+        (-dx . radial, -dz)."""
+        offset, radial = self._offsets(x, pts)
+        n = offset / np.maximum(np.linalg.norm(offset, axis=1), 1e-12)[:, None]
+        return np.column_stack([-n[:, :1] * radial, -n[:, 1]])
+
+    def _offsets(
+        self, x: NDArray[np.float64], pts: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Each point's (r, h) offset from the nearest point of the cross-section, (N, 2), and
+        its unit radial direction in the table's plane, (N, 2)."""
+        dxy = pts[:, :2] - x[:2]
+        r = np.hypot(dxy[:, 0], dxy[:, 1])
+        rh = np.column_stack([r, pts[:, 2] - x[2]])
         rel = rh[:, None, :] - self._seg_a[None, :, :]  # (N, M, 2)
-        t = np.clip((rel * self._seg_d).sum(-1) / (self._seg_d**2).sum(-1), 0.0, 1.0)
-        d = np.linalg.norm(rel - t[..., None] * self._seg_d, axis=-1)
-        return d.min(axis=1)
+        t = np.clip((rel * self._seg_d).sum(-1) / self._seg_len2, 0.0, 1.0)
+        off = rel - t[..., None] * self._seg_d
+        nearest = np.einsum("nmk,nmk->nm", off, off).argmin(axis=1)
+        radial = dxy / np.maximum(r, 1e-12)[:, None]
+        return off[np.arange(len(pts)), nearest], radial
 
     @staticmethod
     def _not_found(frame: RGBDFrame, n: int, reason: str, rms: float = float("nan")) -> BowlTrack:
         return BowlTrack(False, None, n, rms, reason, frame.timestamp_s)
+
+
+SECTOR_DEG = 30.0
+
+
+def _coverage_deg(offsets_xy: NDArray[np.float64], min_points: int = 2) -> float:
+    """Degrees of azimuth, in ``SECTOR_DEG`` sectors, that hold at least ``min_points`` of the
+    given (N, 2) offsets from the bowl's axis."""
+    azimuth = np.degrees(np.arctan2(offsets_xy[:, 1], offsets_xy[:, 0]))
+    counts = np.histogram(azimuth, bins=round(360 / SECTOR_DEG), range=(-180.0, 180.0))[0]
+    return float((counts >= min_points).sum() * SECTOR_DEG)

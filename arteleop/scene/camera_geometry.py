@@ -54,10 +54,18 @@ class CameraGeometry:
 
     def sees(self, point_base_m: ArrayLike, margin_px: float = 0.0) -> bool:
         """Whether a base-frame point is in the image (with a margin) and in the depth range."""
-        u, v, z = self.locate(point_base_m)
+        return bool(self.sees_points(np.atleast_2d(point_base_m), margin_px)[0])
+
+    def sees_points(self, points_base_m: ArrayLike, margin_px: float = 0.0) -> NDArray[np.bool_]:
+        """:meth:`sees` for each of (N, 3) base-frame points: (N,) booleans."""
+        pc = transform_points(self._T_camera_base, np.asarray(points_base_m, dtype=np.float64))
         c = self.config
+        z = pc[:, 2]
+        in_range = (c.min_depth_m <= z) & (z <= c.max_depth_m)
+        uv = np.full((len(pc), 2), -1.0)
+        uv[in_range] = self.intrinsics.project(pc[in_range])
         return (
-            c.min_depth_m <= z <= c.max_depth_m
-            and margin_px <= u <= c.width_px - 1 - margin_px
-            and margin_px <= v <= c.height_px - 1 - margin_px
-        )
+            in_range
+            & (margin_px <= uv[:, 0]) & (uv[:, 0] <= c.width_px - 1 - margin_px)
+            & (margin_px <= uv[:, 1]) & (uv[:, 1] <= c.height_px - 1 - margin_px)
+        )  # fmt: skip

@@ -30,6 +30,8 @@ from arteleop.robot import (
 )
 from arteleop.robot.native_output import native_stdout_silenced
 from arteleop.scene.bodies import add_bowl, add_start_cross, add_table, add_target_circle
+from arteleop.scene.bowl_sight import BowlSight, BowlSightConfig
+from arteleop.scene.bowl_tracking import BowlTrack
 from arteleop.scene.camera import HeadCamera, RGBDFrame
 from arteleop.scene.camera_config import HeadCameraConfig
 from arteleop.scene.render_process import RenderProcess
@@ -37,6 +39,9 @@ from arteleop.scene.render_world import RenderWorld, SceneState
 from arteleop.scene.site_state import SiteState
 from arteleop.scene.workspace import Workspace
 from arteleop.transforms import pybullet_pose_to_transform
+
+RAY_OVERSHOOT_M = 0.02
+""":meth:`RemoteSite.sight_bowl`'s rays run this far past their surface point (m)."""
 
 
 @dataclass(frozen=True)
@@ -55,6 +60,7 @@ class SiteConfig:
             ``rest_pose.left``) and the head become rigid, for about four times cheaper physics.
             False simulates every joint of the URDF (see :class:`arteleop.robot.Baxter`).
         seed: Seed of every random source of the site (depth noise).
+        bowl_sight: The model of the bowl tracker for frames that are not rendered.
     """
 
     workspace: Workspace = field(default_factory=Workspace)
@@ -66,6 +72,7 @@ class SiteConfig:
     rest_pose: ArmPose = REST_POSE
     freeze_idle_joints: bool = True
     seed: int = 0
+    bowl_sight: BowlSightConfig = field(default_factory=BowlSightConfig)
 
     def __post_init__(self) -> None:
         if self.physics_rate_hz < 240:
@@ -141,6 +148,7 @@ class RemoteSite(Closeable):
                 self.render_world.close()
             self._client.disconnect()
             raise
+        self._sight = BowlSight(ws.bowl, config.bowl_sight)
         self._steps = 0
         self._renderer: RenderProcess | None = None
         self._requested_s = 0.0
@@ -190,6 +198,14 @@ class RemoteSite(Closeable):
         T[:3, 3] -= T[:3, 2] * self.config.workspace.bowl.center_of_mass_height_m
         return T
 
+    def reset(self) -> None:
+        """Back to the start of a trial: the arm at rest, the gripper open, the bowl at rest at
+        the start point, and the site's clock at 0 s."""
+        self.robot.reset(self.config.rest_pose)
+        self.place_bowl(self.config.workspace.start_xy_m)
+        self._steps = 0
+        self._requested_s = 0.0
+
     def place_bowl(
         self,
         xy_m: tuple[float, float],
@@ -202,6 +218,21 @@ class RemoteSite(Closeable):
         com = [xy_m[0], xy_m[1], ws.table_top_z_m + ws.bowl.center_of_mass_height_m]
         self._client.resetBasePositionAndOrientation(self._bowl_id, com, (0.0, 0.0, 0.0, 1.0))
         self._client.resetBaseVelocity(self._bowl_id, velocity_m_s, angular_velocity_rad_s)
+
+    def sight_bowl(self) -> BowlTrack:
+        """What the bowl tracker would report now, from rays instead of a rendered frame
+        (:class:`~arteleop.scene.BowlSight`): found when the camera sees enough of the bowl,
+        at its true position."""
+        T_base_bowl = self._bowl_transform()
+        points = self._sight.surface_points_m(T_base_bowl)
+        eye = self.camera.geometry.position_m
+        rays = points - eye
+        # Past the point: a ray that ends at the drawn surface may stop short of the collision
+        # shape, which stands off it by a few millimetres.
+        ends = points + RAY_OVERSHOOT_M * rays / np.linalg.norm(rays, axis=1, keepdims=True)
+        results = self._client.rayTestBatch([eye.tolist()] * len(points), ends.tolist())
+        hits = np.array([r[3] if r[0] >= 0 else (np.nan,) * 3 for r in results])
+        return self._sight.look(T_base_bowl, self.camera.geometry, hits, self.time_s)
 
     def capture(self, with_segmentation: bool = False) -> RGBDFrame:
         """One head-camera frame of the current state, stamped with :attr:`time_s`."""

@@ -1,5 +1,13 @@
 """The teleoperation loop: clock, network link, robot-side controller, task monitor, display
-feed, timing and trials."""
+feed, timing and trials; the live application.
+
+The live application, which pulls in viser's server, is imported on first use.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
 
 from arteleop.teleop.clock import LoopClock, LoopRates, Tick
 from arteleop.teleop.controller import (
@@ -15,7 +23,16 @@ from arteleop.teleop.loop import display_frame_at, run_trial
 from arteleop.teleop.network import NetworkConfig, NetworkLink
 from arteleop.teleop.task_monitor import TaskMonitor
 from arteleop.teleop.timing import StageStats, StageTimer
-from arteleop.teleop.trial import Outcome, TrialConfig, TrialResult
+from arteleop.teleop.trial import Outcome, TrialConfig, TrialProgress, TrialResult
+
+if TYPE_CHECKING:
+    from arteleop.teleop.live_app import TeleopApp, TeleopAppConfig, TrialInterrupted
+
+_LAZY = {
+    "TeleopApp": "arteleop.teleop.live_app",
+    "TeleopAppConfig": "arteleop.teleop.live_app",
+    "TrialInterrupted": "arteleop.teleop.live_app",
+}
 
 __all__ = [
     "ControllerConfig",
@@ -32,12 +49,22 @@ __all__ = [
     "StageStats",
     "StageTimer",
     "TaskMonitor",
+    "TeleopApp",
+    "TeleopAppConfig",
     "TeleopController",
     "Tick",
     "TrialConfig",
+    "TrialInterrupted",
+    "TrialProgress",
     "TrialResult",
     "display_frame",
     "display_frame_at",
     "run_trial",
     "view_assets",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    if name in _LAZY:
+        return getattr(importlib.import_module(_LAZY[name]), name)
+    raise AttributeError(f"module 'arteleop.teleop' has no attribute '{name}'")

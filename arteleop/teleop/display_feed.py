@@ -1,7 +1,10 @@
 """The display side of the loop: one :class:`DisplayFrame` per camera tick.
 
 At each camera tick the feed builds the frame of what the remote system knows at that instant
-(the arm's encoders, the gripper, the bowl, the target, the cues, the engaged indicator). When
+(the arm's encoders, the gripper, the bowl as the camera tracks it, the target, the cues, the
+engaged indicator). The bowl's track comes from the model of the tracker
+(:meth:`RemoteSite.sight_bowl`): the tracker itself costs 60-90 ms a frame, more than a camera
+period. When
 the camera renders, the frame carries the point cloud and goes to the display: in place in
 batch runs; in real time, through the render process on the other core, shown when it comes
 back. The operator sees each frame once the return link's delay has passed.
@@ -25,6 +28,7 @@ from arteleop.robot import (
     RIGHT_FINGER_JOINTS,
 )
 from arteleop.scene import (
+    BowlTrack,
     RemoteSite,
     RGBDFrame,
     SiteState,
@@ -40,9 +44,10 @@ CLOUD_STRIDE = 2
 
 
 def display_frame(
-    state: SiteState, workspace: Workspace, cues: ArCues, engaged: bool
+    state: SiteState, bowl: BowlTrack, workspace: Workspace, cues: ArCues, engaged: bool
 ) -> DisplayFrame:
-    """The display's content for a site state (``GRIPPER_FRAME`` observed), without a cloud."""
+    """The display's content for a site state (``GRIPPER_FRAME`` observed) and the bowl's
+    track at that instant, without a cloud."""
     grasp = workspace.bowl.grasp_offset_m()
     return DisplayFrame(
         time_s=state.time_s,
@@ -51,7 +56,7 @@ def display_frame(
         T_base_gripper=state.link(GRIPPER_FRAME),
         gripper_closure=state.gripper_closure,
         gripper_in_camera=state.camera.sees(state.gripper_m),
-        bowl_m=state.bowl_m,
+        bowl_m=bowl.position_m if bowl.found else None,
         grasp_radius_m=float(np.hypot(grasp[0], grasp[1])),
         grasp_height_m=float(grasp[2]),
         target_m=workspace.target_m,
@@ -118,7 +123,7 @@ class DisplayFeed:
 
     def camera_tick(self, state: SiteState, engaged: bool, applied_sample_time_s: float) -> None:
         """A camera tick: the display's content now (rendered if asked), and its latency."""
-        frame = display_frame(state, self._workspace, self._cues, engaged)
+        frame = display_frame(state, self._site.sight_bowl(), self._workspace, self._cues, engaged)
         self._history.append(frame)
         if self._background:
             if not self._site.frame_pending:
@@ -143,8 +148,10 @@ class DisplayFeed:
         self._timer.record("camera", requested_wall)
         if self._owed:
             state = self._site.observe()
-            self._request(display_frame(state, self._workspace, self._cues, engaged),
-                          applied_sample_time_s)  # fmt: skip
+            frame = display_frame(
+                state, self._site.sight_bowl(), self._workspace, self._cues, engaged
+            )
+            self._request(frame, applied_sample_time_s)
         self._show(frame, rgbd, applied)
 
     def seen_by_operator(self, t: float) -> DisplayFrame:

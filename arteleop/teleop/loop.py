@@ -29,7 +29,13 @@ from arteleop.teleop.latency import LatencyAccount
 from arteleop.teleop.network import NetworkLink
 from arteleop.teleop.task_monitor import TaskMonitor
 from arteleop.teleop.timing import StageTimer
-from arteleop.teleop.trial import Outcome, TrialConfig, TrialResult
+from arteleop.teleop.trial import Outcome, TrialConfig, TrialProgress, TrialResult
+
+OUT_OF_REACH_S = 0.5
+OUT_OF_REACH_M = 0.01
+"""The target is reported out of reach while the gripper is more than ``OUT_OF_REACH_M`` (m)
+from it and the IK has flagged it unreachable within the last ``OUT_OF_REACH_S`` (s): with the
+operator's tremor and the IMUs' noise, the IK's flag flickers at the edge of the reach."""
 
 
 def run_trial(
@@ -37,12 +43,13 @@ def run_trial(
     config: TrialConfig,
     site: RemoteSite | None = None,
     display: Display | None = None,
-    progress: Callable[[float], None] | None = None,
+    progress: Callable[[TrialProgress], None] | None = None,
 ) -> TrialResult:
     """Run one trial to its end; builds the site from ``config.site`` unless one is given.
 
     With a ``display``, every camera frame is shown on it (this needs ``config.render_camera``).
-    ``progress`` is called with the simulated time (s) at every camera tick.
+    ``progress`` is called with the trial's :class:`TrialProgress` at every camera tick; an
+    exception it raises ends the trial and reaches the caller (a stop button, Ctrl-C).
     """
     if display is not None and not config.render_camera:
         raise ConfigurationError(
@@ -88,7 +95,7 @@ class _Loop:
         config: TrialConfig,
         site: RemoteSite,
         display: Display | None,
-        progress: Callable[[float], None] | None = None,
+        progress: Callable[[TrialProgress], None] | None = None,
     ) -> None:
         self.source, self.config, self.site = source, config, site
         self._progress = progress
@@ -127,6 +134,7 @@ class _Loop:
         self.hand_t: list[float] = []
         self.hand_p: list[NDArray[np.float64]] = []
         self.samples_lost_wearable = 0
+        self._unreachable_s = -np.inf  # when the IK last flagged its target out of reach
 
     def run(self) -> TrialResult:
         site, control, timer = self.site, self.control, self.timer
@@ -144,7 +152,7 @@ class _Loop:
                 if outcome is not None:
                     return self._result(outcome, t)
                 if self._progress is not None:
-                    self._progress(t)
+                    self._progress(self._status(t))
             if tick.control and not self._control(t):
                 return self._result(Outcome.OPERATOR_STOPPED, t)
             if tick.physics:
@@ -190,6 +198,21 @@ class _Loop:
             moving = control.hand_speed_m_s
         self.monitor.control(t, moving, control.grip.closed, state)
         return True
+
+    def _status(self, t: float) -> TrialProgress:
+        control, monitor = self.control, self.monitor
+        ik = control.last_ik
+        if ik is not None and not ik.reachable:
+            self._unreachable_s = t
+        short = ik is not None and ik.position_error_m > OUT_OF_REACH_M
+        return TrialProgress(
+            time_s=t,
+            engaged=control.engaged,
+            reachable=not (short and t - self._unreachable_s <= OUT_OF_REACH_S),
+            motion_onset_s=monitor.motion_onset_s,
+            grasped=monitor.grasped,
+            released=monitor.released,
+        )
 
     def _result(self, outcome: Outcome, t: float) -> TrialResult:
         monitor, target = self.monitor, self.site.config.workspace.target_m

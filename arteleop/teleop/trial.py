@@ -78,6 +78,44 @@ class Outcome(Enum):
 
 
 @dataclass(frozen=True)
+class TrialProgress:
+    """Where a running trial stands, at one camera tick.
+
+    Attributes:
+        time_s: Simulated time since the trial began (s).
+        engaged: The arm follows the operator's hand.
+        reachable: False while the IK target is out of reach (see ``loop.OUT_OF_REACH_M``):
+            the arm has stopped at the nearest pose it can reach.
+        motion_onset_s: When the completion timer started (s), or None before the reach.
+        grasped: The bowl has been grasped.
+        released: The bowl has been released after the grasp.
+    """
+
+    time_s: float
+    engaged: bool
+    reachable: bool
+    motion_onset_s: float | None
+    grasped: bool
+    released: bool
+
+    @property
+    def elapsed_s(self) -> float:
+        """The completion timer (s): 0 before the motion onset."""
+        return 0.0 if self.motion_onset_s is None else self.time_s - self.motion_onset_s
+
+    @property
+    def state(self) -> str:
+        """The trial's state in words, for a panel."""
+        if not self.engaged:
+            return "waiting for the hand to align with the gripper"
+        if self.motion_onset_s is None:
+            return "waiting for motion onset"
+        if self.released:
+            return "released: waiting for the bowl to be tracked"
+        return "carrying the bowl" if self.grasped else "running"
+
+
+@dataclass(frozen=True)
 class TrialResult:
     """What happened in the trial.
 

@@ -93,9 +93,11 @@ def test_real_time_trial_shows_every_camera_frame_and_measures_its_latency(
     frames = round(config.timeout_s * config.rates.camera_hz)
     assert frames - 1 <= len(display.frames) <= frames + 1
     assert len(display.sizes) == len(display.frames)  # every frame shown carries its cloud
-    # Each shows the scene when it was captured: frame times advance by the camera period.
-    times = np.array([f.time_s for f in display.frames])
-    assert np.all(np.diff(times) >= 1 / config.rates.camera_hz - 1e-9)
+    # Each shows the scene when it was captured: frame times advance by the camera period (a
+    # frame owed while the renderer was busy is captured when it frees, between two ticks).
+    gaps = np.diff([f.time_s for f in display.frames])
+    assert np.all(gaps > 0)
+    assert np.median(gaps) == pytest.approx(1 / config.rates.camera_hz)
     assert min(display.sizes) > 1000  # the table fills most of the 80x60 strided cloud
     stages = {s.stage: s for s in result.stages}
     # Every stage of docs/study.md section 7 reports service time and latency.
@@ -116,3 +118,37 @@ def test_a_display_without_camera_frames_is_refused(site_config: SiteConfig) -> 
     config = TrialConfig(site=site_config)
     with pytest.raises(ConfigurationError, match="render_camera=True"):
         run_trial(None, config, None, _CountingDisplay())  # type: ignore[arg-type]
+
+
+def test_without_a_tracked_bowl_the_beam_hides_and_the_distance_bar_greys(
+    site: RemoteSite,
+) -> None:
+    from arteleop.ar_features import MODALITIES
+    from arteleop.ar_features.layers import BeamLayer, DistanceBarLayer
+    from arteleop.ar_features.layers.colors import DISTANCE_RGB, NO_ESTIMATE_RGB
+    from arteleop.teleop import view_assets
+
+    with OperatorView(ViewConfig(port=0), view_assets(site)) as view:
+        beam = next(layer for layer in view.layers if isinstance(layer, BeamLayer))
+        bar = next(layer for layer in view.layers if isinstance(layer, DistanceBarLayer))
+        scale, fill, label = bar._bar.handles
+        full = MODALITIES["full"]
+        view.show(display_frame(cues=full))
+        # Gripper 95 mm from the grasp point: (0, 2, 95) mm away, by frames.py's geometry.
+        assert beam._handle.visible and label.text == "95 mm"
+        assert tuple(scale.color) == DISTANCE_RGB
+        view.show(display_frame(cues=full, bowl_m=None))
+        assert not beam._handle.visible
+        assert label.text == "bowl not tracked" and tuple(scale.color) == NO_ESTIMATE_RGB
+        assert fill.dimensions[0] < 1e-3
+        view.show(display_frame(cues=full))
+        assert beam._handle.visible and tuple(scale.color) == DISTANCE_RGB
+
+
+def test_a_frame_without_a_tracked_bowl_has_no_grasp_point() -> None:
+    frame = display_frame(bowl_m=None)
+    assert not frame.bowl_found
+    assert frame.grasp_point_m() is None and frame.grasp_distance_m() is None
+    tracked = display_frame()
+    # The grasp ring's point towards the gripper: 78 mm from the axis, 55 mm up.
+    np.testing.assert_allclose(tracked.grasp_point_m(), [0.68, -0.45 + 0.078, -0.2 + 0.055])

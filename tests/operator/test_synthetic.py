@@ -5,7 +5,7 @@ import pytest
 
 from arteleop.ar_features import MODALITIES, ArCues, DisplayFrame
 from arteleop.operator import ArmModel, CalibrationPosture
-from arteleop.operator.perception import PerceptionParams, perceive
+from arteleop.operator.perception import BowlMemory, Perceived, PerceptionParams, perceive
 from arteleop.operator.synthetic import Expertise, SyntheticOperator, TaskGeometry
 from tests.ar_features.frames import display_frame
 
@@ -79,3 +79,36 @@ def test_expertise_speeds_up_and_steadies_the_operator() -> None:
         0.3 + 0.3 * np.log2(31)
     )  # Fitts, Shannon form
     assert expert._noise < novice._noise
+
+
+def test_a_bowl_the_display_does_not_show_is_not_perceived() -> None:
+    rng = np.random.default_rng(2)
+    view = display_frame(cues=MODALITIES["full"], bowl_m=None)
+    seen = [perceive(view, P, rng) for _ in range(4000)]
+    assert all(s.bowl_m is None for s in seen)
+    # No bar or beam value without a tracked bowl: the gripper is judged from the cloud alone.
+    err = np.array([s.gripper_m - view.gripper_m for s in seen])
+    assert np.sqrt(np.mean(np.sum(err**2, axis=1))) == pytest.approx(
+        np.sqrt(P.depth_sd_m**2 + 2 * P.lateral_sd_m**2), rel=0.05
+    )
+
+
+def test_the_operator_remembers_a_hidden_bowl_and_carries_it_with_the_hand() -> None:
+    def look(gripper: list[float], bowl: list[float] | None) -> Perceived:
+        return Perceived(
+            np.array(gripper), None if bowl is None else np.array(bowl), np.zeros(3), True, True
+        )
+
+    memory = BowlMemory()
+    assert memory.bowl_m(look([0.0, 0.0, 0.1], None)) is None  # never seen
+    shown = look([0.5, -0.3, 0.0], [0.6, -0.4, -0.2])
+    np.testing.assert_array_equal(memory.bowl_m(shown), [0.6, -0.4, -0.2])
+    # Hidden by the arm: where it was last seen.
+    np.testing.assert_array_equal(memory.bowl_m(look([0.9, 0.9, 0.9], None)), [0.6, -0.4, -0.2])
+    memory.grasp(shown, shown.bowl_m)
+    carried = memory.bowl_m(look([0.7, 0.0, 0.1], None))
+    np.testing.assert_allclose(carried, [0.8, -0.1, -0.1])  # moved with the gripper
+    assert not memory.left_behind(look([0.7, 0.0, 0.1], [0.8, -0.1, -0.1]))
+    assert memory.left_behind(look([0.7, 0.0, 0.1], [0.6, -0.4, -0.2]))  # the grasp missed
+    memory.release()
+    np.testing.assert_array_equal(memory.bowl_m(look([0.7, 0.0, 0.1], None)), [0.6, -0.4, -0.2])

@@ -41,3 +41,17 @@ def test_hidden_bowl_is_not_found(site: RemoteSite) -> None:
     track = BowlTracker(ws.bowl).track(site.capture(), ws.table_top_z_m)
     assert not track.found
     assert track.reason
+
+
+def test_a_bowl_half_hidden_is_not_found_rather_than_misplaced(site: RemoteSite) -> None:
+    ws = site.config.workspace
+    site.step(60)
+    # A board hides the bowl's half towards the robot: what remains is an arc, which fits a
+    # bowl at many places.
+    drawn = site.render_world.client
+    cover = drawn.createVisualShape(p.GEOM_BOX, halfExtents=[0.06, 0.15, 0.005])
+    x, y = ws.start_xy_m
+    drawn.createMultiBody(0.0, -1, cover, basePosition=[x - 0.06, y, ws.table_top_z_m + 0.12])
+    track = BowlTracker(ws.bowl).track(site.capture(), ws.table_top_z_m)
+    assert not track.found
+    assert "partly hidden" in track.reason and "of 360 degrees" in track.reason

@@ -1,6 +1,7 @@
 """A bar in 3D near the gripper, facing the viewer: the filled part solid, the rest of its full
 scale a translucent tint of the same colour, its value in numbers beside it. The distance and
-grip bars are two of these."""
+grip bars are two of these. A bar without a value (the distance bar while the bowl is not
+tracked) turns grey and empty, and its label says why."""
 
 from __future__ import annotations
 
@@ -9,6 +10,7 @@ import viser
 from numpy.typing import NDArray
 
 from arteleop.ar_features.display_frame import DisplayFrame
+from arteleop.ar_features.layers.colors import NO_ESTIMATE_RGB
 from arteleop.transforms import transform_to_pose
 
 BAR_LENGTH_M = 0.10
@@ -32,6 +34,8 @@ class Bar:
         offset_m: tuple[float, float],
     ) -> None:
         self._offset = np.array([offset_m[0], offset_m[1], 0.0])
+        self._rgb = rgb
+        self._greyed = False
         dims = (BAR_LENGTH_M, BAR_WIDTH_M, BAR_WIDTH_M)
         self._frame = scene.add_box(
             f"{name}/scale", color=rgb, dimensions=dims, opacity=SCALE_OPACITY
@@ -42,12 +46,17 @@ class Bar:
         )
         self.handles = (self._frame, self._fill, self._label)
 
-    def show(self, frame: DisplayFrame, fraction: float, text: str) -> None:
-        """Fill ``fraction`` (0..1) of the bar and write ``text`` beside it."""
+    def show(self, frame: DisplayFrame, fraction: float | None, text: str) -> None:
+        """Fill ``fraction`` (0..1) of the bar and write ``text`` beside it; None: no value,
+        the bar greyed and empty."""
         R = frame.T_base_camera[:3, :3]
         start = frame.gripper_m + R @ self._offset
         wxyz = transform_to_pose(frame.T_base_camera)[1]
-        fraction = float(np.clip(fraction, 0.0, 1.0))
+        if (fraction is None) != self._greyed:
+            self._greyed = fraction is None
+            self._frame.color = NO_ESTIMATE_RGB if self._greyed else self._rgb
+            self._fill.color = NO_ESTIMATE_RGB if self._greyed else self._rgb
+        fraction = 0.0 if fraction is None else float(np.clip(fraction, 0.0, 1.0))
         length = max(fraction * BAR_LENGTH_M, 1e-4)
         self._place(self._frame, start + R[:, 0] * BAR_LENGTH_M / 2, wxyz)
         self._place(self._fill, start + R[:, 0] * length / 2, wxyz)

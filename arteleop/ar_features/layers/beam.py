@@ -14,7 +14,7 @@ BEAM_WIDTH_PX = 4.0
 
 class BeamLayer(Layer):
     """A straight red segment from the gripper's tool frame to :meth:`DisplayFrame.grasp_point_m`,
-    redrawn every frame."""
+    redrawn every frame; hidden while the camera does not track the bowl (no grasp point)."""
 
     cue = "beam"
 
@@ -30,8 +30,11 @@ class BeamLayer(Layer):
         )
 
     def update(self, frame: DisplayFrame) -> None:
-        segment = np.stack([frame.gripper_m, frame.grasp_point_m()])[None]
-        self._handle.points = segment.astype(np.float32)
+        grasp = frame.grasp_point_m()
+        if self._handle.visible != (grasp is not None):
+            self._handle.visible = grasp is not None
+        if grasp is not None:
+            self._handle.points = np.stack([frame.gripper_m, grasp])[None].astype(np.float32)
 
     def _set_visible(self, visible: bool) -> None:
         self._handle.visible = visible

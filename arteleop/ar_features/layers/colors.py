@@ -1,9 +1,11 @@
 """The AR cues' colours (RGB, 0-255), as the original system drew them: a red beam, a green
 distance bar and target, a blue grip bar; the ghost is a translucent grey so it never reads as
-one of the cues."""
+one of the cues. A cue without an estimate (the distance bar while the bowl is not tracked)
+turns grey."""
 
 BEAM_RGB = (255, 0, 0)
 DISTANCE_RGB = (0, 200, 0)
 GRIP_RGB = (0, 60, 255)
 TARGET_RGB = (0, 200, 0)
 GHOST_RGBA = (0.85, 0.85, 0.9, 0.45)
+NO_ESTIMATE_RGB = (128, 128, 128)

@@ -11,10 +11,12 @@ from arteleop.ar_features.layers.colors import DISTANCE_RGB
 
 FULL_SCALE_M = 0.30
 """A distance that fills the bar (m): the reach from above the bowl, most of a trial."""
+NOT_TRACKED_LABEL = "bowl not tracked"
 
 
 class DistanceBarLayer(Layer):
-    """The bar fills with the gripper-to-grasp-point distance; its label gives it in mm."""
+    """The bar fills with the gripper-to-grasp-point distance; its label gives it in mm. While
+    the camera does not track the bowl it is grey and empty, labelled "bowl not tracked"."""
 
     cue = "distance_bar"
 
@@ -24,7 +26,10 @@ class DistanceBarLayer(Layer):
 
     def update(self, frame: DisplayFrame) -> None:
         d = frame.grasp_distance_m()
-        self._bar.show(frame, d / FULL_SCALE_M, f"{d * 1000:.0f} mm")
+        if d is None:
+            self._bar.show(frame, None, NOT_TRACKED_LABEL)
+        else:
+            self._bar.show(frame, d / FULL_SCALE_M, f"{d * 1000:.0f} mm")
 
     def _set_visible(self, visible: bool) -> None:
         for handle in self._bar.handles:

@@ -1,0 +1,48 @@
+"""Live input for users without IMUs: a gizmo for the gripper's target and a grip slider.
+
+Both only set a target; the loop drives the robot towards it through the same mapping, IK and
+trajectory as a wearable's samples. The gizmo starts at the gripper's rest position.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+import viser
+from numpy.typing import ArrayLike, NDArray
+
+GIZMO_SCALE_M = 0.15
+
+
+class LiveInput:
+    """The gizmo and the slider; ``on_change(gripper_m, grip)`` hears every change."""
+
+    def __init__(
+        self,
+        server: viser.ViserServer,
+        start_m: ArrayLike,
+        on_change: Callable[[NDArray[np.float64] | None, float | None], None],
+    ) -> None:
+        self._start = np.asarray(start_m, dtype=np.float64)
+        self._gizmo = server.scene.add_transform_controls(
+            "/live/gripper_target",
+            scale=GIZMO_SCALE_M,
+            disable_rotations=True,
+            position=self._start,
+        )
+        with server.gui.add_folder("Drive the robot"):
+            self._grip = server.gui.add_slider("Grip", 0.0, 1.0, 0.05, 0.0)
+            self._reach = server.gui.add_text("Reach", "", disabled=True)
+        self._gizmo.on_update(lambda _: on_change(np.array(self._gizmo.position), None))
+        self._grip.on_update(lambda _: on_change(None, float(self._grip.value)))
+
+    def reset(self) -> None:
+        """Back to the rest position, the grip open."""
+        self._gizmo.position = self._start
+        self._grip.value = 0.0
+
+    def show_reach(self, reachable: bool) -> None:
+        text = "" if reachable else "out of reach: the arm stops at the nearest pose"
+        if self._reach.value != text:
+            self._reach.value = text

@@ -1,0 +1,144 @@
+"""The operator's view: what each layer costs per frame, and whether the view keeps up in real time.
+
+1. Per-frame cost of each layer's update and of the whole ``OperatorView.show`` (median, p95),
+   at 320x240 and 640x480, with one websocket client connected (``ViewProbe``), on the frame
+   of seed 0, 8 s into the trial, its arm moved a little each time so that every update sends.
+2. Real-time trials with the camera at 30 Hz and three clients connected: all layers against the
+   cloud alone (the baseline), side by side. Latency from an operator sample to the first
+   display update that shows it (median, p95, and its median over the first and the last 10 s:
+   no growing lag), display updates per second, and how far the simulation fell behind real
+   time by the end.
+
+    python benchmarks/bench_view.py [--seconds 60] [--parts layers,realtime]
+"""
+
+from __future__ import annotations
+
+import os
+
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+
+import argparse
+import contextlib
+import time
+from dataclasses import replace
+
+import numpy as np
+
+from arteleop.ar_features import DisplayFrame, OperatorView, ViewConfig, ViewProbe
+from arteleop.operator import synthetic_source
+from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
+from arteleop.teleop import TrialConfig, display_frame_at, run_trial, view_assets
+
+SIZES = ((320, 240), (640, 480))
+CLIENTS = 3
+
+
+def _source(site: RemoteSite, config: TrialConfig):
+    ws = site.config.workspace
+    return synthetic_source(
+        ws.bowl, site.observe().gripper_m, config.controller.mapping, config.seed
+    )
+
+
+def layer_costs(repeats: int) -> None:
+    print("\n## Per-frame cost of each layer (ms), one client connected\n")
+    print("| camera | layer | median | p95 |")
+    print("| --- | --- | ---: | ---: |")
+    rng = np.random.default_rng(0)
+    for w, h in SIZES:
+        config = TrialConfig(
+            seed=0, site=SiteConfig(camera=HeadCameraConfig(width_px=w, height_px=h))
+        )
+        with RemoteSite(config.site) as site:
+            frame = display_frame_at(_source(site, config), config, 8.0, site)
+            assets = view_assets(site)
+        with OperatorView(ViewConfig(port=0), assets) as view, ViewProbe(view.url):
+            time.sleep(0.3)
+            frames = [
+                replace(frame, arm_q_rad=frame.arm_q_rad + rng.normal(0, 1e-3, 7))
+                for _ in range(repeats)
+            ]
+            for layer in view.layers:
+                cost = []
+                for f in frames:
+                    t0 = time.perf_counter()
+                    layer.draw(f)
+                    view.server.flush()
+                    cost.append(time.perf_counter() - t0)
+                name = type(layer).__name__
+                print(
+                    f"| {w}x{h} | {name} | {np.median(cost) * 1e3:.2f} | {np.percentile(cost, 95) * 1e3:.2f} |"
+                )
+            total = []
+            for f in frames:
+                t0 = time.perf_counter()
+                view.show(f)
+                total.append(time.perf_counter() - t0)
+            print(
+                f"| {w}x{h} | all (OperatorView.show) | {np.median(total) * 1e3:.2f} | {np.percentile(total, 95) * 1e3:.2f} |"
+            )
+
+
+class _CountingDisplay:
+    def __init__(self, view: OperatorView) -> None:
+        self.view = view
+        self.shown_s: list[float] = []
+
+    def show(self, frame: DisplayFrame) -> None:
+        self.view.show(frame)
+        self.shown_s.append(time.perf_counter())
+
+
+def realtime(seconds: float) -> None:
+    print(
+        f"\n## Real time, 320x240, camera at 30 Hz, {seconds:.0f} s, {CLIENTS} clients connected\n"
+    )
+    print(
+        "| view | latency median (ms) | p95 (ms) | median first 10 s | median last 10 s "
+        "| updates / s | behind real time at the end (ms) | median / cloud alone |"
+    )
+    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+    baseline = None
+    for name, with_layers in (("cloud alone (baseline)", False), ("all layers", True)):
+        camera = HeadCameraConfig(width_px=320, height_px=240)
+        config = TrialConfig(
+            modality="full", seed=0, timeout_s=seconds, realtime=True, render_camera=True,
+            site=SiteConfig(camera=camera),
+        )  # fmt: skip
+        with RemoteSite(config.site) as site, contextlib.ExitStack() as stack:
+            assets = view_assets(site) if with_layers else None
+            view = stack.enter_context(OperatorView(ViewConfig(port=0), assets))
+            for _ in range(CLIENTS):
+                stack.enter_context(ViewProbe(view.url))
+            display = _CountingDisplay(view)
+            site.start_render_process()
+            t0 = time.perf_counter()
+            result = run_trial(_source(site, config), config, site, display)
+            behind_ms = (time.perf_counter() - t0 - result.duration_s) * 1000
+        lat = result.latency_wall_ms
+        n10 = max(1, round(len(lat) * 10 / result.duration_s))
+        median = float(np.median(lat))
+        baseline = baseline or median
+        rate = len(display.shown_s) / (display.shown_s[-1] - display.shown_s[0])
+        print(
+            f"| {name} | {median:.1f} | {np.percentile(lat, 95):.1f} | {np.median(lat[:n10]):.1f} "
+            f"| {np.median(lat[-n10:]):.1f} | {rate:.1f} | {behind_ms:.0f} | {median / baseline:.2f} |"
+        )
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--seconds", type=float, default=60.0)
+    parser.add_argument("--repeats", type=int, default=200)
+    parser.add_argument("--parts", default="layers,realtime")
+    args = parser.parse_args()
+    parts = args.parts.split(",")
+    if "layers" in parts:
+        layer_costs(args.repeats)
+    if "realtime" in parts:
+        realtime(args.seconds)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,116 @@
+"""Live teleoperation: a person driving the gripper's target, and the application that runs
+trial after trial in the browser."""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections.abc import Callable, Iterator
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from arteleop.ar_features import ViewConfig
+from arteleop.operator import HandTarget, live_source
+from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
+from arteleop.teleop import (
+    Outcome,
+    TeleopApp,
+    TeleopAppConfig,
+    TrialConfig,
+    TrialProgress,
+    run_trial,
+)
+
+
+def _drive(site: RemoteSite, offset_m: np.ndarray, duration_s: float) -> list[TrialProgress]:
+    """Engage at rest, then move the target by ``offset_m``; the statuses of the trial."""
+    rest = site.observe().gripper_m
+    target = HandTarget(rest)
+    config = TrialConfig(timeout_s=duration_s, seed=0)
+    seen: list[TrialProgress] = []
+
+    def tick(status: TrialProgress) -> None:
+        if status.engaged and not any(s.engaged for s in seen):
+            target.set(gripper_m=rest + offset_m, grip=1.0)
+        seen.append(status)
+
+    result = run_trial(live_source(target, config.controller.mapping, 0), config, site, None, tick)
+    assert result.outcome is Outcome.TIMEOUT
+    return seen
+
+
+def test_the_gripper_follows_the_dragged_target(site: RemoteSite) -> None:
+    rest = site.observe().gripper_m
+    offset = np.array([0.10, 0.05, 0.08])
+    seen = _drive(site, offset, duration_s=9.0)
+    engaged_s = next(s.time_s for s in seen if s.engaged)
+    assert engaged_s < 4.0  # calibration hold, alignment, engagement
+    state = site.observe()
+    assert np.linalg.norm(state.gripper_m - (rest + offset)) < 0.015
+    assert state.gripper_closure > 0.9  # the grip slider closed it
+    assert seen[-1].reachable
+
+
+def test_a_target_out_of_reach_stops_the_arm_at_the_nearest_pose(site: RemoteSite) -> None:
+    rest = site.observe().gripper_m
+    far = np.array([1.5, 0.0, 0.0])  # 1.5 m further: beyond the arm's reach
+    seen = _drive(site, far, duration_s=8.0)
+    assert not any(s.reachable for s in seen[-30:])  # the last second
+    gripper = site.observe().gripper_m
+    # Stretched towards the target, short of it.
+    assert gripper[0] > rest[0] + 0.15
+    assert np.linalg.norm(gripper - (rest + far)) > 0.5
+
+
+def _until(condition: Callable[[], bool], timeout_s: float = 15.0) -> bool:
+    end = time.monotonic() + timeout_s
+    while not condition():
+        if time.monotonic() > end:
+            return False
+        time.sleep(0.05)
+    return True
+
+
+@pytest.fixture
+def app(site_config: SiteConfig) -> Iterator[TeleopApp]:
+    small = replace(site_config, camera=HeadCameraConfig(width_px=160, height_px=120))
+    trial = TrialConfig(timeout_s=2.0, seed=4, site=small)
+    config = TeleopAppConfig("synthetic", trial, ViewConfig(port=0), pause_s=0.2)
+    with RemoteSite(small) as site, TeleopApp(config, site) as running:
+        yield running
+
+
+def test_the_app_runs_trial_after_trial_with_the_next_seed(app: TeleopApp) -> None:
+    done = threading.Event()
+
+    def on_trial(result: object) -> None:
+        if len(app.results) == 2:
+            app.stop()
+            done.set()
+
+    runner = threading.Thread(target=app.run, args=(on_trial,))
+    runner.start()
+    assert done.wait(timeout=30.0)
+    runner.join(timeout=5.0)
+    assert not runner.is_alive()
+    assert [r.seed for r in app.results] == [4, 5]
+    assert all(r.outcome is Outcome.TIMEOUT for r in app.results)
+    assert app.panel._last.value == "seed 5: timeout after 2 s"
+
+
+def test_reset_stops_the_trial_and_waits_for_start(app: TeleopApp) -> None:
+    runner = threading.Thread(target=app.run)
+    runner.start()
+    try:
+        assert _until(lambda: app.panel._state.value != "starting")  # the first trial runs
+        app.reset()
+        assert _until(lambda: app.panel._state.value == "at the rest pose: press Start trial")
+        threading.Event().wait(0.5)
+        assert app.results == []  # interrupted, not finished
+        assert app.site.time_s == 0.0  # and no trial has started since
+    finally:
+        app.stop()
+        runner.join(timeout=5.0)
+    assert not runner.is_alive()
