@@ -70,21 +70,35 @@ def perceive(
     k = noise_scale
     gripper_seen = view.gripper_in_camera or cues.ghost
 
-    def seen(point: NDArray[np.float64], depth_sd: float, lateral_sd: float) -> NDArray[np.float64]:
-        d = point - view.viewpoint_m
-        d /= np.linalg.norm(d)
-        lateral = rng.normal(0.0, lateral_sd * k, 3)
-        lateral -= d * (lateral @ d)
-        return point + d * rng.normal(0.0, depth_sd * k) + lateral
+    def seen(
+        point: NDArray[np.float64],
+        along_sd: float,
+        across_sd: float,
+        axis: NDArray[np.float64] | None = None,
+    ) -> NDArray[np.float64]:
+        """``point`` judged with ``along_sd`` along ``axis`` (default: the line of sight) and
+        ``across_sd`` across it."""
+        d = point - view.viewpoint_m if axis is None else axis
+        d = d / np.linalg.norm(d)
+        across = rng.normal(0.0, across_sd * k, 3)
+        across -= d * (across @ d)
+        return point + d * rng.normal(0.0, along_sd * k) + across
 
     tracked = view.bowl_m
+    grasp = view.grasp_point_m()  # what the beam and the distance bar draw
     bowl = None if tracked is None else seen(tracked, params.depth_sd_m, params.lateral_sd_m)
-    if gripper_seen and tracked is not None and bowl is not None:
-        # With the bar and beam, the gripper is judged relative to the grasp point; both show
-        # nothing while the bowl is not tracked.
-        depth_sd = params.bar_sd_m if cues.distance_bar else params.depth_sd_m
-        lateral_sd = params.beam_sd_m if cues.beam else params.lateral_sd_m
-        gripper = bowl + seen(view.gripper_m, depth_sd, lateral_sd) - tracked
+    if gripper_seen and grasp is not None and tracked is not None and bowl is not None:
+        # Judged relative to the bowl. The bar gives the gripper's distance to the grasp point
+        # and the beam its direction: both show nothing while the bowl is not tracked.
+        if cues.distance_bar or cues.beam:
+            along_sd = params.bar_sd_m if cues.distance_bar else params.depth_sd_m
+            across_sd = params.beam_sd_m if cues.beam else params.lateral_sd_m
+            beam = view.gripper_m - grasp
+            axis = beam if np.linalg.norm(beam) > 1e-6 else None
+            judged = seen(view.gripper_m, along_sd, across_sd, axis)
+        else:
+            judged = seen(view.gripper_m, params.depth_sd_m, params.lateral_sd_m)
+        gripper = bowl + judged - tracked
     elif gripper_seen:
         gripper = seen(view.gripper_m, params.depth_sd_m, params.lateral_sd_m)
     else:
@@ -132,9 +146,11 @@ class BowlMemory:
     def release(self) -> None:
         self._in_hand_m = None
 
-    def left_behind(self, seen: Perceived, distance_m: float = 0.05) -> bool:
-        """A look shows the bowl held a moment ago more than ``distance_m`` from where the hand
-        should carry it: the grasp missed and the bowl stayed behind."""
+    def left_behind(self, seen: Perceived, drop_m: float = 0.07) -> bool:
+        """A look shows the bowl held a moment ago more than ``drop_m`` below where the hand
+        should carry it: the grasp missed and the bowl stayed on the table. (Judged in height:
+        a held bowl tilts and the estimates err by centimetres, but a lift is 15 cm.)"""
         if seen.bowl_m is None or self._in_hand_m is None:
             return False
-        return bool(np.linalg.norm(seen.bowl_m - (seen.gripper_m + self._in_hand_m)) > distance_m)
+        expected = seen.gripper_m + self._in_hand_m
+        return bool(expected[2] - seen.bowl_m[2] > drop_m)

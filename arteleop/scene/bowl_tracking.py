@@ -153,12 +153,12 @@ class BowlTracker:
                 f"{inliers.mean():.0%} inliers): it may be tipped over, held or partly hidden",
                 rms,
             )
-        coverage_deg = _coverage_deg(pts[inliers, :2] - fit.x[:2])
-        if coverage_deg < c.min_coverage_deg:
+        around_deg = coverage_deg(pts[inliers, :2] - fit.x[:2])
+        if around_deg < c.min_coverage_deg:
             return self._not_found(
                 frame,
                 len(pts),
-                f"the bowl's points span only {coverage_deg:.0f} of 360 degrees around its axis, "
+                f"the bowl's points span only {around_deg:.0f} of 360 degrees around its axis, "
                 f"need {c.min_coverage_deg:.0f}: it is partly hidden",
                 rms,
             )
@@ -199,7 +199,7 @@ class BowlTracker:
 SECTOR_DEG = 30.0
 
 
-def _coverage_deg(offsets_xy: NDArray[np.float64], min_points: int = 2) -> float:
+def coverage_deg(offsets_xy: NDArray[np.float64], min_points: int = 2) -> float:
     """Degrees of azimuth, in ``SECTOR_DEG`` sectors, that hold at least ``min_points`` of the
     given (N, 2) offsets from the bowl's axis."""
     azimuth = np.degrees(np.arctan2(offsets_xy[:, 1], offsets_xy[:, 0]))

@@ -18,14 +18,20 @@ from arteleop.errors import ConfigurationError
 
 @dataclass(frozen=True)
 class LoopRates:
-    """Rates of the loop's stages (Hz, whole numbers)."""
+    """Rates of the loop's stages (Hz, whole numbers).
+
+    ``tracking_hz`` is the bowl tracker's: its estimate is updated every
+    :attr:`frames_per_track` camera frames and held in between, as a tracker slower than the
+    camera.
+    """
 
     control_hz: int = 100
     physics_hz: int = 240
     camera_hz: int = 30
+    tracking_hz: int = 10
 
     def __post_init__(self) -> None:
-        for name in ("control_hz", "physics_hz", "camera_hz"):
+        for name in ("control_hz", "physics_hz", "camera_hz", "tracking_hz"):
             value = getattr(self, name)
             if not isinstance(value, int) or value <= 0:
                 raise ConfigurationError(
@@ -33,6 +39,16 @@ class LoopRates:
                 )
         if self.physics_hz < 240:
             raise ConfigurationError(f"physics_hz={self.physics_hz}: use at least 240 Hz")
+        if self.tracking_hz > self.camera_hz:
+            raise ConfigurationError(
+                f"tracking_hz={self.tracking_hz} exceeds camera_hz={self.camera_hz}: the tracker "
+                "runs on camera frames"
+            )
+
+    @property
+    def frames_per_track(self) -> int:
+        """Camera frames per tracker update: the nearest whole number to the rates' ratio."""
+        return max(1, round(self.camera_hz / self.tracking_hz))
 
     @property
     def base_hz(self) -> int:

@@ -3,8 +3,8 @@
 At each camera tick the feed builds the frame of what the remote system knows at that instant
 (the arm's encoders, the gripper, the bowl as the camera tracks it, the target, the cues, the
 engaged indicator). The bowl's track comes from the model of the tracker
-(:meth:`RemoteSite.sight_bowl`): the tracker itself costs 60-90 ms a frame, more than a camera
-period. When
+(:meth:`RemoteSite.sight_bowl`; the tracker itself costs 60-90 ms a frame, more than a camera
+period), updated at the tracker's rate and held in between. When
 the camera renders, the frame carries the point cloud and goes to the display: in place in
 batch runs; in real time, through the render process on the other core, shown when it comes
 back. The operator sees each frame once the return link's delay has passed.
@@ -93,6 +93,7 @@ class DisplayFeed:
         display: Where rendered frames are shown, if anywhere.
         timer: Times the ``camera``, ``point_cloud`` and ``display`` stages.
         latency: Collects the latency of each frame.
+        track_every: The bowl's track is updated every this many camera frames.
     """
 
     def __init__(
@@ -105,8 +106,12 @@ class DisplayFeed:
         display: Display | None,
         timer: StageTimer,
         latency: LatencyAccount,
+        track_every: int = 1,
     ) -> None:
         self._site = site
+        self._track_every = track_every
+        self._ticks = 0
+        self._track: BowlTrack | None = None
         self._cues = cues
         self._workspace = site.config.workspace
         self._render = render
@@ -123,7 +128,11 @@ class DisplayFeed:
 
     def camera_tick(self, state: SiteState, engaged: bool, applied_sample_time_s: float) -> None:
         """A camera tick: the display's content now (rendered if asked), and its latency."""
-        frame = display_frame(state, self._site.sight_bowl(), self._workspace, self._cues, engaged)
+        if self._ticks % self._track_every == 0 or self._track is None:
+            with self._timer.stage("tracking"):
+                self._track = self._site.sight_bowl()
+        self._ticks += 1
+        frame = display_frame(state, self._track, self._workspace, self._cues, engaged)
         self._history.append(frame)
         if self._background:
             if not self._site.frame_pending:
@@ -148,9 +157,8 @@ class DisplayFeed:
         self._timer.record("camera", requested_wall)
         if self._owed:
             state = self._site.observe()
-            frame = display_frame(
-                state, self._site.sight_bowl(), self._workspace, self._cues, engaged
-            )
+            track = self._track or self._site.sight_bowl()
+            frame = display_frame(state, track, self._workspace, self._cues, engaged)
             self._request(frame, applied_sample_time_s)
         self._show(frame, rgbd, applied)
 

@@ -129,6 +129,7 @@ class _Loop:
             display=display,
             timer=self.timer,
             latency=self.latency,
+            track_every=config.rates.frames_per_track,
         )
         self._background = background
         self.hand_t: list[float] = []

