@@ -16,9 +16,8 @@ import tyro
 from arteleop.errors import ArteleopError, ConfigurationError
 
 if TYPE_CHECKING:
-    from arteleop.operator import SyntheticSource
-    from arteleop.scene import HeadCameraConfig, RemoteSite
-    from arteleop.teleop import TrialConfig, TrialProgress, TrialResult
+    from arteleop.scene import HeadCameraConfig
+    from arteleop.teleop import TrialProgress, TrialResult
 
 
 Modality = Literal["none", "manipulation", "embodiment", "task", "full"]
@@ -209,13 +208,9 @@ def _check_trial(cmd: TrialCommand | TeleopCommand) -> None:
             f"{2 * cmd.delay_ms / 1000:g} s after moving (the round trip), after --timeout-s "
             f"{cmd.timeout_s:g} s; no trial can finish. Shorten the delay or lengthen the timeout."
         )
-    names = ("synthetic", "live") if isinstance(cmd, TeleopCommand) else ("synthetic",)
-    if cmd.operator not in names and not Path(cmd.operator).is_file():
-        live = ", 'live' (drive the robot from the page)" if "live" in names else ""
-        raise ConfigurationError(
-            f"--operator {cmd.operator}: no such file. Give 'synthetic' (a simulated "
-            f"participant){live} or the path of a wearable recording's CSV."
-        )
+    from arteleop.operator import check_operator
+
+    check_operator(cmd.operator, live=isinstance(cmd, TeleopCommand))
 
 
 def trial(cmd: TrialCommand) -> int:
@@ -223,7 +218,7 @@ def trial(cmd: TrialCommand) -> int:
     from arteleop.ar_features import OperatorView, ViewConfig
     from arteleop.operator import RecordingSource, load_recording
     from arteleop.scene import RemoteSite, SiteConfig
-    from arteleop.teleop import NetworkConfig, TrialConfig, run_trial, view_assets
+    from arteleop.teleop import NetworkConfig, TrialConfig, run_trial, trial_operator, view_assets
 
     _check_trial(cmd)
     config = TrialConfig(
@@ -235,7 +230,7 @@ def trial(cmd: TrialCommand) -> int:
     with contextlib.ExitStack() as stack:
         site = stack.enter_context(RemoteSite(config.site))
         if cmd.operator == "synthetic":
-            source = _synthetic_source(site, config)
+            source = trial_operator(site, config)
         else:
             source = RecordingSource(load_recording(Path(cmd.operator)))
         display = None
@@ -288,12 +283,12 @@ class OperatorSynthCommand:
 def operator_synth(cmd: OperatorSynthCommand) -> int:
     from arteleop.operator import sidecar_path, write_recording
     from arteleop.scene import RemoteSite
-    from arteleop.teleop import TrialConfig, run_trial
+    from arteleop.teleop import TrialConfig, run_trial, trial_operator
 
     _check_seed(cmd.seed)
     config = TrialConfig(modality=cmd.modality, seed=cmd.seed)
     with RemoteSite(config.site) as site:
-        source = _synthetic_source(site, config)
+        source = trial_operator(site, config)
         with _progress(config.timeout_s, "trial", cmd.quiet) as progress:
             result = run_trial(source, config, site, progress=progress)
     rec = source.recording(subject_id=f"synthetic-{cmd.modality}-{cmd.seed}")
@@ -324,15 +319,6 @@ def _progress(
                 bar.update(int(status.time_s) - bar.n)
 
         yield update
-
-
-def _synthetic_source(site: RemoteSite, config: TrialConfig) -> SyntheticSource:
-    """The synthetic operator of a trial on ``site``, seeded from the trial's seed."""
-    from arteleop.operator import synthetic_source
-
-    rest_gripper_m = site.observe().gripper_m
-    ws = site.config.workspace
-    return synthetic_source(ws.bowl, rest_gripper_m, config.controller.mapping, config.seed)
 
 
 @dataclass(frozen=True)

@@ -24,19 +24,10 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from arteleop.ar_features import DisplayFrame, OperatorView, ViewConfig, ViewProbe
-from arteleop.operator import SyntheticSource, synthetic_source
 from arteleop.robot import GRIPPER_FRAME, RIGHT_ARM_JOINTS, WORK_POSTURE, ArmCommand
 from arteleop.robot.ik import ArmIK
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
-from arteleop.teleop import TrialConfig, TrialResult, run_trial
-
-
-def operator(site: RemoteSite, config: TrialConfig) -> SyntheticSource:
-    """The trial's synthetic operator, seeded from the trial's seed."""
-    ws = site.config.workspace
-    return synthetic_source(
-        ws.bowl, site.observe().gripper_m, config.controller.mapping, config.seed
-    )
+from arteleop.teleop import TrialConfig, TrialResult, run_trial, trial_operator
 
 
 def ik_side_by_side(n: int) -> None:
@@ -106,7 +97,7 @@ def trial_timing(seconds: float, seeds: int) -> None:
             config = TrialConfig(modality="full", seed=seed, timeout_s=seconds, site=site_config)
             with RemoteSite(config.site) as site:
                 t0 = time.perf_counter()
-                result = run_trial(operator(site, config), config, site)
+                result = run_trial(trial_operator(site, config), config, site)
                 wall = time.perf_counter() - t0
             speeds[name].append(result.duration_s / wall)
             durations[name].append(result.duration_s)
@@ -145,7 +136,7 @@ def physics_replay(seconds: float) -> float:
             apply(command)
 
         site.apply = recorded  # type: ignore[method-assign]
-        steps = round(run_trial(operator(site, config), config, site).duration_s * rate)
+        steps = round(run_trial(trial_operator(site, config), config, site).duration_s * rate)
     with RemoteSite(config.site) as site:
         by_step: dict[int, list[ArmCommand]] = {}
         for k, command in commands:
@@ -200,7 +191,7 @@ def latency(seconds: float) -> None:
             display = _TimedDisplay(view)
             site.start_render_process()  # a few seconds, not part of the run
             t0 = time.perf_counter()
-            result = run_trial(operator(site, config), config, site, display)
+            result = run_trial(trial_operator(site, config), config, site, display)
             lag = (time.perf_counter() - t0 - result.duration_s) * 1000
             time.sleep(0.5)
             clouds = client.messages(min_bytes=20_000)

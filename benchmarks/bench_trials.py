@@ -20,9 +20,8 @@ import numpy as np
 import pandas as pd
 
 from arteleop.ar_features import MODALITIES
-from arteleop.operator import synthetic_source
 from arteleop.scene import RemoteSite
-from arteleop.teleop import TrialConfig, run_trial
+from arteleop.teleop import TrialConfig, run_trial, trial_operator
 
 
 def run(modalities: list[str], seeds: int) -> pd.DataFrame:
@@ -31,10 +30,7 @@ def run(modalities: list[str], seeds: int) -> pd.DataFrame:
         for seed in range(seeds):
             config = TrialConfig(modality=modality, seed=seed)
             with RemoteSite(config.site) as site:
-                ws = site.config.workspace
-                source = synthetic_source(
-                    ws.bowl, site.observe().gripper_m, config.controller.mapping, seed
-                )
+                source = trial_operator(site, config)
                 t0 = time.perf_counter()
                 result = run_trial(source, config, site)
                 wall = time.perf_counter() - t0

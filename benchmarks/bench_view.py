@@ -26,19 +26,11 @@ from dataclasses import replace
 import numpy as np
 
 from arteleop.ar_features import DisplayFrame, OperatorView, ViewConfig, ViewProbe
-from arteleop.operator import synthetic_source
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
-from arteleop.teleop import TrialConfig, display_frame_at, run_trial, view_assets
+from arteleop.teleop import TrialConfig, display_frame_at, run_trial, trial_operator, view_assets
 
 SIZES = ((320, 240), (640, 480))
 CLIENTS = 3
-
-
-def _source(site: RemoteSite, config: TrialConfig):
-    ws = site.config.workspace
-    return synthetic_source(
-        ws.bowl, site.observe().gripper_m, config.controller.mapping, config.seed
-    )
 
 
 def layer_costs(repeats: int) -> None:
@@ -51,7 +43,7 @@ def layer_costs(repeats: int) -> None:
             seed=0, site=SiteConfig(camera=HeadCameraConfig(width_px=w, height_px=h))
         )
         with RemoteSite(config.site) as site:
-            frame = display_frame_at(_source(site, config), config, 8.0, site)
+            frame = display_frame_at(trial_operator(site, config), config, 8.0, site)
             assets = view_assets(site)
         with OperatorView(ViewConfig(port=0), assets) as view, ViewProbe(view.url):
             time.sleep(0.3)
@@ -114,7 +106,7 @@ def realtime(seconds: float) -> None:
             display = _CountingDisplay(view)
             site.start_render_process()
             t0 = time.perf_counter()
-            result = run_trial(_source(site, config), config, site, display)
+            result = run_trial(trial_operator(site, config), config, site, display)
             behind_ms = (time.perf_counter() - t0 - result.duration_s) * 1000
         lat = result.latency_wall_ms
         n10 = max(1, round(len(lat) * 10 / result.duration_s))

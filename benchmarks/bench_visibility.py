@@ -22,9 +22,9 @@ from dataclasses import replace
 
 import pandas as pd
 
-from arteleop.operator import Phase, SyntheticSource, synthetic_source
+from arteleop.operator import Phase, SyntheticSource
 from arteleop.scene import RemoteSite, SiteConfig, Workspace
-from arteleop.teleop import TrialConfig, TrialProgress, run_trial
+from arteleop.teleop import TrialConfig, TrialProgress, run_trial, trial_operator
 
 PHASES = {
     Phase.REACH: "reach", Phase.DESCEND: "reach",
@@ -63,9 +63,7 @@ def run(modalities: list[str], seeds: int, workspace: Workspace) -> tuple[pd.Dat
         for seed in range(seeds):
             config = TrialConfig(modality=modality, seed=seed, site=SiteConfig(workspace=workspace))
             with RemoteSite(config.site) as site:
-                source = synthetic_source(
-                    workspace.bowl, site.observe().gripper_m, config.controller.mapping, seed
-                )
+                source = trial_operator(site, config)
 
                 look = _looker(site, source, modality, rows)
                 result = run_trial(source, config, site, progress=look)

@@ -19,9 +19,8 @@ import cv2
 
 from arteleop.ar_features import MODALITIES, OperatorView, ViewConfig
 from arteleop.ar_features.browser import browser_page
-from arteleop.operator import synthetic_source
 from arteleop.scene import RemoteSite, write_snapshot
-from arteleop.teleop import TrialConfig, display_frame_at, view_assets
+from arteleop.teleop import TrialConfig, display_frame_at, trial_operator, view_assets
 
 MOMENT_S = 8.0
 WIDTH_PX = 800
@@ -41,8 +40,7 @@ def main() -> None:
             _write(path, cv2.imread(str(snapshot.files[name])), WIDTH_PX / 2)
             print(f"wrote {path}")
     with RemoteSite(config.site) as site:
-        ws = site.config.workspace
-        source = synthetic_source(ws.bowl, site.observe().gripper_m, config.controller.mapping, 0)
+        source = trial_operator(site, config)
         frame = display_frame_at(source, config, MOMENT_S, site)
         assets = view_assets(site)
     with OperatorView(ViewConfig(port=0), assets) as view:

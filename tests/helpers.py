@@ -1,16 +1,12 @@
-"""Test-only helpers: PyBullet's own tools as an independent reference, and trial set-up."""
+"""Test-only helpers: PyBullet's own tools as an independent reference."""
 
 from __future__ import annotations
-
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from arteleop.operator import SyntheticSource, synthetic_source
 from arteleop.robot import GRIPPER_FRAME, RIGHT_ARM_JOINTS
 from arteleop.scene import RemoteSite
-from arteleop.teleop import TrialConfig
 from arteleop.transforms import make_transform
 
 # Gripper pointing straight down (tool z = -base z), fingers opening along base y.
@@ -37,11 +33,3 @@ def reach_down(site: RemoteSite, tool_m: NDArray[np.float64], iterations: int = 
 def ik_down(site: RemoteSite, tool_m: NDArray[np.float64]) -> NDArray[np.float64]:
     """Right-arm joint targets (rad) for a top-down gripper pose, seeded from the current state."""
     return site.robot.pybullet_ik(_down(tool_m))
-
-
-def trial_source(site: RemoteSite, config: TrialConfig, **kw: Any) -> SyntheticSource:
-    """The synthetic operator of a trial on ``site``, seeded from the trial's seed."""
-    ws = site.config.workspace
-    return synthetic_source(
-        ws.bowl, site.observe().gripper_m, config.controller.mapping, config.seed, **kw
-    )

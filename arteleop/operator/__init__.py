@@ -38,6 +38,7 @@ from arteleop.operator.sources import (
     SyntheticSource,
     WearableSample,
     WornSource,
+    check_operator,
     live_source,
     synthetic_source,
 )
@@ -89,6 +90,7 @@ __all__ = [
     "WearableSignals",
     "WornSource",
     "calibrate",
+    "check_operator",
     "hand_pose",
     "joint_positions",
     "live_source",

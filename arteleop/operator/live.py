@@ -13,13 +13,12 @@ from collections.abc import Callable
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.spatial.transform import Rotation, Slerp
 
 from arteleop.ar_features import DisplayFrame
-from arteleop.operator.arm_model import ArmModel, hand_pose, segment_rotations
+from arteleop.operator.arm_model import ArmModel
 from arteleop.operator.minimum_jerk import minimum_jerk_profile
 from arteleop.operator.recording import CalibrationPosture
-from arteleop.operator.synthetic import OperatorOutput, Phase
+from arteleop.operator.synthetic import OperatorOutput, Phase, hand_from_calibration
 
 ALIGN_S = 1.5
 """Time to bring the hand from the calibration posture to the target (s)."""
@@ -63,11 +62,9 @@ class LiveOperator:
         self.target = target
         self._to_hand = hand_for_gripper
         self._calibration = calibration
-        calib_pos, calib_rot = hand_pose(arm, segment_rotations(calibration.angles))
+        calib_pos, self._rot_path = hand_from_calibration(arm, calibration, hand_pitch_rad)
         self._hand = calib_pos
         self._from = calib_pos
-        work = Rotation.from_euler("y", hand_pitch_rad)
-        self._rot_path = Slerp([0.0, 1.0], Rotation.concatenate([calib_rot, work]))
         self._last_t: float | None = None
         self.phase = Phase.CALIBRATE
 

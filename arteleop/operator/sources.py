@@ -4,12 +4,14 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from pathlib import Path
 from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from arteleop.ar_features import DisplayFrame
+from arteleop.errors import ConfigurationError
 from arteleop.operator.arm_model import ArmModel, segment_rotations, segments_for_hand_pose
 from arteleop.operator.live import HandTarget, LiveOperator
 from arteleop.operator.recording import CalibrationPosture, Recording, RecordingInfo
@@ -119,6 +121,20 @@ class SyntheticSource(WornSource):
             task, hand_for_gripper, arm, calibration, rng, params, expertise
         )
         super().__init__(operator, rng, arm, calibration, wearable)
+
+
+def check_operator(operator: str, live: bool) -> None:
+    """Refuse an operator source that is neither a known name (``synthetic``, and ``live``
+    where the view takes live input) nor an existing recording; the message names the
+    ``--operator`` option and lists what it takes."""
+    names = ("synthetic", "live") if live else ("synthetic",)
+    if operator in names or Path(operator).is_file():
+        return
+    offered = ", 'live' (drive the robot from the page)" if live else ""
+    raise ConfigurationError(
+        f"--operator {operator}: no such file. Give 'synthetic' (a simulated participant)"
+        f"{offered} or the path of a wearable recording's CSV."
+    )
 
 
 class RecordingSource:

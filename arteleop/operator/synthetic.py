@@ -140,6 +140,17 @@ class TaskGeometry:
     rest_gripper_m: NDArray[np.float64]
 
 
+def hand_from_calibration(
+    arm: ArmModel, calibration: CalibrationPosture, hand_pitch_rad: float
+) -> tuple[NDArray[np.float64], Slerp]:
+    """The hand's position in the calibration posture (torso frame, m), and the path of its
+    rotation from that posture (0) to the working one, pitched ``hand_pitch_rad`` about the
+    torso's y (1)."""
+    position, rotation = hand_pose(arm, segment_rotations(calibration.angles))
+    work = Rotation.from_euler("y", hand_pitch_rad)
+    return position, Slerp([0.0, 1.0], Rotation.concatenate([rotation, work]))
+
+
 class SyntheticOperator:
     """Closed-loop synthetic operator. Call :meth:`step` at the wearable's rate."""
 
@@ -162,9 +173,8 @@ class SyntheticOperator:
         self._b = self.p.fitts_b_s_per_bit * (self.p.expertise_speedup if expert else 1.0)
         self._noise = self.p.expertise_noise if expert else 1.0
         self._calib = calibration
-        calib_pos, calib_rot = hand_pose(arm, segment_rotations(calibration.angles))
+        calib_pos, self._rot_path = hand_from_calibration(arm, calibration, self.p.hand_pitch_rad)
         self._work_rot = Rotation.from_euler("y", self.p.hand_pitch_rad)
-        self._rot_path = Slerp([0.0, 1.0], Rotation.concatenate([calib_rot, self._work_rot]))
         self._phases = list(Phase)
         self.phase = Phase.CALIBRATE
         self._hand = calib_pos.copy()

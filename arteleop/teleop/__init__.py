@@ -19,7 +19,7 @@ from arteleop.teleop.controller import (
 from arteleop.teleop.display_feed import DisplayFeed, display_frame, view_assets
 from arteleop.teleop.hand_speed import HandSpeed
 from arteleop.teleop.latency import LatencyAccount
-from arteleop.teleop.loop import display_frame_at, run_trial
+from arteleop.teleop.loop import display_frame_at, run_trial, trial_operator
 from arteleop.teleop.network import NetworkConfig, NetworkLink
 from arteleop.teleop.task_monitor import TaskMonitor
 from arteleop.teleop.timing import StageStats, StageTimer
@@ -60,6 +60,7 @@ __all__ = [
     "display_frame",
     "display_frame_at",
     "run_trial",
+    "trial_operator",
     "view_assets",
 ]
 

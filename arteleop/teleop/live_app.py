@@ -16,19 +16,19 @@ from pathlib import Path
 from arteleop.ar_features import OperatorView, ViewConfig
 from arteleop.ar_features.live_input import LiveInput
 from arteleop.ar_features.trial_panel import TrialPanel
-from arteleop.errors import ArteleopError, ConfigurationError
+from arteleop.errors import ArteleopError
 from arteleop.lifetime import Closeable
 from arteleop.operator import (
     HandTarget,
     OperatorSource,
     RecordingSource,
+    check_operator,
     live_source,
     load_recording,
-    synthetic_source,
 )
 from arteleop.scene import RemoteSite
 from arteleop.teleop.display_feed import view_assets
-from arteleop.teleop.loop import run_trial
+from arteleop.teleop.loop import run_trial, trial_operator
 from arteleop.teleop.trial import TrialConfig, TrialProgress, TrialResult
 
 
@@ -54,12 +54,7 @@ class TeleopAppConfig:
     pause_s: float = 3.0
 
     def __post_init__(self) -> None:
-        if self.operator not in ("synthetic", "live") and not Path(self.operator).is_file():
-            raise ConfigurationError(
-                f"--operator {self.operator}: no such file. Give 'synthetic' (a simulated "
-                "participant), 'live' (drive the robot from the page) or the path of a "
-                "wearable recording's CSV."
-            )
+        check_operator(self.operator, live=True)
 
 
 class TeleopApp(Closeable):
@@ -144,8 +139,7 @@ class TeleopApp(Closeable):
             return live_source(self._target, mapping, config.seed)
         if self._recording is not None:
             return RecordingSource(self._recording)
-        bowl = self.site.config.workspace.bowl
-        return synthetic_source(bowl, self._rest_gripper_m, mapping, config.seed)
+        return trial_operator(self.site, config)
 
     def _tick(self, status: TrialProgress) -> None:
         if self._interrupt.is_set():

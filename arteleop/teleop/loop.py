@@ -13,13 +13,14 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 from dataclasses import replace
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from arteleop.ar_features import Display, DisplayFrame, modality_cues
 from arteleop.errors import ConfigurationError
-from arteleop.operator import OperatorSource, WearableSample
+from arteleop.operator import OperatorSource, SyntheticSource, WearableSample, synthetic_source
 from arteleop.robot import RIGHT_ARM_JOINTS
 from arteleop.scene import BowlTracker, RemoteSite
 from arteleop.teleop.clock import LoopClock
@@ -62,6 +63,15 @@ def run_trial(
     finally:
         if own_site:
             site.close()
+
+
+def trial_operator(site: RemoteSite, config: TrialConfig, **kwargs: Any) -> SyntheticSource:
+    """The synthetic operator of a trial on ``site``, seeded from the trial's seed; it aligns its
+    hand on the gripper where it rests now. ``kwargs`` go to
+    :func:`~arteleop.operator.synthetic_source` (``params``, ``expertise``, ``wearable``)."""
+    bowl = site.config.workspace.bowl
+    rest_gripper_m = site.observe().gripper_m
+    return synthetic_source(bowl, rest_gripper_m, config.controller.mapping, config.seed, **kwargs)
 
 
 def display_frame_at(

@@ -24,8 +24,7 @@ from arteleop.ar_features import (
 from arteleop.ar_features.browser import VIEWPORT, BrowserError, browser_page, chromium_path
 from arteleop.ar_features.layers.beam import BEAM_WIDTH_PX
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
-from arteleop.teleop import TrialConfig, display_frame_at, view_assets
-from tests.helpers import trial_source
+from arteleop.teleop import TrialConfig, display_frame_at, trial_operator, view_assets
 
 MOMENT_S = 8.0
 """Seed 0 reaches over the bowl at the start then, 10 cm above it: bowl, gripper, beam and target
@@ -45,7 +44,7 @@ def moment(site_config: SiteConfig) -> tuple[DisplayFrame, ViewAssets]:
     small = replace(site_config, camera=HeadCameraConfig(width_px=320, height_px=240))
     config = TrialConfig(seed=0, site=small)
     with RemoteSite(config.site) as site:
-        frame = display_frame_at(trial_source(site, config), config, MOMENT_S, site)
+        frame = display_frame_at(trial_operator(site, config), config, MOMENT_S, site)
         assets = view_assets(site)
     assert frame.time_s == pytest.approx(MOMENT_S) and frame.has_cloud
     return frame, assets

@@ -10,9 +10,8 @@ import pytest
 from arteleop.ar_features import DisplayFrame, OperatorView, ViewConfig, ViewProbe
 from arteleop.errors import ConfigurationError, DisplayFrameError
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
-from arteleop.teleop import Outcome, TrialConfig, run_trial
+from arteleop.teleop import Outcome, TrialConfig, run_trial, trial_operator
 from tests.ar_features.frames import display_frame
-from tests.helpers import trial_source
 
 
 def test_view_serves_this_machine_only_by_default() -> None:
@@ -88,7 +87,7 @@ def test_real_time_trial_shows_every_camera_frame_and_measures_its_latency(
     config = TrialConfig(seed=0, timeout_s=5.0, realtime=True, render_camera=True, site=small)
     display = _CountingDisplay()
     with RemoteSite(config.site) as site:
-        result = run_trial(trial_source(site, config), config, site, display)
+        result = run_trial(trial_operator(site, config), config, site, display)
     assert result.outcome is Outcome.TIMEOUT
     frames = round(config.timeout_s * config.rates.camera_hz)
     assert frames - 1 <= len(display.frames) <= frames + 1
@@ -152,3 +151,31 @@ def test_a_frame_without_a_tracked_bowl_has_no_grasp_point() -> None:
     tracked = display_frame()
     # The grasp ring's point towards the gripper: 78 mm from the axis, 55 mm up.
     np.testing.assert_allclose(tracked.grasp_point_m(), [0.68, -0.45 + 0.078, -0.2 + 0.055])
+
+
+def test_the_ghost_poses_its_moving_joints_as_the_urdf_does(site: RemoteSite) -> None:
+    from scipy.spatial.transform import Rotation
+
+    from arteleop.ar_features.layers import GhostLayer
+    from arteleop.teleop import view_assets
+
+    assets = view_assets(site)
+    rng = np.random.default_rng(3)
+    with OperatorView(ViewConfig(port=0), assets) as view:
+        ghost = next(layer for layer in view.layers if isinstance(layer, GhostLayer))
+        ghost.update(display_frame())  # the first update poses every joint
+        for _ in range(5):
+            frame = display_frame(
+                arm_q_rad=rng.uniform(-1.0, 1.0, 7), gripper_closure=float(rng.uniform())
+            )
+            ghost.update(frame)  # only the moving joints
+            fast = [(h.position.copy(), h.wxyz.copy()) for h, _ in ghost._moving]
+            q = assets.joint_positions(frame.arm_q_rad, frame.gripper_closure)
+            ghost._urdf.update_cfg(np.array([q.get(n, 0.0) for n in ghost._names]))
+            assert len(fast) == 9  # seven arm joints, two fingers
+            for (position, wxyz), (handle, _) in zip(fast, ghost._moving, strict=True):
+                np.testing.assert_allclose(position, handle.position, atol=1e-9)
+                turn = Rotation.from_quat(wxyz, scalar_first=True).inv() * Rotation.from_quat(
+                    handle.wxyz, scalar_first=True
+                )
+                assert turn.magnitude() < 1e-9

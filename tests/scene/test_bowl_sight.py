@@ -4,8 +4,7 @@ import numpy as np
 import pytest
 
 from arteleop.scene import BowlTracker, HeadCameraConfig, RemoteSite, SiteConfig
-from arteleop.teleop import TrialConfig, TrialProgress, run_trial
-from tests.helpers import trial_source
+from arteleop.teleop import TrialConfig, TrialProgress, run_trial, trial_operator
 
 UNTIL_S = 60.0
 """Seed 0 under ``none`` reaches, grasps, lifts, carries and lowers the bowl by then: the arm
@@ -33,7 +32,7 @@ def looks(site_config: SiteConfig) -> np.ndarray:
             error = np.linalg.norm(track.position_m - truth) if track.found else np.nan
             rows.append((t, model.found, track.found, error))
 
-        run_trial(trial_source(site, config), config, site, progress=look)
+        run_trial(trial_operator(site, config), config, site, progress=look)
     return np.array(rows, dtype=float)
 
 

@@ -23,9 +23,8 @@ from arteleop.operator import (
 )
 from arteleop.operator.synthetic import Phase
 from arteleop.scene import RemoteSite, SiteConfig
-from arteleop.teleop import LoopRates, NetworkConfig, TrialConfig, run_trial
+from arteleop.teleop import LoopRates, NetworkConfig, TrialConfig, run_trial, trial_operator
 from tests.ar_features.frames import display_frame
-from tests.helpers import trial_source
 
 
 def test_the_hand_at_a_time_does_not_depend_on_the_age_of_what_is_seen() -> None:
@@ -77,7 +76,7 @@ def _run(site_config: SiteConfig, seed: int, camera_hz: int, delay_s: float, tim
         rates=LoopRates(camera_hz=camera_hz), network=NetworkConfig(delay_s=delay_s),
     )  # fmt: skip
     with RemoteSite(config.site) as site:
-        source = _Logged(trial_source(site, config))
+        source = _Logged(trial_operator(site, config))
         run_trial(source, config, site)
     return source.log
 

@@ -7,8 +7,7 @@ import pytest
 
 from arteleop.operator import RecordingSource, load_recording, write_recording
 from arteleop.scene import RemoteSite, SiteConfig
-from arteleop.teleop import Outcome, TrialConfig, run_trial
-from tests.helpers import trial_source
+from arteleop.teleop import Outcome, TrialConfig, run_trial, trial_operator
 
 
 @pytest.mark.parametrize(("modality", "seed"), [("none", 3), ("full", 0)])
@@ -20,7 +19,7 @@ def test_a_recording_replays_its_trial(
     the file, were filled by slerp on replay and sent to the robot)."""
     config = TrialConfig(modality=modality, seed=seed, site=site_config)
     with RemoteSite(config.site) as site:
-        source = trial_source(site, config)
+        source = trial_operator(site, config)
         live = run_trial(source, config, site)
         write_recording(source.recording("S"), tmp_path / "r.csv")
     recording = load_recording(tmp_path / "r.csv")

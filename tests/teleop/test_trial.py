@@ -16,8 +16,8 @@ from arteleop.teleop import (
     Outcome,
     TrialConfig,
     run_trial,
+    trial_operator,
 )
-from tests.helpers import trial_source
 from tests.operator.motions import reach_and_return
 
 
@@ -27,7 +27,7 @@ def test_full_ar_places_the_bowl_within_5_cm_in_5_of_6_trials(site_config: SiteC
     for seed in range(6):
         config = TrialConfig(modality="full", seed=seed, site=site_config)
         with RemoteSite(config.site) as site:
-            result = run_trial(trial_source(site, config), config, site)
+            result = run_trial(trial_operator(site, config), config, site)
         outcomes.append(result.outcome.value)
         errors.append(result.placement_error_true_m if result.placed else np.inf)
     within = sum(e <= 0.05 for e in errors)
@@ -41,7 +41,7 @@ def test_same_seed_same_motion_in_batch_and_real_time(site_config: SiteConfig) -
             modality="none", seed=7, site=site_config, timeout_s=3.0, realtime=realtime
         )
         with RemoteSite(config.site) as site:
-            result = run_trial(trial_source(site, config), config, site)
+            result = run_trial(trial_operator(site, config), config, site)
             hands.append((result.hand_m.copy(), site.observe().arm_q_rad))
     np.testing.assert_array_equal(hands[0][0], hands[1][0])
     np.testing.assert_array_equal(hands[0][1], hands[1][1])

@@ -8,18 +8,28 @@ from __future__ import annotations
 
 import numpy as np
 import viser
+import yourdfpy
+from numpy.typing import NDArray
+from scipy.spatial.transform import Rotation
 from viser.extras import ViserUrdf
 
 from arteleop.ar_features.assets import ViewAssets
 from arteleop.ar_features.display_frame import DisplayFrame
 from arteleop.ar_features.layer import Layer
 from arteleop.ar_features.layers.colors import GHOST_RGBA
+from arteleop.transforms import make_transform, transform_to_pose
 
 GHOST_NODE = "/ar/ghost"
 
 
 class GhostLayer(Layer):
-    """The robot model; its base frame is the scene's world frame (Baxter's base)."""
+    """The robot model; its base frame is the scene's world frame (Baxter's base).
+
+    The first update poses every joint through viser's ``ViserUrdf.update_cfg``; later ones
+    pose only the joints that move (the right arm and its fingers) from each joint's origin and
+    axis. ``update_cfg`` re-poses all 56 joint frames in Python, 14 ms a frame, most of the
+    view's cost; the others never move.
+    """
 
     cue = "ghost"
 
@@ -31,10 +41,38 @@ class GhostLayer(Layer):
             server, assets.robot_urdf, root_node_name=GHOST_NODE, mesh_color_override=GHOST_RGBA
         )
         self._names = self._urdf.get_actuated_joint_names()
+        moving = {*assets.arm_joints, *assets.finger_joints}
+        # ViserUrdf keeps its joints' frames in private lists (viser is pinned in pyproject).
+        self._moving = [
+            (handle, joint)
+            for joint, handle in zip(
+                self._urdf._joint_map_values, self._urdf._joint_frames, strict=True
+            )
+            if joint.name in moving
+        ]
+        self._posed = False
 
     def update(self, frame: DisplayFrame) -> None:
         q = self._assets.joint_positions(frame.arm_q_rad, frame.gripper_closure)
-        self._urdf.update_cfg(np.array([q.get(name, 0.0) for name in self._names]))
+        if not self._posed:
+            self._urdf.update_cfg(np.array([q.get(name, 0.0) for name in self._names]))
+            self._posed = True
+            return
+        for handle, joint in self._moving:
+            position, wxyz = transform_to_pose(_joint_transform(joint, q[joint.name]))
+            handle.wxyz = wxyz
+            handle.position = position
 
     def _set_visible(self, visible: bool) -> None:
         self._root.visible = visible
+
+
+def _joint_transform(joint: yourdfpy.Joint, q: float) -> NDArray[np.float64]:
+    """``T_parent_child`` of a revolute or prismatic URDF joint at position ``q`` (rad or m)."""
+    origin = np.eye(4) if joint.origin is None else joint.origin
+    axis = np.asarray(joint.axis, dtype=np.float64)
+    if joint.type == "prismatic":
+        motion = make_transform(np.eye(3), axis * q)
+    else:
+        motion = make_transform(Rotation.from_rotvec(axis * q).as_matrix(), np.zeros(3))
+    return origin @ motion
