@@ -148,18 +148,22 @@ class DisplayFeed:
         self._latency.frame_captured(state.time_s, applied_sample_time_s)
 
     def poll(self, engaged: bool, applied_sample_time_s: float) -> None:
-        """Real time: show the frame the render process has finished, if any; start the frame
-        owed since then, of the site's state now."""
+        """Real time: start the frame owed, of the site's state now, once the renderer is free
+        and the physics has moved on from the last frame asked for (a control tick between two
+        physics steps would render the same instant twice); show the finished frame, if any."""
         rgbd = self._site.poll_frame()
-        if rgbd is None or self._requested is None:
-            return
-        requested_wall, applied, frame = self._requested
-        self._timer.record("camera", requested_wall)
-        if self._owed:
+        finished = self._requested if rgbd is not None else None
+        if self._owed and not self._site.frame_pending:
             state = self._site.observe()
-            track = self._track or self._site.sight_bowl()
-            frame = display_frame(state, track, self._workspace, self._cues, engaged)
-            self._request(frame, applied_sample_time_s)
+            last = self._requested
+            if last is None or state.time_s > last[2].time_s:
+                track = self._track or self._site.sight_bowl()
+                owed = display_frame(state, track, self._workspace, self._cues, engaged)
+                self._request(owed, applied_sample_time_s)
+        if rgbd is None or finished is None:
+            return
+        requested_wall, applied, frame = finished
+        self._timer.record("camera", requested_wall)
         self._show(frame, rgbd, applied)
 
     def seen_by_operator(self, t: float) -> DisplayFrame:

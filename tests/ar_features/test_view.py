@@ -78,7 +78,7 @@ class _CountingDisplay:
         return [len(f.cloud_points_m) for f in self.frames if f.cloud_points_m is not None]
 
 
-def test_real_time_trial_shows_every_camera_frame_and_measures_its_latency(
+def test_real_time_trial_shows_each_camera_frame_or_counts_it_skipped(
     site_config: SiteConfig,
 ) -> None:
     small = SiteConfig(
@@ -90,7 +90,12 @@ def test_real_time_trial_shows_every_camera_frame_and_measures_its_latency(
         result = run_trial(trial_operator(site, config), config, site, display)
     assert result.outcome is Outcome.TIMEOUT
     frames = round(config.timeout_s * config.rates.camera_hz)
-    assert frames - 1 <= len(display.frames) <= frames + 1
+    # A camera tick that comes while two frames are owed is skipped and counted: how many depends
+    # on what else the machine runs (speed lives in benchmarks/bench_view.py). Every tick is
+    # shown or counted, and the view keeps up with most of them.
+    skipped = result.counts["camera_frames_skipped"]
+    assert frames - 1 <= len(display.frames) + skipped <= frames + 1
+    assert skipped <= 0.25 * frames
     assert len(display.sizes) == len(display.frames)  # every frame shown carries its cloud
     # Each shows the scene when it was captured: frame times advance by the camera period (a
     # frame owed while the renderer was busy is captured when it frees, between two ticks).
