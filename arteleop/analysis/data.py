@@ -27,6 +27,8 @@ TRIAL_REQUIRED = (
     "participant", "phase", "modality", "position", "outcome", "completion_time_s",
     "placement_error_m",
 )  # fmt: skip
+SUCCESS_ONLY = ("completion_time_s", "placement_error_m")
+"""Required columns that a failed trial leaves empty: it has no completion time or placement."""
 TRIAL_NUMERIC = (
     "trial_index", "position", "seed", "completion_time_s", "placement_error_m",
     "placement_error_true_m", "normalized_jerk_xy", "grasp_attempts", "hand_path_length_m",
@@ -80,7 +82,7 @@ def load_study(path: Path, participants_path: Path | None = None) -> StudyData:
         raise AnalysisInputError(f"{trials_path}: no such file; a run folder holds trials.csv")
     trials = read_table(
         trials_path, TRIAL_COLUMNS, TRIAL_REQUIRED, TRIAL_NUMERIC,
-        {"phase": PHASES, "modality": MODALITIES},
+        {"phase": PHASES, "modality": MODALITIES}, may_be_empty=SUCCESS_ONLY,
     )  # fmt: skip
     _check_trials(trials_path, trials)
     participants = None
@@ -107,8 +109,12 @@ def read_table(
     required: Sequence[str],
     numeric: Sequence[str],
     categories: Mapping[str, Sequence[str]],
+    may_be_empty: Sequence[str] = (),
 ) -> pd.DataFrame:
-    """Read a CSV as text, check its columns and values, convert the numeric columns."""
+    """Read a CSV as text, check its columns and values, convert the numeric columns.
+
+    A ``required`` column must be in the header and, unless in ``may_be_empty``, filled on
+    every line."""
     try:
         df = pd.read_csv(path, dtype=str, keep_default_na=False, skipinitialspace=True)
     except (OSError, pd.errors.ParserError, pd.errors.EmptyDataError) as err:
@@ -130,6 +136,8 @@ def read_table(
             df[column] = ""
     df = df[list(known)].apply(lambda s: s.str.strip())
     for column in required:
+        if column in may_be_empty:
+            continue
         empty = np.flatnonzero(df[column].to_numpy() == "")
         if len(empty):
             raise AnalysisInputError(
@@ -189,6 +197,14 @@ def _check_trials(path: Path, trials: pd.DataFrame) -> None:
             f"{len(lines)} experimental trials in modality '{first['modality']}'; "
             "the design has one."
         )
+    success = trials["outcome"] == "success"
+    for column in SUCCESS_ONLY:
+        empty = trials[success & trials[column].isna()]
+        if len(empty):
+            i = empty.index[0]
+            raise AnalysisInputError(
+                f"{path}, line {i + 2}, column {column}: empty, but a successful trial has one"
+            )
     for column in ("completion_time_s", "placement_error_m"):
         neg = trials[trials[column] < 0]
         if len(neg):

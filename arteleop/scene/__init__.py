@@ -19,7 +19,7 @@ from arteleop.scene.camera_geometry import CameraGeometry
 from arteleop.scene.depth_mesh import DepthMesh, MeshReconstructor, MeshReconstructorConfig
 from arteleop.scene.depth_noise import DepthNoiseConfig, apply_depth_noise
 from arteleop.scene.pointcloud import PointCloud, depth_to_camera_points, frame_to_point_cloud
-from arteleop.scene.site import RemoteSite, SiteConfig
+from arteleop.scene.site import RemoteSite, SiteConfig, reach_problem
 from arteleop.scene.site_state import SiteState
 from arteleop.scene.snapshot import SceneSnapshot, write_snapshot
 from arteleop.scene.workspace import Box, Workspace
@@ -54,5 +54,6 @@ __all__ = [
     "bowl_mesh",
     "depth_to_camera_points",
     "frame_to_point_cloud",
+    "reach_problem",
     "write_snapshot",
 ]

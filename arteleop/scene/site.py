@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import pybullet as p
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 from pybullet_utils.bullet_client import BulletClient
 
 from arteleop.errors import ConfigurationError, WorkspaceError
@@ -19,6 +19,7 @@ from arteleop.lifetime import Closeable
 from arteleop.robot import (
     GRIPPER_FRAME,
     REST_POSE,
+    RIGHT_ARM_JOINTS,
     ArmCommand,
     ArmPose,
     Baxter,
@@ -81,6 +82,26 @@ class SiteConfig:
             )
         if not 0 <= self.reach_margin < 0.5:
             raise ConfigurationError(f"reach_margin={self.reach_margin} must be in [0, 0.5)")
+
+
+def reach_problem(ws: Workspace, reach: TopDownReach, margin: float) -> str | None:
+    """Why the right gripper cannot grasp the bowl's rim from above, on any of its four sides,
+    at the workspace's start or target (keeping ``margin`` of the arm's reach free); None if it
+    can."""
+    for name, point in (("start", ws.start_m), ("target", ws.target_m)):
+        for side in ((1.0, 0.0), (-1.0, 0.0), (0.0, 1.0), (0.0, -1.0)):
+            tool = point + ws.bowl.grasp_offset_m(side)
+            if not reach.is_reachable(tool, margin):
+                xy = tuple(np.round(point[:2], 3).tolist())
+                return (
+                    f"The {name} point {xy} m is out of the right "
+                    f"arm's reach from above: grasping the rim at {np.round(tool, 3).tolist()} "
+                    f"needs {reach.reach_fraction(tool):.0%} of the arm's reach, the limit is "
+                    f"{1 - margin:.0%} (and at least "
+                    f"{reach.min_reach_m / reach.max_reach_m:.0%}). Move Workspace.{name}_xy_m "
+                    f"closer to the shoulder at {np.round(reach.shoulder_m[:2], 3).tolist()}."
+                )
+    return None
 
 
 class RemoteSite(Closeable):
@@ -219,6 +240,23 @@ class RemoteSite(Closeable):
         self._client.resetBasePositionAndOrientation(self._bowl_id, com, (0.0, 0.0, 0.0, 1.0))
         self._client.resetBaseVelocity(self._bowl_id, velocity_m_s, angular_velocity_rad_s)
 
+    def pose(
+        self, arm_q_rad: ArrayLike, gripper_closure: float, bowl_m: ArrayLike, time_s: float
+    ) -> None:
+        """Set the scene to a recorded state, without physics: the right arm's joints (rad, in
+        ``RIGHT_ARM_JOINTS`` order), the gripper's closure, the bowl upright with its bottom
+        centre at ``bowl_m`` (base frame, m), and the site's clock at ``time_s`` (s). For
+        replays; a trial that steps on from here starts from rest."""
+        q = np.asarray(arm_q_rad, dtype=np.float64)
+        self.robot.set_joint_positions(dict(zip(RIGHT_ARM_JOINTS, q.tolist(), strict=True)))
+        self.robot.gripper.reset(float(gripper_closure))
+        com = np.asarray(bowl_m, dtype=np.float64) + [
+            0.0, 0.0, self.config.workspace.bowl.center_of_mass_height_m
+        ]  # fmt: skip
+        self._client.resetBasePositionAndOrientation(self._bowl_id, com.tolist(), (0, 0, 0, 1))
+        self._client.resetBaseVelocity(self._bowl_id, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0))
+        self._steps = round(time_s * self.config.physics_rate_hz)
+
     def sight_bowl(self) -> BowlTrack:
         """What the bowl tracker would report now, from rays instead of a rendered frame
         (:class:`~arteleop.scene.BowlSight`): found when the camera sees enough of the bowl,
@@ -279,20 +317,10 @@ class RemoteSite(Closeable):
 
     # -- start-up checks ------------------------------------------------------------------------
     def _check_reach(self, ws: Workspace) -> None:
-        reach = TopDownReach.from_kinematics(self.kinematics)
-        for name, point in (("start", ws.start_m), ("target", ws.target_m)):
-            for side in ((1.0, 0.0), (-1.0, 0.0), (0.0, 1.0), (0.0, -1.0)):  # four sides of the rim
-                tool = point + ws.bowl.grasp_offset_m(side)
-                if not reach.is_reachable(tool, self.config.reach_margin):
-                    xy = tuple(np.round(point[:2], 3).tolist())
-                    raise WorkspaceError(
-                        f"The {name} point {xy} m is out of the right "
-                        f"arm's reach from above: grasping the rim at {np.round(tool, 3).tolist()} "
-                        f"needs {reach.reach_fraction(tool):.0%} of the arm's reach, the limit is "
-                        f"{1 - self.config.reach_margin:.0%} (and at least "
-                        f"{reach.min_reach_m / reach.max_reach_m:.0%}). Move Workspace.{name}_xy_m "
-                        f"closer to the shoulder at {np.round(reach.shoulder_m[:2], 3).tolist()}."
-                    )
+        problem = reach_problem(ws, TopDownReach.from_kinematics(self.kinematics),
+                                self.config.reach_margin)  # fmt: skip
+        if problem is not None:
+            raise WorkspaceError(problem)
 
     def _measure_gripper_gap(self) -> tuple[float, float]:
         """(closed, open) gap between the finger pads (m), measured on the collision shapes."""

@@ -23,6 +23,7 @@ from arteleop.teleop.loop import display_frame_at, run_trial, trial_operator
 from arteleop.teleop.network import NetworkConfig, NetworkLink
 from arteleop.teleop.task_monitor import TaskMonitor
 from arteleop.teleop.timing import StageStats, StageTimer
+from arteleop.teleop.trace import TRACE_COLUMNS, TrialTrace
 from arteleop.teleop.trial import Outcome, TrialConfig, TrialProgress, TrialResult
 
 if TYPE_CHECKING:
@@ -35,6 +36,7 @@ _LAZY = {
 }
 
 __all__ = [
+    "TRACE_COLUMNS",
     "ControllerConfig",
     "ControllerState",
     "DisplayFeed",
@@ -57,6 +59,7 @@ __all__ = [
     "TrialInterrupted",
     "TrialProgress",
     "TrialResult",
+    "TrialTrace",
     "display_frame",
     "display_frame_at",
     "run_trial",

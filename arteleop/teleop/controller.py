@@ -122,6 +122,8 @@ class TeleopController:
         self.last_hand: HandSample | None = None
         self._speed = HandSpeed(c.speed_window_s)
         self.last_ik: IKResult | None = None
+        self.last_target_m: NDArray[np.float64] | None = None
+        """Where the mapping last put the gripper (base frame, m); None before calibration."""
         self.applied_sample_time_s = -np.inf  # newest operator sample acting on the arm
         self.unreachable_ticks = 0
 
@@ -170,6 +172,7 @@ class TeleopController:
             return None
         with self.timer.stage("mapping"):
             target = self.mapping.gripper_target(hand.hand_m, hand.hand_quat_wxyz)
+        self.last_target_m = target[:3, 3]
         if self.state is ControllerState.WAITING:
             offset_m = np.linalg.norm(target[:3, 3] - state.gripper_m)
             aligned = offset_m < self.config.engage_distance_m

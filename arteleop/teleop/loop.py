@@ -30,6 +30,7 @@ from arteleop.teleop.latency import LatencyAccount
 from arteleop.teleop.network import NetworkLink
 from arteleop.teleop.task_monitor import TaskMonitor
 from arteleop.teleop.timing import StageTimer
+from arteleop.teleop.trace import TrialTrace
 from arteleop.teleop.trial import Outcome, TrialConfig, TrialProgress, TrialResult
 
 OUT_OF_REACH_S = 0.5
@@ -145,6 +146,8 @@ class _Loop:
         self.hand_t: list[float] = []
         self.hand_p: list[NDArray[np.float64]] = []
         self.samples_lost_wearable = 0
+        self.trace = TrialTrace() if config.record_trace else None
+        self._received: WearableSample | None = None
         self._unreachable_s = -np.inf  # when the IK last flagged its target out of reach
 
     def run(self) -> TrialResult:
@@ -155,7 +158,7 @@ class _Loop:
             if self._background:
                 self.feed.poll(control.engaged, control.applied_sample_time_s)
             if t > self.config.timeout_s:
-                return self._result(Outcome.TIMEOUT, t)
+                return self._result(self.monitor.timed_out(), t)
             if tick.camera:
                 state = site.observe()
                 self.feed.camera_tick(state, control.engaged, control.applied_sample_time_s)
@@ -165,7 +168,7 @@ class _Loop:
                 if self._progress is not None:
                     self._progress(self._status(t))
             if tick.control and not self._control(t):
-                return self._result(Outcome.OPERATOR_STOPPED, t)
+                return self._result(self.monitor.operator_stopped(), t)
             if tick.physics:
                 with timer.stage("trajectory"):
                     command = control.physics_tick()
@@ -196,6 +199,7 @@ class _Loop:
                 if received.sensor_quat_wxyz is None:
                     self.samples_lost_wearable += 1
                 control.receive(received.time_s, received.sensor_quat_wxyz, received.grip)
+                self._received = received
         state = self.site.observe()
         with timer.stage("control_tick"):
             command = control.control_tick(state)
@@ -208,6 +212,13 @@ class _Loop:
             self.hand_p.append(hand.hand_m)
             moving = control.hand_speed_m_s
         self.monitor.control(t, moving, control.grip.closed, state)
+        if self.trace is not None:
+            got = self._received
+            self.trace.add(
+                t, None if hand is None else hand.hand_m, np.nan if got is None else got.grip,
+                None if got is None else got.sensor_quat_wxyz, control.last_target_m,
+                state.gripper_m, state.gripper_closure, state.arm_q_rad, state.bowl_m,
+            )  # fmt: skip
         return True
 
     def _status(self, t: float) -> TrialProgress:
@@ -256,4 +267,5 @@ class _Loop:
             latency_wall_ms=self.latency.wall_ms,
             stages=self.timer.summary(),
             counts=counts,
+            trace=None if self.trace is None else self.trace.columns(),
         )

@@ -9,6 +9,8 @@
 - Placement: after the release, with the bowl at rest, the head camera's tracker looks for it
   every ``TRACKING_PERIOD_S``; the first frame in which it is found ends the trial as a success.
 - Dropped: the bowl falls below the table top.
+- The other failures are named by what had happened when the time ran out or the operator
+  stopped (:meth:`TaskMonitor.timed_out`, :meth:`TaskMonitor.operator_stopped`).
 """
 
 from __future__ import annotations
@@ -81,3 +83,15 @@ class TaskMonitor:
         if state.bowl_m[2] < ws.table_top_z_m - DROP_DEPTH_M:
             return Outcome.DROPPED
         return None
+
+    def timed_out(self) -> Outcome:
+        """The outcome of a trial whose time ran out: ``tracking_lost`` after the release (the
+        tracker never found the bowl at rest), else ``timeout``."""
+        return Outcome.TRACKING_LOST if self.released else Outcome.TIMEOUT
+
+    def operator_stopped(self) -> Outcome:
+        """The outcome of a trial whose operator stopped before the release: ``not_grasped``
+        after closing the gripper without ever holding the bowl, else ``operator_stopped``."""
+        if self.grasp_attempts and not self.grasped:
+            return Outcome.NOT_GRASPED
+        return Outcome.OPERATOR_STOPPED

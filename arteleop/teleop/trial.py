@@ -42,6 +42,8 @@ class TrialConfig:
             as that one is in, and a second such tick is skipped.
         site: The remote site.
         controller: Robot-side settings.
+        record_trace: Record every control tick in ``TrialResult.trace`` (the study's
+            trajectory files; about 4 MB of memory per simulated minute).
     """
 
     modality: str = "full"
@@ -53,6 +55,7 @@ class TrialConfig:
     render_camera: bool = False
     site: SiteConfig = field(default_factory=SiteConfig)
     controller: ControllerConfig = field(default_factory=ControllerConfig)
+    record_trace: bool = False
 
     def __post_init__(self) -> None:
         modality_cues(self.modality)
@@ -70,9 +73,13 @@ class Outcome(Enum):
     SUCCESS = "success"
     """The bowl was released, came to rest and the camera's tracker found it."""
     TIMEOUT = "timeout"
-    """``TrialConfig.timeout_s`` of simulated time passed first."""
+    """``TrialConfig.timeout_s`` of simulated time passed before the release."""
+    TRACKING_LOST = "tracking_lost"
+    """The bowl was released, but the tracker had not found it at rest by the timeout."""
     DROPPED = "dropped"
     """The bowl fell off the table."""
+    NOT_GRASPED = "not_grasped"
+    """The operator stopped after closing the gripper without ever holding the bowl."""
     OPERATOR_STOPPED = "operator_stopped"
     """The operator source ran out (a recording ended) before the bowl was released."""
 
@@ -143,6 +150,8 @@ class TrialResult:
         stages: Service time and latency per stage of the loop.
         counts: Samples sent, lost and late; samples the wearable lost; unreachable IK ticks;
             held samples; camera frames skipped.
+        trace: With ``TrialConfig.record_trace``, every control tick by the columns of
+            :data:`~arteleop.teleop.trace.TRACE_COLUMNS`; else None.
     """
 
     modality: str
@@ -162,10 +171,13 @@ class TrialResult:
     latency_wall_ms: NDArray[np.float64]
     stages: list[StageStats]
     counts: dict[str, int]
+    trace: dict[str, NDArray[np.float64]] | None = None
 
     def __post_init__(self) -> None:
         for name in ("hand_time_s", "hand_m", "latency_sim_ms", "latency_wall_ms"):
             object.__setattr__(self, name, frozen_array(getattr(self, name)))
+        if self.trace is not None:
+            object.__setattr__(self, "trace", {k: frozen_array(v) for k, v in self.trace.items()})
 
     def movement(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """(time_s, hand_m) of the hand from motion onset to the end: the timed movement."""

@@ -120,3 +120,54 @@ def test_unknown_modality_is_refused() -> None:
         ConfigurationError, match=r"Unknown modality 'ar'. Valid modalities: \['none'"
     ):
         replace(TrialConfig(), modality="ar")
+
+
+def test_the_trace_records_every_control_tick_as_the_site_saw_it(site_config: SiteConfig) -> None:
+    from arteleop.robot import GRIPPER_FRAME, RIGHT_ARM_JOINTS, BaxterKinematics
+    from arteleop.teleop import TRACE_COLUMNS
+
+    config = TrialConfig(modality="full", seed=2, site=site_config, timeout_s=5.0,
+                         record_trace=True)  # fmt: skip
+    with RemoteSite(config.site) as site:
+        result = run_trial(trial_operator(site, config), config, site)
+        kinematics = BaxterKinematics(site.description.urdf_path)
+    trace = result.trace
+    assert trace is not None and list(trace) == list(TRACE_COLUMNS)
+    t = trace["time_s"]
+    np.testing.assert_allclose(np.diff(t), 0.01, atol=1e-9)  # 100 Hz, every tick
+    assert t[0] == 0.0 and len(t) == 501
+    # The actual gripper is the forward kinematics of the recorded joints, at every tick.
+    for k in (0, 250, 500):
+        q = {j: trace[f"{j}_rad"][k] for j in RIGHT_ARM_JOINTS}
+        gripper = kinematics.frame_transforms(q, (GRIPPER_FRAME,))[0][:3, 3]
+        actual = [trace[f"gripper_{a}_m"][k] for a in "xyz"]
+        np.testing.assert_allclose(actual, gripper, atol=1e-6)
+    # The hand is the robot side's reconstruction: what the result keeps while engaged.
+    engaged = np.isin(t, result.hand_time_s)
+    hand = np.column_stack([trace[f"hand_{a}_m"] for a in "xyz"])
+    assert engaged.sum() > 100
+    np.testing.assert_array_equal(hand[np.searchsorted(t, result.hand_time_s)], result.hand_m)
+    # Before calibration nothing is known of the hand, and nothing is mapped.
+    assert np.isnan(trace["hand_x_m"][0]) and np.isnan(trace["gripper_target_x_m"][0])
+    quats = np.column_stack([trace[f"hand_q{c}"] for c in "wxyz"])
+    np.testing.assert_allclose(np.linalg.norm(quats[~np.isnan(quats[:, 0])], axis=1), 1.0)
+    # The mapped target leads the gripper that tracks it: within a few cm once engaged.
+    target = np.column_stack([trace[f"gripper_target_{a}_m"] for a in "xyz"])
+    actual = np.column_stack([trace[f"gripper_{a}_m"] for a in "xyz"])
+    assert np.nanmedian(np.linalg.norm(target - actual, axis=1)[engaged]) < 0.03
+
+
+def test_failures_are_named_by_what_had_happened() -> None:
+    from arteleop.scene import BowlTracker, Workspace
+    from arteleop.teleop import TaskMonitor
+
+    ws = Workspace()
+    monitor = TaskMonitor(ws, BowlTracker(ws.bowl))
+    assert monitor.timed_out() is Outcome.TIMEOUT
+    assert monitor.operator_stopped() is Outcome.OPERATOR_STOPPED
+    monitor.grasp_attempts = 2  # closed twice, never held it
+    assert monitor.operator_stopped() is Outcome.NOT_GRASPED
+    monitor.grasped = True
+    assert monitor.operator_stopped() is Outcome.OPERATOR_STOPPED
+    monitor.released = True
+    assert monitor.timed_out() is Outcome.TRACKING_LOST
