@@ -41,3 +41,11 @@ class DisplayFrameError(ArteleopError):
 
 class SimulationError(ArteleopError):
     """The simulator's state is not what arteleop built (e.g. the two PyBullet worlds differ)."""
+
+
+class StudyDefinitionError(ConfigurationError):
+    """A study definition is invalid: the message names the key (and, from a file, its line)."""
+
+
+class RunFolderError(ArteleopError):
+    """A run folder cannot be created, resumed or written: the message names the file."""

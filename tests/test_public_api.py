@@ -10,6 +10,7 @@ PACKAGES = [
     "arteleop.operator",
     "arteleop.robot",
     "arteleop.scene",
+    "arteleop.study",
     "arteleop.teleop",
 ]
 

@@ -1,0 +1,62 @@
+"""Studies: a definition, its counterbalanced plan, simulated participants, the protocol of a
+trial, durable run folders, and the runner that drives them on any executor."""
+
+from arteleop.study.cohort import participants
+from arteleop.study.counterbalancing import (
+    cyclic_sequences,
+    participant_orders,
+    williams_sequences,
+)
+from arteleop.study.definition import (
+    MODALITY_NAMES,
+    ORDER_SCHEMES,
+    CohortConfig,
+    FamiliarizationConfig,
+    ParticipantSpec,
+    StudyConfig,
+)
+from arteleop.study.plan import PracticePoints, TrialSpec, plan_study, trial_seed
+from arteleop.study.protocol import TrialRecord, operator_params, run_planned_trial
+from arteleop.study.questionnaire import simulated_answers
+from arteleop.study.run_folder import FORMAT_VERSION, TRIAL_COLUMNS, RunFolder
+from arteleop.study.runner import RunComplete, StudyRun, resume_study, run_study
+from arteleop.study.sites import StudySite
+from arteleop.study.study_file import (
+    first_difference,
+    load_study_file,
+    parse_study,
+    study_text,
+)
+
+__all__ = [
+    "FORMAT_VERSION",
+    "MODALITY_NAMES",
+    "ORDER_SCHEMES",
+    "TRIAL_COLUMNS",
+    "CohortConfig",
+    "FamiliarizationConfig",
+    "ParticipantSpec",
+    "PracticePoints",
+    "RunComplete",
+    "RunFolder",
+    "StudyConfig",
+    "StudyRun",
+    "StudySite",
+    "TrialRecord",
+    "TrialSpec",
+    "cyclic_sequences",
+    "first_difference",
+    "load_study_file",
+    "operator_params",
+    "parse_study",
+    "participant_orders",
+    "participants",
+    "plan_study",
+    "resume_study",
+    "run_planned_trial",
+    "run_study",
+    "simulated_answers",
+    "study_text",
+    "trial_seed",
+    "williams_sequences",
+]

@@ -1,0 +1,223 @@
+"""A study definition: who takes part, under which modalities, in which order, on which task.
+
+Each TOML table maps one-to-one onto a frozen dataclass here: the top level onto
+:class:`StudyConfig`, ``[familiarization]`` onto :class:`FamiliarizationConfig`, ``[cohort]``
+onto :class:`CohortConfig` and each ``[[participants]]`` onto :class:`ParticipantSpec`. The
+defaults mirror the original study (docs/study.md §4).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from arteleop.ar_features import MODALITIES
+from arteleop.errors import StudyDefinitionError
+
+MODALITY_NAMES: tuple[str, ...] = tuple(MODALITIES)
+"""The modalities, in the order of the one modality table (``arteleop.ar_features``)."""
+ORDER_SCHEMES: tuple[str, ...] = ("williams", "cyclic", "random")
+
+
+@dataclass(frozen=True)
+class ParticipantSpec:
+    """One named participant (a real lab's, or a chosen simulated one).
+
+    Attributes:
+        id: Participant id, as written in every file (letters, digits, ``-`` and ``_``).
+        avr_hours: Weekly AR/VR hours bucket: 1 = under 1 h, 2 = 2-5 h, 3 = over 5 h.
+        games_hours: Weekly video-game hours bucket, same buckets.
+        avr_experience: AR/VR experience, Likert 1-7.
+        games_experience: Video-game experience, Likert 1-7.
+        age: Age (years).
+        gender: As the participant gives it.
+        movement_time_factor: The participant's own speed/accuracy trade-off, for a simulated
+            participant: a factor on the synthetic operator's Fitts slope (below 1: faster
+            movements) and, by its inverse square root, on its endpoint noise (faster is less
+            accurate: endpoint scatter grows with movement speed, Schmidt et al., Psychol. Rev.
+            1979). See :class:`CohortConfig` for how a cohort draws it.
+    """
+
+    id: str
+    avr_hours: int = 1
+    games_hours: int = 1
+    avr_experience: int = 4
+    games_experience: int = 4
+    age: int = 30
+    gender: str = ""
+    movement_time_factor: float = 1.0
+
+    def __post_init__(self) -> None:
+        if not self.id or not all(ch.isalnum() or ch in "-_" for ch in self.id):
+            raise StudyDefinitionError(
+                f"participant id {self.id!r}: use letters, digits, '-' and '_' only "
+                "(it names a folder of the run)."
+            )
+        for name in ("avr_hours", "games_hours"):
+            if getattr(self, name) not in (1, 2, 3):
+                raise StudyDefinitionError(
+                    f"participant {self.id}: {name} = {getattr(self, name)!r}; "
+                    "expected a bucket 1, 2 or 3."
+                )
+        for name in ("avr_experience", "games_experience"):
+            if getattr(self, name) not in range(1, 8):
+                raise StudyDefinitionError(
+                    f"participant {self.id}: {name} = {getattr(self, name)!r}; "
+                    "expected a Likert score 1-7."
+                )
+        factor = self.movement_time_factor
+        if not (math.isfinite(factor) and 0.25 <= factor <= 4.0):
+            raise StudyDefinitionError(
+                f"participant {self.id}: movement_time_factor = {factor!r}; expected 0.25-4."
+            )
+
+
+@dataclass(frozen=True)
+class CohortConfig:
+    """A simulated cohort, drawn from the study's seed when no participants are listed.
+
+    The defaults are the original study's 22 participants (docs/study.md §4): 7 AR/VR experts
+    and 7 gamers (at least 2 h a week), 4 of them both.
+
+    Attributes:
+        size: Number of participants.
+        avr_experts: Participants with AR/VR hours bucket >= 2.
+        games_experts: Participants with video-game hours bucket >= 2.
+        both_experts: Of those, how many are both.
+        movement_time_sd: SD of the log of each participant's movement-time factor
+            (:attr:`ParticipantSpec.movement_time_factor`), lognormal around 1. Movement times
+            of healthy adults in the same pointing task vary by a coefficient of variation of
+            about 0.2 between people (MacKenzie, HCI 1992, per-subject Fitts fits).
+        id_prefix: Ids are this prefix and a two-digit number: P01, P02, ...
+    """
+
+    size: int = 22
+    avr_experts: int = 7
+    games_experts: int = 7
+    both_experts: int = 4
+    movement_time_sd: float = 0.2
+    id_prefix: str = "P"
+
+    def __post_init__(self) -> None:
+        if self.size < 1:
+            raise StudyDefinitionError(f"cohort.size = {self.size}: expected 1 or more.")
+        only = self.avr_experts + self.games_experts - self.both_experts
+        if not (
+            0 <= self.both_experts <= min(self.avr_experts, self.games_experts)
+            and only <= self.size
+        ):
+            raise StudyDefinitionError(
+                f"cohort: {self.avr_experts} AR/VR experts and {self.games_experts} gamers, "
+                f"{self.both_experts} of them both, do not fit {self.size} participants: "
+                "both_experts must not exceed either count, and avr_experts + games_experts - "
+                "both_experts must not exceed size."
+            )
+        if not (math.isfinite(self.movement_time_sd) and 0 <= self.movement_time_sd <= 1):
+            raise StudyDefinitionError(
+                f"cohort.movement_time_sd = {self.movement_time_sd}: expected 0-1."
+            )
+
+
+@dataclass(frozen=True)
+class FamiliarizationConfig:
+    """Practice before the experimental trials (docs/study.md §4): start and target drawn at
+    random inside the table area the arm reaches from above, under ``modality``.
+
+    Attributes:
+        trials: Practice trials per participant (the original: 3-4).
+        modality: The AR modality of practice (the original: none).
+        timeout_s: Simulated time after which a practice trial ends (s).
+    """
+
+    trials: int = 3
+    modality: str = "none"
+    timeout_s: float = 120.0
+
+    def __post_init__(self) -> None:
+        if self.trials < 0:
+            raise StudyDefinitionError(f"familiarization.trials = {self.trials}: expected >= 0.")
+        if self.modality not in MODALITY_NAMES:
+            raise StudyDefinitionError(
+                f"familiarization.modality = {self.modality!r}; expected one of "
+                f"{', '.join(MODALITY_NAMES)}."
+            )
+        _check_timeout("familiarization.timeout_s", self.timeout_s)
+
+
+@dataclass(frozen=True)
+class StudyConfig:
+    """A within-subject study of AR modalities on the pick-and-place task.
+
+    Attributes:
+        name: A name for the report.
+        seed: Seed of everything random in the study: the cohort, the orders, the practice
+            positions and every trial (each trial's seed derives from it and the trial's place).
+        modalities: The conditions, in the order the order schemes number them.
+        order: ``williams`` (a balanced Latin square: each condition follows each other equally
+            often; for an odd count, 2n sequences), ``cyclic`` (n rotations) or ``random``
+            (a seeded permutation per participant). Participant k takes sequence k modulo the
+            count, so full balance needs a multiple of it.
+        trials_per_modality: Experimental trials per modality: 1, as in the original and as
+            the data format (version 1) records.
+        timeout_s: Simulated time after which an experimental trial ends as a timeout (s).
+        delay_ms: One-way network delay between operator and robot (ms).
+        start_xy_m: Where the bowl starts in every experimental trial (base frame, m).
+        target_xy_m: Where the bowl must go (base frame, m).
+        familiarization: Practice trials.
+        cohort: The simulated cohort, used when ``participants`` is empty.
+        participants: Named participants; empty draws the cohort.
+    """
+
+    name: str = "arteleop default study"
+    seed: int = 0
+    modalities: tuple[str, ...] = MODALITY_NAMES
+    order: str = "williams"
+    trials_per_modality: int = 1
+    timeout_s: float = 120.0
+    delay_ms: float = 0.0
+    start_xy_m: tuple[float, float] = (0.68, -0.45)
+    target_xy_m: tuple[float, float] = (0.68, -0.10)
+    familiarization: FamiliarizationConfig = field(default_factory=FamiliarizationConfig)
+    cohort: CohortConfig = field(default_factory=CohortConfig)
+    participants: tuple[ParticipantSpec, ...] = ()
+
+    def __post_init__(self) -> None:
+        if self.seed < 0:
+            raise StudyDefinitionError(f"seed = {self.seed}: expected a whole number, 0 or more.")
+        unknown = [m for m in self.modalities if m not in MODALITY_NAMES]
+        if unknown or not self.modalities:
+            raise StudyDefinitionError(
+                f"modalities = {list(self.modalities)}: expected one or more of "
+                f"{', '.join(MODALITY_NAMES)}."
+            )
+        if len(set(self.modalities)) != len(self.modalities):
+            raise StudyDefinitionError(
+                f"modalities = {list(self.modalities)}: each modality at most once."
+            )
+        if self.order not in ORDER_SCHEMES:
+            raise StudyDefinitionError(
+                f"order = {self.order!r}; expected one of {', '.join(ORDER_SCHEMES)}."
+            )
+        if self.trials_per_modality != 1:
+            raise StudyDefinitionError(
+                f"trials_per_modality = {self.trials_per_modality}: the study data format "
+                "(docs/data-format.md, version 1) holds one experimental trial per participant "
+                "and modality, so 1 is the only value it can record."
+            )
+        _check_timeout("timeout_s", self.timeout_s)
+        if not (math.isfinite(self.delay_ms) and 0 <= self.delay_ms < 500 * self.timeout_s):
+            raise StudyDefinitionError(
+                f"delay_ms = {self.delay_ms}: expected 0 ms or more, with a round trip shorter "
+                f"than timeout_s ({self.timeout_s} s)."
+            )
+        ids = [p.id for p in self.participants]
+        twice = sorted({i for i in ids if ids.count(i) > 1})
+        if twice:
+            raise StudyDefinitionError(
+                f"participants: the id {twice[0]!r} is used more than once; ids must be unique."
+            )
+
+
+def _check_timeout(name: str, value: float) -> None:
+    if not (math.isfinite(value) and value > 0):
+        raise StudyDefinitionError(f"{name} = {value}: expected a positive time (s).")

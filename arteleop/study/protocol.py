@@ -1,0 +1,100 @@
+"""One trial of the protocol (docs/study.md §1), run for one planned trial.
+
+The arm starts at the rest pose; the completion timer starts at motion onset (the hand's speed
+crosses ``START_SPEED_M_S``) and stops at the first camera frame, after the release, in which
+the tracker finds the bowl at rest (:mod:`arteleop.teleop.task_monitor`). A failure is an
+outcome with its reason and is kept like any other trial.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, replace
+
+import numpy as np
+from numpy.typing import NDArray
+
+from arteleop.errors import SimulationError
+from arteleop.operator import Expertise, OperatorParams
+from arteleop.scene import RemoteSite
+from arteleop.study.definition import ParticipantSpec, StudyConfig
+from arteleop.study.plan import TrialSpec
+from arteleop.study.sites import StudySite
+from arteleop.teleop import NetworkConfig, TrialConfig, run_trial, trial_operator
+
+
+@dataclass(frozen=True)
+class TrialRecord:
+    """What a study keeps of one trial.
+
+    Attributes:
+        spec: The planned trial.
+        row: Its row of ``trials.csv`` (docs/data-format.md), by column name.
+        trace: Its trajectory file's columns (:data:`~arteleop.teleop.TRACE_COLUMNS`).
+        duration_s: Simulated time of the trial (s).
+        wall_s: Wall-clock time it took, site included (s); kept out of the files, which must
+            not depend on the machine.
+    """
+
+    spec: TrialSpec
+    row: dict[str, object]
+    trace: dict[str, NDArray[np.float64]]
+    duration_s: float
+    wall_s: float
+
+
+def trajectory_file(spec: TrialSpec) -> str:
+    """The trial's trajectory file, relative to the run folder."""
+    return f"trajectories/{spec.participant}/{spec.trial_index}.csv"
+
+
+def operator_params(person: ParticipantSpec) -> OperatorParams:
+    """The synthetic operator's parameters for a simulated participant: the movement-time
+    factor scales the Fitts slope, and its inverse square root the endpoint noise."""
+    base = OperatorParams()
+    factor = person.movement_time_factor
+    return replace(
+        base,
+        fitts_b_s_per_bit=base.fitts_b_s_per_bit * factor,
+        endpoint_noise_ratio=base.endpoint_noise_ratio / np.sqrt(factor),
+    )
+
+
+def trial_config(study: StudyConfig, site: StudySite, spec: TrialSpec) -> TrialConfig:
+    """The headless trial of a planned trial."""
+    return TrialConfig(
+        modality=spec.modality,
+        seed=spec.seed,
+        timeout_s=spec.timeout_s,
+        network=NetworkConfig(delay_s=study.delay_ms / 1000),
+        site=site.site_config(spec),
+        record_trace=True,
+    )
+
+
+def run_planned_trial(
+    study: StudyConfig, site: StudySite, person: ParticipantSpec, spec: TrialSpec
+) -> TrialRecord:
+    """Run one planned trial with the participant's synthetic operator."""
+    config = trial_config(study, site, spec)
+    start = time.perf_counter()
+    with RemoteSite(config.site) as remote:
+        source = trial_operator(
+            remote,
+            config,
+            params=operator_params(person),
+            expertise=Expertise(avr_hours=person.avr_hours, games_hours=person.games_hours),
+        )
+        result = run_trial(source, config, remote)
+    row = {
+        "participant": spec.participant,
+        "phase": spec.phase,
+        "trial_index": spec.trial_index,
+        "position": spec.position,
+        **result.to_row(),
+        "trajectory_file": trajectory_file(spec),
+    }
+    if result.trace is None:
+        raise SimulationError("The trial recorded no trace although its config asked for one.")
+    wall_s = time.perf_counter() - start
+    return TrialRecord(spec, row, result.trace, result.duration_s, wall_s)

@@ -1,0 +1,261 @@
+"""Run a study: plan it, run its trials through an executor, keep every trial as it ends.
+
+Trials are independent (each has its own site, seed and operator), so they run in any order on
+any worker: a process per core by default, or any :class:`concurrent.futures.Executor`, such as
+a Dask cluster's (``distributed.Client(...).get_executor()``; the README shows Ray's
+equivalent). Whatever the order, the finished folder's CSVs are the same bytes.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+import platform
+from collections.abc import Callable, Sequence
+from concurrent.futures import Executor, Future, ProcessPoolExecutor, as_completed
+from dataclasses import dataclass
+from datetime import UTC, datetime
+from importlib import metadata
+from pathlib import Path
+
+import pandas as pd
+
+from arteleop.analysis.data import PARTICIPANT_COLUMNS, QUESTIONNAIRE_COLUMNS
+from arteleop.errors import RunFolderError, StudyDefinitionError
+from arteleop.study.cohort import participants
+from arteleop.study.definition import ParticipantSpec, StudyConfig
+from arteleop.study.plan import EXPERIMENTAL, TrialSpec, plan_study
+from arteleop.study.protocol import TrialRecord, run_planned_trial
+from arteleop.study.questionnaire import simulated_answers
+from arteleop.study.run_folder import FORMAT_VERSION, STUDY_FILE, RunFolder, table_text
+from arteleop.study.sites import StudySite
+from arteleop.study.study_file import first_difference, parse_study, study_text
+
+PACKAGES = ("arteleop", "pybullet", "pin", "mink", "mujoco", "ruckig", "numpy", "scipy",
+            "pandas", "statsmodels", "open3d")  # fmt: skip
+"""Packages whose versions the manifest records: each can change the numbers."""
+
+Progress = Callable[[TrialSpec, int, int], None]
+"""Called after each trial is written: (the trial, trials done, trials in the plan)."""
+
+
+@dataclass(frozen=True)
+class StudyRun:
+    """A finished run.
+
+    Attributes:
+        folder: The run folder.
+        trials: trials.csv as a table.
+        ran: Trials run by this call (the rest were in the folder already).
+        speed: (simulated s, wall s) of each trial run by this call, for benchmarks.
+    """
+
+    folder: Path
+    trials: pd.DataFrame
+    ran: int
+    speed: list[tuple[float, float]]
+
+
+class RunComplete(RunFolderError):
+    """``resume`` found every planned trial in the folder: nothing to do."""
+
+
+def run_study(
+    study: StudyConfig,
+    out: Path,
+    workers: int | None = None,
+    executor: Executor | None = None,
+    progress: Progress | None = None,
+) -> StudyRun:
+    """Start a run of ``study`` in the new folder ``out`` and run it to the end.
+
+    Args:
+        workers: Processes for the trials when no ``executor`` is given; default one per core;
+            1 runs them in this process.
+        executor: Runs the trials (any :class:`concurrent.futures.Executor`).
+        progress: Told of each trial written.
+    """
+    folder = RunFolder(out)
+    if folder.path.exists() and any(folder.path.iterdir()):
+        if folder.is_run_folder():
+            raise RunFolderError(
+                f"{folder.path} already holds a run: 'arteleop study resume {folder.path}' "
+                "continues it; give --out a new folder for a new run."
+            )
+        raise RunFolderError(
+            f"{folder.path} exists and is not empty: give --out a new or empty folder."
+        )
+    site = StudySite()
+    plan, people = _plan(study, site)
+    manifest = {
+        "format_version": FORMAT_VERSION,
+        "seed": study.seed,
+        "trials_planned": len(plan),
+        "participants": len(people),
+        "packages": _versions(),
+        "python": platform.python_version(),
+        "started": _now(),
+        "finished": None,
+    }
+    try:
+        folder.path.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise RunFolderError(f"Cannot create {folder.path}: {err.strerror or err}.") from err
+    folder.start(study_text(study), manifest, _participants_text(people))
+    return _execute(study, site, folder, plan, people, workers, executor, progress)
+
+
+def resume_study(
+    out: Path,
+    study: StudyConfig | None = None,
+    workers: int | None = None,
+    executor: Executor | None = None,
+    progress: Progress | None = None,
+) -> StudyRun:
+    """Continue the run in ``out`` after a crash, Ctrl-C or ``kill -9``: the trials it lacks
+    run, the rest are kept. With ``study``, refuses a folder made from another definition."""
+    folder = RunFolder(out)
+    if not folder.is_run_folder():
+        raise RunFolderError(
+            f"{folder.path} is not a run folder (it has no {STUDY_FILE} and manifest.json): "
+            "'arteleop study run --out DIR' starts one."
+        )
+    text = (folder.path / STUDY_FILE).read_text(encoding="utf-8")
+    recorded = parse_study(text, str(folder.path / STUDY_FILE))
+    if study is not None and (key := first_difference(study, recorded)) is not None:
+        raise RunFolderError(
+            f"{folder.path} was made from another definition: its key {key!r} is "
+            f"{_value(recorded, key)!r}, the given one {_value(study, key)!r}. Resume it "
+            "without a definition, or start a new run in another folder."
+        )
+    manifest = folder.manifest()
+    if manifest.get("format_version") != FORMAT_VERSION:
+        raise RunFolderError(
+            f"{folder.path / 'manifest.json'}: format_version {manifest.get('format_version')!r}"
+            f", this arteleop writes {FORMAT_VERSION}; resume it with the version that began it "
+            f"({manifest.get('packages', {}).get('arteleop', 'unknown')})."
+        )
+    site = StudySite()
+    plan, people = _plan(recorded, site)
+    if manifest.get("finished") and len(folder.done_rows()) == len(plan):
+        raise RunComplete(
+            f"{folder.path} is complete: all {len(plan)} trials are in; nothing to resume."
+        )
+    return _execute(recorded, site, folder, plan, people, workers, executor, progress)
+
+
+def _plan(study: StudyConfig, site: StudySite) -> tuple[list[TrialSpec], list[ParticipantSpec]]:
+    problem = site.problem(study.start_xy_m, study.target_xy_m)
+    if problem is not None:
+        raise StudyDefinitionError(f"start_xy_m / target_xy_m: {problem}")
+    points = site.practice_points(study.start_xy_m, study.target_xy_m)
+    return plan_study(study, points), list(participants(study))
+
+
+def _execute(
+    study: StudyConfig,
+    site: StudySite,
+    folder: RunFolder,
+    plan: list[TrialSpec],
+    people: list[ParticipantSpec],
+    workers: int | None,
+    executor: Executor | None,
+    progress: Progress | None,
+) -> StudyRun:
+    done = folder.done_rows()
+    pending = [spec for spec in plan if spec.key not in done]
+    by_id = {p.id: p for p in people}
+    count = len(plan) - len(pending)
+    speed: list[tuple[float, float]] = []
+
+    def keep(record: TrialRecord) -> None:
+        nonlocal count
+        folder.append_trial(record.row, record.trace)
+        speed.append((record.duration_s, record.wall_s))
+        count += 1
+        if progress is not None:
+            progress(record.spec, count, len(plan))
+
+    workers = workers or os.cpu_count() or 1
+    if executor is None and (workers == 1 or len(pending) <= 1):
+        for spec in pending:
+            keep(run_planned_trial(study, site, by_id[spec.participant], spec))
+    else:
+        own = executor is None
+        pool = executor or ProcessPoolExecutor(
+            workers, mp_context=multiprocessing.get_context("fork")
+        )
+        futures: list[Future[TrialRecord]] = []
+        try:
+            futures = [
+                pool.submit(_run_in_worker, study, by_id[spec.participant], spec)
+                for spec in pending
+            ]
+            for future in as_completed(futures):
+                keep(future.result())
+        finally:
+            for future in futures:
+                future.cancel()
+            if own:
+                pool.shutdown(wait=True, cancel_futures=True)
+    order = [spec.key for spec in plan]
+    folder.finish(order)
+    # Answers come from the finished trials.csv, so they depend only on its bytes.
+    folder.write_questionnaire(_questionnaire_text(study, folder, people))
+    manifest = folder.manifest()
+    manifest["finished"] = _now()
+    folder.write_manifest(manifest)
+    return StudyRun(folder.path, folder.trials(), len(pending), speed)
+
+
+_WORKER_SITE: StudySite | None = None
+
+
+def _run_in_worker(study: StudyConfig, person: ParticipantSpec, spec: TrialSpec) -> TrialRecord:
+    """One trial in a worker process; the worker keeps its :class:`StudySite` between trials."""
+    global _WORKER_SITE
+    if _WORKER_SITE is None:
+        _WORKER_SITE = StudySite()
+    return run_planned_trial(study, _WORKER_SITE, person, spec)
+
+
+def _participants_text(people: Sequence[ParticipantSpec]) -> str:
+    rows = [
+        (p.id, p.age, p.gender, "right", p.avr_experience, p.avr_hours, p.games_experience,
+         p.games_hours, "synthetic")
+        for p in people
+    ]  # fmt: skip
+    return table_text(PARTICIPANT_COLUMNS, rows)
+
+
+def _questionnaire_text(
+    study: StudyConfig, folder: RunFolder, people: Sequence[ParticipantSpec]
+) -> str:
+    trials = folder.trials()
+    experimental = trials[trials["phase"] == EXPERIMENTAL]
+    rows = []
+    for k, person in enumerate(people):
+        own = experimental[experimental["participant"] == person.id]
+        rows += simulated_answers(person.id, (study.seed, 4, k), own, study.timeout_s)
+    return table_text(QUESTIONNAIRE_COLUMNS, rows)
+
+
+def _versions() -> dict[str, str]:
+    versions = {}
+    for name in PACKAGES:
+        try:
+            versions[name] = metadata.version(name)
+        except metadata.PackageNotFoundError:
+            versions[name] = "not installed"
+    return versions
+
+
+def _now() -> str:
+    return datetime.now(UTC).isoformat(timespec="seconds")
+
+
+def _value(study: StudyConfig, dotted: str) -> object:
+    value: object = study
+    for part in dotted.split("."):
+        value = getattr(value, part)
+    return value

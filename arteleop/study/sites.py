@@ -1,0 +1,67 @@
+"""The remote site of each planned trial, and the site's own checks of start and target points,
+without starting a simulator."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from arteleop.errors import WorkspaceError
+from arteleop.robot import BaxterKinematics, TopDownReach, load_baxter_description
+from arteleop.scene import SiteConfig, Workspace, reach_problem
+from arteleop.study.plan import PracticePoints, TrialSpec
+
+PRACTICE_MARGIN_M = 0.10
+"""Practice trials start and end around the experimental task: within this distance (m) of the
+box its start and target span, so that practice trains the same reach (docs/study.md §4)."""
+
+
+class StudySite:
+    """Builds the :class:`SiteConfig` of each trial from one base configuration.
+
+    Args:
+        base: The site every trial shares; each trial sets the bowl's start and target and the
+            seed of the depth noise.
+    """
+
+    def __init__(self, base: SiteConfig | None = None) -> None:
+        self.base = base or SiteConfig()
+        description = load_baxter_description(self.base.robot)
+        self._reach = TopDownReach.from_kinematics(BaxterKinematics(description.urdf_path))
+
+    def workspace(
+        self, start_xy_m: tuple[float, float], target_xy_m: tuple[float, float]
+    ) -> Workspace:
+        """The base workspace with the bowl's start and target moved (base frame, m)."""
+        return replace(self.base.workspace, start_xy_m=start_xy_m, target_xy_m=target_xy_m)
+
+    def problem(
+        self, start_xy_m: tuple[float, float], target_xy_m: tuple[float, float]
+    ) -> str | None:
+        """Why the site would refuse this start and target (table, reach), or None."""
+        try:
+            ws = self.workspace(start_xy_m, target_xy_m)
+        except WorkspaceError as err:
+            return str(err)
+        return reach_problem(ws, self._reach, self.base.reach_margin)
+
+    def site_config(self, spec: TrialSpec) -> SiteConfig:
+        """The site of one planned trial."""
+        return replace(
+            self.base, workspace=self.workspace(spec.start_xy_m, spec.target_xy_m), seed=spec.seed
+        )
+
+    def practice_points(
+        self, start_xy_m: tuple[float, float], target_xy_m: tuple[float, float]
+    ) -> PracticePoints:
+        """Practice points within :data:`PRACTICE_MARGIN_M` of the box that the experimental
+        start and target span, where the bowl fits on the table and the arm reaches."""
+        lower, upper = self.base.workspace.table_bounds_xy_m()
+        r = self.base.workspace.bowl.rim_radius_m
+        points = np.array([start_xy_m, target_xy_m])
+        low = np.maximum(points.min(axis=0) - PRACTICE_MARGIN_M, lower + r)
+        high = np.minimum(points.max(axis=0) + PRACTICE_MARGIN_M, upper - r)
+        return PracticePoints(
+            self.problem, (float(low[0]), float(low[1])), (float(high[0]), float(high[1]))
+        )

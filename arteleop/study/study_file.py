@@ -1,0 +1,264 @@
+"""Study definitions as TOML files: read strictly, written with comments.
+
+Every key is a field of the dataclasses in :mod:`arteleop.study.definition`; an unknown key, a
+value of the wrong type or out of range is refused with the file, the line and the key.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import re
+import tomllib
+from pathlib import Path
+from typing import Any, get_type_hints
+
+from arteleop.errors import StudyDefinitionError
+from arteleop.study.definition import (
+    CohortConfig,
+    FamiliarizationConfig,
+    ParticipantSpec,
+    StudyConfig,
+)
+
+_TABLES: dict[str, type] = {"familiarization": FamiliarizationConfig, "cohort": CohortConfig}
+
+
+def load_study_file(path: Path) -> tuple[StudyConfig, str]:
+    """The definition in ``path`` and the file's text."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise StudyDefinitionError(
+            f"{path}: no such study file. 'arteleop study init {path}' writes the default one "
+            "to edit."
+        ) from None
+    except (OSError, UnicodeDecodeError) as err:
+        raise StudyDefinitionError(f"{path}: cannot read it ({err}).") from err
+    return parse_study(text, str(path)), text
+
+
+def parse_study(text: str, source: str = "<study>") -> StudyConfig:
+    """A definition from TOML text; ``source`` names it in errors."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise StudyDefinitionError(f"{source}: not valid TOML: {err}.") from err
+    where = _Locator(text, source)
+    top: dict[str, Any] = {}
+    for key, value in data.items():
+        if key in _TABLES:
+            top[key] = _build(_TABLES[key], value, key, where)
+        elif key == "participants":
+            if not isinstance(value, list):
+                raise StudyDefinitionError(
+                    f"{where.at('', key)}: participants must be [[participants]] tables."
+                )
+            top[key] = tuple(
+                _build(ParticipantSpec, item, "participants", where, index)
+                for index, item in enumerate(value)
+            )
+            ids = [p.id for p in top[key]]
+            for index, pid in enumerate(ids):
+                if pid in ids[:index]:
+                    raise StudyDefinitionError(
+                        f"{where.at('participants', 'id', index)}: participant id {pid!r} is "
+                        "used twice; each participant needs an id of their own."
+                    )
+        else:
+            top[key] = value
+    return _build(StudyConfig, top, "", where)
+
+
+def _build(cls: type, values: Any, table: str, where: _Locator, index: int | None = None) -> Any:
+    if not isinstance(values, dict):
+        raise StudyDefinitionError(f"{where.at('', table)}: [{table}] must be a table.")
+    hints = get_type_hints(cls)
+    names = [f.name for f in dataclasses.fields(cls)]
+    kwargs = {}
+    for key, value in values.items():
+        if key not in names:
+            raise StudyDefinitionError(
+                f"{where.at(table, key, index)}: unknown key {_dotted(table, key)!r}. Valid "
+                f"keys{' in [' + table + ']' if table else ''}: {', '.join(names)}."
+            )
+        kwargs[key] = _convert(value, hints[key], where.at(table, key, index), table, key)
+    try:
+        return cls(**kwargs)
+    except StudyDefinitionError as err:
+        key = _key_in(str(err), names)
+        raise StudyDefinitionError(f"{where.at(table, key or '', index)}: {err}") from None
+
+
+def _convert(value: Any, hint: Any, at: str, table: str, key: str) -> Any:
+    """Checks a TOML value against the field's type; lists become tuples."""
+    hint_text = str(hint)
+    name = _dotted(table, key)
+    if dataclasses.is_dataclass(value) or (
+        isinstance(value, tuple) and value and dataclasses.is_dataclass(value[0])
+    ):
+        return value  # a nested table, already built
+    if hint_text.startswith("tuple"):
+        if not isinstance(value, list):
+            raise StudyDefinitionError(f"{at}: {name} must be a list, got {value!r}.")
+        expected = str if "str" in hint_text else float
+        if not all(_is(v, expected) for v in value):
+            kind = "text" if expected is str else "numbers"
+            raise StudyDefinitionError(f"{at}: {name} must be a list of {kind}, got {value!r}.")
+        if "float, float" in hint_text and len(value) != 2:
+            raise StudyDefinitionError(f"{at}: {name} must be two numbers (x, y), got {value!r}.")
+        return tuple(float(v) if expected is float else v for v in value)
+    for kind, label in ((bool, "true or false"), (int, "a whole number"), (str, "text")):
+        if hint is kind and not _is(value, kind):
+            raise StudyDefinitionError(f"{at}: {name} must be {label}, got {value!r}.")
+    if hint is float:
+        if not _is(value, float):
+            raise StudyDefinitionError(f"{at}: {name} must be a number, got {value!r}.")
+        return float(value)
+    return value
+
+
+def _is(value: Any, kind: type) -> bool:
+    if kind is float:
+        return isinstance(value, int | float) and not isinstance(value, bool)
+    if kind is int:
+        return isinstance(value, int) and not isinstance(value, bool)
+    return isinstance(value, kind)
+
+
+def _dotted(table: str, key: str) -> str:
+    return f"{table}.{key}" if table else key
+
+
+def _key_in(message: str, names: list[str]) -> str | None:
+    """The field a definition error is about: its message names it first."""
+    found = re.search(r"(?:^|[ .:])(\w+) = ", message)
+    if found and found.group(1) in names:
+        return found.group(1)
+    return next((n for n in names if re.search(rf"\b{n}\b", message)), None)
+
+
+class _Locator:
+    """Finds the line of a key in the file's text."""
+
+    def __init__(self, text: str, source: str) -> None:
+        self.lines = text.splitlines()
+        self.source = source
+
+    def at(self, table: str, key: str, index: int | None = None) -> str:
+        line = self._line(table, key, index)
+        return f"{self.source} line {line}" if line else self.source
+
+    def _line(self, table: str, key: str, index: int | None) -> int | None:
+        section, seen = "", -1
+        for number, raw in enumerate(self.lines, start=1):
+            stripped = raw.split("#", 1)[0].strip()
+            header = re.fullmatch(r"\[\[?\s*([\w.]+)\s*\]\]?", stripped)
+            if header:
+                section = header.group(1)
+                if section == table and stripped.startswith("[["):
+                    seen += 1
+                if section == table and not key and (index is None or seen == index):
+                    return number
+                continue
+            if section != table or (index is not None and seen != index):
+                continue
+            if key and re.match(rf"{re.escape(key)}\s*=", stripped):
+                return number
+        return None
+
+
+def _toml_value(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, str):
+        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(value, tuple | list):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    if isinstance(value, float):
+        return repr(value)
+    return str(value)
+
+
+_COMMENTS = {
+    "name": "a name for the report",
+    "seed": "seed of the cohort, the orders, the practice positions and every trial",
+    "modalities": "AR modalities compared: none, manipulation, embodiment, task, full",
+    "order": "williams (balanced Latin square), cyclic or random (seeded)",
+    "trials_per_modality": "experimental trials per modality (data format version 1: 1)",
+    "timeout_s": "simulated time after which a trial ends as a timeout (s)",
+    "delay_ms": "one-way network delay between operator and robot (ms)",
+    "start_xy_m": "where the bowl starts, Baxter's base frame (m)",
+    "target_xy_m": "where it must go (m)",
+    "familiarization.trials": "practice trials per participant, random start and target",
+    "familiarization.modality": "AR modality of the practice trials",
+    "familiarization.timeout_s": "timeout of a practice trial (s)",
+    "cohort.size": "simulated participants, used when no [[participants]] are listed",
+    "cohort.avr_experts": "of them, AR/VR experts (at least 2 h a week)",
+    "cohort.games_experts": "gamers (at least 2 h a week)",
+    "cohort.both_experts": "of those, expert in both",
+    "cohort.movement_time_sd": "between-participant SD of log movement time",
+    "cohort.id_prefix": "participant ids: prefix and a two-digit number",
+}
+
+_HEADER = """\
+# An arteleop study definition. Every key is optional: a missing key takes the default shown.
+# The defaults mirror the original study (docs/study.md §4): 22 participants, five modalities,
+# a balanced Latin square, three practice trials under no AR, one trial per modality.
+# Run it: arteleop study run THIS_FILE --out RUN_DIR
+"""
+
+_PARTICIPANTS_HELP = """\
+# Named participants replace the simulated cohort, e.g. (ids name folders of the run):
+# [[participants]]
+# id = "S01"
+# avr_hours = 2          # weekly AR/VR hours bucket: 1 (< 1 h), 2 (2-5 h), 3 (> 5 h)
+# games_hours = 1        # weekly video-game hours bucket, same buckets
+# avr_experience = 5     # Likert 1-7
+# games_experience = 3   # Likert 1-7
+# age = 29
+# gender = "f"
+# movement_time_factor = 1.0  # simulated participants only: < 1 moves faster, less accurately
+"""
+
+
+def study_text(config: StudyConfig) -> str:
+    """The definition as commented TOML, every key written out."""
+    out = [_HEADER]
+    nested = {"familiarization", "cohort", "participants"}
+    for f in dataclasses.fields(config):
+        if f.name not in nested:
+            out.append(_key_line(f.name, getattr(config, f.name), f.name))
+    for table in ("familiarization", "cohort"):
+        out.append(f"\n[{table}]\n")
+        sub = getattr(config, table)
+        for f in dataclasses.fields(sub):
+            out.append(_key_line(f.name, getattr(sub, f.name), f"{table}.{f.name}"))
+    out.append("\n")
+    if config.participants:
+        for person in config.participants:
+            out.append("[[participants]]\n")
+            for f in dataclasses.fields(person):
+                out.append(f"{f.name} = {_toml_value(getattr(person, f.name))}\n")
+            out.append("\n")
+    else:
+        out.append(_PARTICIPANTS_HELP)
+    return "".join(out)
+
+
+def _key_line(key: str, value: Any, path: str) -> str:
+    comment = _COMMENTS.get(path)
+    return (f"# {comment}\n" if comment else "") + f"{key} = {_toml_value(value)}\n"
+
+
+def first_difference(a: StudyConfig, b: StudyConfig) -> str | None:
+    """The dotted key of the first field in which two definitions differ, or None."""
+    for f in dataclasses.fields(a):
+        x, y = getattr(a, f.name), getattr(b, f.name)
+        if dataclasses.is_dataclass(x) and dataclasses.is_dataclass(y):
+            for g in dataclasses.fields(x):  # type: ignore[arg-type]
+                if getattr(x, g.name) != getattr(y, g.name):
+                    return f"{f.name}.{g.name}"
+        elif x != y:
+            return f.name
+    return None

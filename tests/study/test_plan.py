@@ -1,0 +1,59 @@
+"""The default study's plan: the original's cohort, its counterbalancing, reachable practice."""
+
+from __future__ import annotations
+
+from collections import Counter
+
+import pytest
+
+from arteleop.study import (
+    MODALITY_NAMES,
+    StudyConfig,
+    StudySite,
+    participants,
+    plan_study,
+)
+
+
+@pytest.fixture(scope="module")
+def study_site() -> StudySite:
+    return StudySite()
+
+
+def test_the_default_cohort_has_the_original_expertise() -> None:
+    people = participants(StudyConfig())
+    assert len(people) == 22 and len({p.id for p in people}) == 22
+    avr = {p.id for p in people if p.avr_hours >= 2}
+    games = {p.id for p in people if p.games_hours >= 2}
+    assert (len(avr), len(games), len(avr & games)) == (7, 7, 4)
+    assert all(p.avr_experience >= 5 for p in people if p.id in avr)
+    assert participants(StudyConfig()) == people  # seeded
+    assert participants(StudyConfig(seed=1)) != people
+
+
+def test_the_plan_counterbalances_and_seeds_every_trial(study_site: StudySite) -> None:
+    study = StudyConfig()
+    plan = plan_study(study, study_site.practice_points(study.start_xy_m, study.target_xy_m))
+    assert len(plan) == 22 * (3 + 5)
+    assert len({spec.seed for spec in plan}) == len(plan)
+    experimental = [s for s in plan if s.phase == "experimental"]
+    for person in {s.participant for s in plan}:
+        own = [s for s in experimental if s.participant == person]
+        assert sorted(s.modality for s in own) == sorted(MODALITY_NAMES)
+        assert [s.position for s in own] == [1, 2, 3, 4, 5]
+        assert [s.trial_index for s in own] == [4, 5, 6, 7, 8]
+    first_positions = Counter(s.modality for s in experimental if s.position == 1)
+    assert sorted(first_positions.values()) == [4, 4, 4, 5, 5]  # 22 over a 10-row square
+    assert {(s.start_xy_m, s.target_xy_m) for s in experimental} == {((0.68, -0.45), (0.68, -0.1))}
+    practice = [s for s in plan if s.phase == "familiarization"]
+    assert all(s.modality == "none" for s in practice)
+    assert len({(s.start_xy_m, s.target_xy_m) for s in practice}) == len(practice)
+    for s in practice:  # the site would accept every practice position
+        assert study_site.problem(s.start_xy_m, s.target_xy_m) is None
+    again = plan_study(study, study_site.practice_points(study.start_xy_m, study.target_xy_m))
+    assert again == plan
+
+
+def test_out_of_reach_points_are_named(study_site: StudySite) -> None:
+    problem = study_site.problem((0.68, -0.45), (0.95, -0.10))
+    assert problem is not None and problem.startswith("The target point (0.95, -0.1) m is out of")

@@ -1,0 +1,195 @@
+"""Running a study: the same bytes in series, in parallel, on a Dask cluster and after kill -9."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from arteleop.cli import main
+from arteleop.errors import RunFolderError
+from arteleop.study import (
+    CohortConfig,
+    FamiliarizationConfig,
+    RunComplete,
+    StudyConfig,
+    resume_study,
+    run_study,
+    study_text,
+)
+
+# Two participants, two modalities, one practice trial: six trials of a few simulated seconds.
+SMALL = StudyConfig(
+    seed=5,
+    modalities=("none", "full"),
+    timeout_s=3.0,
+    familiarization=FamiliarizationConfig(trials=1, timeout_s=2.0),
+    cohort=CohortConfig(size=2, avr_experts=1, games_experts=1, both_experts=0),
+)
+
+
+def _files(folder: Path) -> dict[str, bytes]:
+    """Every file of a run but the manifest (its start and end times differ) and the report."""
+    return {
+        str(p.relative_to(folder)): p.read_bytes()
+        for p in sorted(folder.rglob("*"))
+        if p.is_file() and p.name != "manifest.json" and "report" not in p.parts
+    }
+
+
+@pytest.fixture(scope="module")
+def series(tmp_path_factory: pytest.TempPathFactory) -> dict[str, bytes]:
+    folder = tmp_path_factory.mktemp("series") / "run"
+    run = run_study(SMALL, folder, workers=1)
+    assert run.ran == 6 and len(run.trials) == 6
+    return _files(folder)
+
+
+def test_a_run_holds_every_file_of_the_format(series: dict[str, bytes]) -> None:
+    assert sorted(series) == [
+        "participants.csv", "questionnaire.csv", "study.toml",
+        *(f"trajectories/{p}/{i}.csv" for p in ("P01", "P02") for i in (1, 2, 3)),
+        "trials.csv",
+    ]  # fmt: skip
+    lines = series["trials.csv"].decode().splitlines()
+    assert [line.split(",")[:5] for line in lines[1:]] == [
+        ["P01", "familiarization", "1", "none", "1"],
+        ["P01", "experimental", "2", "none", "1"],
+        ["P01", "experimental", "3", "full", "2"],
+        ["P02", "familiarization", "1", "none", "1"],
+        ["P02", "experimental", "2", "full", "1"],
+        ["P02", "experimental", "3", "none", "2"],
+    ]
+    trace = series["trajectories/P01/2.csv"].decode().splitlines()
+    assert len(trace) == 1 + 301  # 3 s at 100 Hz, both ends
+    assert trace[0].startswith("time_s,hand_x_m,hand_y_m,hand_z_m,grip,upper_arm_qw,")
+    assert series["study.toml"].decode() == study_text(SMALL)
+    assert len(series["questionnaire.csv"].decode().splitlines()) == 1 + 2 * 9
+
+
+def test_parallel_workers_write_the_same_bytes(series: dict[str, bytes], tmp_path: Path) -> None:
+    run_study(SMALL, tmp_path / "run", workers=2)
+    assert _files(tmp_path / "run") == series
+
+
+def test_a_dask_cluster_writes_the_same_bytes(series: dict[str, bytes], tmp_path: Path) -> None:
+    distributed = pytest.importorskip("distributed")
+    with (
+        distributed.LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+        ) as cluster,
+        distributed.Client(cluster) as client,
+    ):
+        run_study(SMALL, tmp_path / "run", executor=client.get_executor())
+    assert _files(tmp_path / "run") == series
+
+
+def test_a_run_killed_midway_resumes_to_the_same_bytes(
+    series: dict[str, bytes], tmp_path: Path
+) -> None:
+    definition = tmp_path / "small.toml"
+    definition.write_text(study_text(SMALL))
+    folder = tmp_path / "run"
+    command = [sys.executable, "-m", "arteleop.cli", "study", "run", str(definition),
+               "--out", str(folder), "--workers", "1", "--quiet"]  # fmt: skip
+    child = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    trials = folder / "trials.csv"
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and child.poll() is None:
+        if trials.exists() and trials.read_text().count("\n") >= 3:  # header and two trials
+            break
+        time.sleep(0.05)
+    os.kill(child.pid, signal.SIGKILL)
+    child.wait()
+    kept = trials.read_text().count("\n") - 1
+    assert 2 <= kept < 6
+    run = resume_study(folder, workers=1)
+    assert run.ran == 6 - kept
+    assert _files(folder) == series
+    with pytest.raises(RunComplete, match=r"is complete: all 6 trials are in; nothing to resume"):
+        resume_study(folder)
+
+
+def test_resume_refuses_what_is_not_its_run(tmp_path: Path, capsys) -> None:
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    with pytest.raises(RunFolderError) as err:
+        resume_study(empty)
+    assert str(err.value) == (
+        f"{empty} is not a run folder (it has no study.toml and manifest.json): 'arteleop study "
+        "run --out DIR' starts one."
+    )
+    assert list(empty.iterdir()) == []
+    folder = tmp_path / "run"
+    folder.mkdir()
+    (folder / "study.toml").write_text(study_text(SMALL))
+    (folder / "manifest.json").write_text('{"format_version": 1}')
+    (folder / "trials.csv").write_text("participant\n")
+    other = StudyConfig(seed=6, modalities=SMALL.modalities, timeout_s=SMALL.timeout_s,
+                        familiarization=SMALL.familiarization, cohort=SMALL.cohort)  # fmt: skip
+    with pytest.raises(RunFolderError) as err:
+        resume_study(folder, other)
+    assert str(err.value) == (
+        f"{folder} was made from another definition: its key 'seed' is 5, the given one 6. "
+        "Resume it without a definition, or start a new run in another folder."
+    )
+    with pytest.raises(RunFolderError, match=r"already holds a run: 'arteleop study resume"):
+        run_study(SMALL, folder)
+    assert main(["study", "resume", str(empty)]) == 2
+    assert "is not a run folder" in capsys.readouterr().err
+
+
+def test_out_of_reach_points_are_refused_before_anything_runs(tmp_path: Path, capsys) -> None:
+    far = tmp_path / "far.toml"
+    far.write_text("target_xy_m = [0.95, -0.1]\n")
+    assert main(["study", "run", str(far), "--out", str(tmp_path / "run")]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("arteleop: error: start_xy_m / target_xy_m: The target point (0.95, "
+                          "-0.1) m is out of the right arm's reach from above")  # fmt: skip
+    assert not (tmp_path / "run").exists()
+    assert main(["study", "run", "unknown.toml"]) == 2
+    assert capsys.readouterr().err == (
+        "arteleop: error: unknown.toml: no such study file. 'arteleop study init unknown.toml' "
+        "writes the default one to edit.\n"
+    )
+
+
+def test_a_replay_shows_the_recorded_states_with_the_modalitys_layers(tmp_path: Path) -> None:
+    from arteleop.robot import RIGHT_ARM_JOINTS
+    from arteleop.scene import HeadCameraConfig, RemoteSite
+    from arteleop.study.replay import load_replay, replay, replay_site
+
+    one = StudyConfig(modalities=("full",), timeout_s=2.0,
+                      familiarization=FamiliarizationConfig(trials=0),
+                      cohort=CohortConfig(size=1, avr_experts=0, games_experts=0,
+                                          both_experts=0))  # fmt: skip
+    run_study(one, tmp_path / "run", workers=1)
+    source = load_replay(tmp_path / "run", "P01", 1)
+    shown = []
+
+    class Display:
+        def show(self, frame) -> None:
+            shown.append(frame)
+
+    small = HeadCameraConfig(width_px=160, height_px=120)
+    with RemoteSite(replay_site(source, small)) as site:
+        assert replay(source, site, Display(), speed=0) == 61  # 2 s at 30 Hz, both ends
+    trace = source.trajectory
+    for frame in shown[::15]:
+        row = trace[trace["time_s"] <= frame.time_s + 1e-9].iloc[-1]
+        np.testing.assert_allclose(frame.arm_q_rad, row[[f"{j}_rad" for j in RIGHT_ARM_JOINTS]],
+                                   atol=1e-9)  # fmt: skip
+        np.testing.assert_allclose(
+            frame.T_base_gripper[:3, 3],
+            row[["gripper_x_m", "gripper_y_m", "gripper_z_m"]],
+            atol=1e-6,
+        )
+        assert frame.cues.ghost and frame.cloud_points_m is not None
+    with pytest.raises(RunFolderError, match=r"has no trial 9 of participant 'P01'"):
+        load_replay(tmp_path / "run", "P01", 9)

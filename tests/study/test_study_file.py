@@ -1,0 +1,92 @@
+"""Study definitions in TOML: round trips, and errors that name the file, the line and the key."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from arteleop.cli import main
+from arteleop.errors import StudyDefinitionError
+from arteleop.study import (
+    CohortConfig,
+    ParticipantSpec,
+    StudyConfig,
+    first_difference,
+    load_study_file,
+    parse_study,
+    study_text,
+)
+
+
+def test_the_written_definition_reads_back_as_the_same_study() -> None:
+    assert parse_study(study_text(StudyConfig())) == StudyConfig()
+    named = StudyConfig(
+        seed=7, modalities=("full", "none"), order="cyclic", delay_ms=150.0,
+        participants=(ParticipantSpec("S01", avr_hours=3, gender="f"), ParticipantSpec("S02")),
+    )  # fmt: skip
+    assert parse_study(study_text(named)) == named
+
+
+def test_study_init_writes_the_commented_default(tmp_path: Path, capsys) -> None:
+    path = tmp_path / "study.toml"
+    assert main(["study", "init", str(path)]) == 0
+    text = path.read_text()
+    assert "# williams (balanced Latin square), cyclic or random (seeded)\norder = " in text
+    assert load_study_file(path)[0] == StudyConfig()
+    assert main(["study", "init", str(path)]) == 2  # never overwrites
+    assert "exists; give a new file name (nothing was written)" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        ('seed = 1\nordr = "williams"\n',
+         "s.toml line 2: unknown key 'ordr'. Valid keys: name, seed, modalities, order, "
+         "trials_per_modality, timeout_s, delay_ms, start_xy_m, target_xy_m, "
+         "familiarization, cohort, participants."),
+        ("[cohort]\nsize = 3\nsizes = 4\n",
+         "s.toml line 3: unknown key 'cohort.sizes'. Valid keys in [cohort]: size, "
+         "avr_experts, games_experts, both_experts, movement_time_sd, id_prefix."),
+        ('\norder = "latin"\n',
+         "s.toml line 2: order = 'latin'; expected one of williams, cyclic, random."),
+        ("seed = 1.5\n", "s.toml line 1: seed must be a whole number, got 1.5."),
+        ("start_xy_m = [0.68]\n",
+         "s.toml line 1: start_xy_m must be two numbers (x, y), got [0.68]."),
+        ('modalities = ["none", "ful"]\n',
+         "s.toml line 1: modalities = ['none', 'ful']: expected one or more of none, "
+         "manipulation, embodiment, task, full."),
+        ("[cohort]\nsize = 5\navr_experts = 7\n",
+         "s.toml line 2: cohort: 7 AR/VR experts and 7 gamers, 4 of them both, do not fit 5 "
+         "participants: both_experts must not exceed either count, and avr_experts + "
+         "games_experts - both_experts must not exceed size."),
+        ('[[participants]]\nid = "A"\n[[participants]]\nid = "B"\n[[participants]]\nid = "A"\n',
+         "s.toml line 6: participant id 'A' is used twice; each participant needs an id of "
+         "their own."),
+        ('[[participants]]\nid = "A"\navr_hours = 5\n',
+         "s.toml line 3: participant A: avr_hours = 5; expected a bucket 1, 2 or 3."),
+        ("trials_per_modality = 2\n",
+         "s.toml line 1: trials_per_modality = 2: the study data format "
+         "(docs/data-format.md, version 1) holds one experimental trial per participant and "
+         "modality, so 1 is the only value it can record."),
+        ("seed = \n", "s.toml: not valid TOML: Invalid value (at line 1, column 8)."),
+    ],
+)  # fmt: skip
+def test_bad_definitions_are_refused_naming_line_and_key(text: str, message: str) -> None:
+    with pytest.raises(StudyDefinitionError) as err:
+        parse_study(text, "s.toml")
+    assert str(err.value) == message
+
+
+def test_a_missing_file_says_how_to_make_one(tmp_path: Path) -> None:
+    path = tmp_path / "nope.toml"
+    with pytest.raises(StudyDefinitionError, match=r"no such study file. 'arteleop study init"):
+        load_study_file(path)
+
+
+def test_first_difference_names_the_dotted_key() -> None:
+    a = StudyConfig()
+    assert first_difference(a, StudyConfig()) is None
+    assert first_difference(a, StudyConfig(seed=1)) == "seed"
+    fewer = CohortConfig(size=10, avr_experts=3, games_experts=3, both_experts=1)
+    assert first_difference(a, StudyConfig(cohort=fewer)) == "cohort.size"
