@@ -44,7 +44,7 @@ class ModalityPanel:
             box.value = cues.shows(cue)
 
     def _modality_chosen(self, event: viser.GuiEvent) -> None:
-        if event.client is None:  # set from here, not by a user
+        if event.client_id is None:  # set from here, not by a user
             return
         name = self._modality.value
         if name == FOLLOW:
@@ -54,7 +54,7 @@ class ModalityPanel:
             self.follow(self.cues)
 
     def _layer_ticked(self, event: viser.GuiEvent) -> None:
-        if event.client is None:
+        if event.client_id is None:
             return
         chosen = {f.name: False for f in fields(ArCues)}
         chosen.update({cue: box.value for cue, box in self._boxes.items()})
