@@ -53,6 +53,8 @@ def participant_orders(
         rows = williams_sequences(n_conditions)
     elif scheme == "cyclic":
         rows = cyclic_sequences(n_conditions)
+    elif scheme == "listed":
+        raise StudyDefinitionError("Listed orders come from StudyConfig.orders, not a scheme.")
     elif scheme == "random":
         rng = np.random.default_rng([seed, 2])  # a stream of its own, apart from the cohort's
         return [tuple(int(c) for c in rng.permutation(n_conditions)) for _ in range(n_participants)]

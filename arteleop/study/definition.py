@@ -16,7 +16,7 @@ from arteleop.errors import StudyDefinitionError
 
 MODALITY_NAMES: tuple[str, ...] = tuple(MODALITIES)
 """The modalities, in the order of the one modality table (``arteleop.ar_features``)."""
-ORDER_SCHEMES: tuple[str, ...] = ("williams", "cyclic", "random")
+ORDER_SCHEMES: tuple[str, ...] = ("williams", "cyclic", "random", "listed")
 
 
 @dataclass(frozen=True)
@@ -154,9 +154,12 @@ class StudyConfig:
             positions and every trial (each trial's seed derives from it and the trial's place).
         modalities: The conditions, in the order the order schemes number them.
         order: ``williams`` (a balanced Latin square: each condition follows each other equally
-            often; for an odd count, 2n sequences), ``cyclic`` (n rotations) or ``random``
-            (a seeded permutation per participant). Participant k takes sequence k modulo the
-            count, so full balance needs a multiple of it.
+            often; for an odd count, 2n sequences), ``cyclic`` (n rotations), ``random``
+            (a seeded permutation per participant) or ``listed`` (the sequences in ``orders``).
+            Participant k takes sequence k modulo the count, so full balance needs a multiple
+            of it.
+        orders: With ``order = "listed"``, the sequences of modality names, each naming every
+            modality once (e.g. a published study's own square).
         trials_per_modality: Experimental trials per modality: 1, as in the original and as
             the data format (version 1) records.
         timeout_s: Simulated time after which an experimental trial ends as a timeout (s).
@@ -172,6 +175,7 @@ class StudyConfig:
     seed: int = 0
     modalities: tuple[str, ...] = MODALITY_NAMES
     order: str = "williams"
+    orders: tuple[tuple[str, ...], ...] = ()
     trials_per_modality: int = 1
     timeout_s: float = 120.0
     delay_ms: float = 0.0
@@ -198,6 +202,17 @@ class StudyConfig:
             raise StudyDefinitionError(
                 f"order = {self.order!r}; expected one of {', '.join(ORDER_SCHEMES)}."
             )
+        if (self.order == "listed") != bool(self.orders):
+            raise StudyDefinitionError(
+                f"orders = {[list(o) for o in self.orders]}: give sequences in orders exactly "
+                f'when order = "listed" (order is {self.order!r}).'
+            )
+        for k, sequence in enumerate(self.orders):
+            if sorted(sequence) != sorted(self.modalities):
+                raise StudyDefinitionError(
+                    f"orders = ...: sequence {k + 1}, {list(sequence)}, must name each of the "
+                    f"{len(self.modalities)} modalities {list(self.modalities)} exactly once."
+                )
         if self.trials_per_modality != 1:
             raise StudyDefinitionError(
                 f"trials_per_modality = {self.trials_per_modality}: the study data format "

@@ -77,7 +77,11 @@ def plan_study(
     """
     people = participants(config)
     n = len(config.modalities)
-    orders = participant_orders(config.order, n, len(people), config.seed)
+    if config.order == "listed":
+        listed = [tuple(config.modalities.index(m) for m in o) for o in config.orders]
+        orders = [listed[k % len(listed)] for k in range(len(people))]
+    else:
+        orders = participant_orders(config.order, n, len(people), config.seed)
     plan: list[TrialSpec] = []
     for k, (person, order) in enumerate(zip(people, orders, strict=True)):
         plan += _session(config, k, person, order, practice_points)

@@ -24,7 +24,8 @@ _TABLES: dict[str, type] = {"familiarization": FamiliarizationConfig, "cohort": 
 
 
 def load_study_file(path: Path) -> tuple[StudyConfig, str]:
-    """The definition in ``path`` and the file's text."""
+    """The definition in ``path`` and the file's text; refuses a start or target that the
+    site would refuse (off the table, out of the arm's reach), naming the key's line."""
     path = Path(path)
     try:
         text = path.read_text(encoding="utf-8")
@@ -35,7 +36,18 @@ def load_study_file(path: Path) -> tuple[StudyConfig, str]:
         ) from None
     except (OSError, UnicodeDecodeError) as err:
         raise StudyDefinitionError(f"{path}: cannot read it ({err}).") from err
-    return parse_study(text, str(path)), text
+    study = parse_study(text, str(path))
+    _check_points(study, text, str(path))
+    return study, text
+
+
+def _check_points(study: StudyConfig, text: str, source: str) -> None:
+    from arteleop.study.sites import StudySite  # loads the robot's model
+
+    problem = StudySite().problem(study.start_xy_m, study.target_xy_m)
+    if problem is not None:
+        key = "target_xy_m" if "target" in problem.split(" m", 1)[0] else "start_xy_m"
+        raise StudyDefinitionError(f"{_Locator(text, source).at('', key)}: {key}: {problem}")
 
 
 def parse_study(text: str, source: str = "<study>") -> StudyConfig:
@@ -98,6 +110,15 @@ def _convert(value: Any, hint: Any, at: str, table: str, key: str) -> Any:
         isinstance(value, tuple) and value and dataclasses.is_dataclass(value[0])
     ):
         return value  # a nested table, already built
+    if hint_text.startswith("tuple[tuple"):
+        if not (
+            isinstance(value, list)
+            and all(isinstance(v, list) and all(isinstance(x, str) for x in v) for v in value)
+        ):
+            raise StudyDefinitionError(
+                f"{at}: {name} must be a list of lists of text, got {value!r}."
+            )
+        return tuple(tuple(v) for v in value)
     if hint_text.startswith("tuple"):
         if not isinstance(value, list):
             raise StudyDefinitionError(f"{at}: {name} must be a list, got {value!r}.")
@@ -184,7 +205,8 @@ _COMMENTS = {
     "name": "a name for the report",
     "seed": "seed of the cohort, the orders, the practice positions and every trial",
     "modalities": "AR modalities compared: none, manipulation, embodiment, task, full",
-    "order": "williams (balanced Latin square), cyclic or random (seeded)",
+    "order": "williams (balanced Latin square), cyclic, random (seeded) or listed (in orders)",
+    "orders": 'with order = "listed": the sequences, e.g. [["none", "full"], ["full", "none"]]',
     "trials_per_modality": "experimental trials per modality (data format version 1: 1)",
     "timeout_s": "simulated time after which a trial ends as a timeout (s)",
     "delay_ms": "one-way network delay between operator and robot (ms)",

@@ -54,6 +54,17 @@ def test_the_plan_counterbalances_and_seeds_every_trial(study_site: StudySite) -
     assert again == plan
 
 
+def test_listed_orders_are_taken_in_turn(study_site: StudySite) -> None:
+    from arteleop.study import FamiliarizationConfig
+
+    study = StudyConfig(modalities=("none", "task", "full"), order="listed",
+                        orders=(("full", "none", "task"), ("task", "full", "none")),
+                        familiarization=FamiliarizationConfig(trials=0))  # fmt: skip
+    plan = plan_study(study)
+    firsts = [s.modality for s in plan if s.position == 1]
+    assert firsts[:4] == ["full", "task", "full", "task"]
+
+
 def test_out_of_reach_points_are_named(study_site: StudySite) -> None:
     problem = study_site.problem((0.68, -0.45), (0.95, -0.10))
     assert problem is not None and problem.startswith("The target point (0.95, -0.1) m is out of")

@@ -150,7 +150,7 @@ def test_out_of_reach_points_are_refused_before_anything_runs(tmp_path: Path, ca
     far.write_text("target_xy_m = [0.95, -0.1]\n")
     assert main(["study", "run", str(far), "--out", str(tmp_path / "run")]) == 2
     err = capsys.readouterr().err
-    assert err.startswith("arteleop: error: start_xy_m / target_xy_m: The target point (0.95, "
+    assert err.startswith(f"arteleop: error: {far} line 1: target_xy_m: The target point (0.95, "
                           "-0.1) m is out of the right arm's reach from above")  # fmt: skip
     assert not (tmp_path / "run").exists()
     assert main(["study", "run", "unknown.toml"]) == 2

@@ -21,6 +21,9 @@ from arteleop.study import (
 
 def test_the_written_definition_reads_back_as_the_same_study() -> None:
     assert parse_study(study_text(StudyConfig())) == StudyConfig()
+    listed = StudyConfig(modalities=("none", "full"), order="listed",
+                         orders=(("none", "full"), ("full", "none")))  # fmt: skip
+    assert parse_study(study_text(listed)) == listed
     named = StudyConfig(
         seed=7, modalities=("full", "none"), order="cyclic", delay_ms=150.0,
         participants=(ParticipantSpec("S01", avr_hours=3, gender="f"), ParticipantSpec("S02")),
@@ -32,7 +35,8 @@ def test_study_init_writes_the_commented_default(tmp_path: Path, capsys) -> None
     path = tmp_path / "study.toml"
     assert main(["study", "init", str(path)]) == 0
     text = path.read_text()
-    assert "# williams (balanced Latin square), cyclic or random (seeded)\norder = " in text
+    scheme = "# williams (balanced Latin square), cyclic, random (seeded) or listed (in orders)"
+    assert f"{scheme}\norder = " in text
     assert load_study_file(path)[0] == StudyConfig()
     assert main(["study", "init", str(path)]) == 2  # never overwrites
     assert "exists; give a new file name (nothing was written)" in capsys.readouterr().err
@@ -43,13 +47,13 @@ def test_study_init_writes_the_commented_default(tmp_path: Path, capsys) -> None
     [
         ('seed = 1\nordr = "williams"\n',
          "s.toml line 2: unknown key 'ordr'. Valid keys: name, seed, modalities, order, "
-         "trials_per_modality, timeout_s, delay_ms, start_xy_m, target_xy_m, "
+         "orders, trials_per_modality, timeout_s, delay_ms, start_xy_m, target_xy_m, "
          "familiarization, cohort, participants."),
         ("[cohort]\nsize = 3\nsizes = 4\n",
          "s.toml line 3: unknown key 'cohort.sizes'. Valid keys in [cohort]: size, "
          "avr_experts, games_experts, both_experts, movement_time_sd, id_prefix."),
         ('\norder = "latin"\n',
-         "s.toml line 2: order = 'latin'; expected one of williams, cyclic, random."),
+         "s.toml line 2: order = 'latin'; expected one of williams, cyclic, random, listed."),
         ("seed = 1.5\n", "s.toml line 1: seed must be a whole number, got 1.5."),
         ("start_xy_m = [0.68]\n",
          "s.toml line 1: start_xy_m must be two numbers (x, y), got [0.68]."),
@@ -70,12 +74,30 @@ def test_study_init_writes_the_commented_default(tmp_path: Path, capsys) -> None
          "(docs/data-format.md, version 1) holds one experimental trial per participant and "
          "modality, so 1 is the only value it can record."),
         ("seed = \n", "s.toml: not valid TOML: Invalid value (at line 1, column 8)."),
+        ('modalities = ["none", "full"]\norder = "listed"\norders = [["none", "full"], ["full"]]\n',
+         "s.toml line 3: orders = ...: sequence 2, ['full'], must name each of the 2 modalities "
+         "['none', 'full'] exactly once."),
+        ('orders = [["none", "full"]]\n',
+         "s.toml line 1: orders = [['none', 'full']]: give sequences in orders exactly when "
+         "order = \"listed\" (order is 'williams')."),
+        ("orders = [1, 2]\n", "s.toml line 1: orders must be a list of lists of text, got [1, 2]."),
     ],
 )  # fmt: skip
 def test_bad_definitions_are_refused_naming_line_and_key(text: str, message: str) -> None:
     with pytest.raises(StudyDefinitionError) as err:
         parse_study(text, "s.toml")
     assert str(err.value) == message
+
+
+def test_a_start_or_target_the_site_would_refuse_is_named_with_its_line(tmp_path: Path) -> None:
+    path = tmp_path / "s.toml"
+    path.write_text("seed = 1\nstart_xy_m = [0.68, 0.55]\n")
+    with pytest.raises(StudyDefinitionError) as err:
+        load_study_file(path)
+    assert str(err.value) == (
+        f"{path} line 2: start_xy_m: Workspace.start_xy_m=(0.68, 0.55): a bowl of radius 0.08 m "
+        "there overhangs the table, which spans x in [0.350, 1.150] and y in [-0.750, 0.450] m."
+    )
 
 
 def test_a_missing_file_says_how_to_make_one(tmp_path: Path) -> None:
