@@ -60,8 +60,11 @@ def load_replay(run_dir: Path, participant: str, trial_index: int) -> ReplaySour
         )
     row = folder.trials().set_index(["participant", "trial_index"]).loc[(participant, trial_index)]
     site = StudySite()
-    points = site.practice_points(study.start_xy_m, study.target_xy_m)
-    spec = next(s for s in plan_study(study, points) if s.key == (participant, trial_index))
+    try:
+        plan = plan_study(study, site.practice_points(study.start_xy_m, study.target_xy_m))
+    finally:
+        site.close()
+    spec = next(s for s in plan if s.key == (participant, trial_index))
     path = folder.path / str(row["trajectory_file"])
     try:
         trajectory = pd.read_csv(path)

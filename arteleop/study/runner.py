@@ -149,7 +149,10 @@ def _plan(study: StudyConfig, site: StudySite) -> tuple[list[TrialSpec], list[Pa
     if problem is not None:
         raise StudyDefinitionError(f"start_xy_m / target_xy_m: {problem}")
     points = site.practice_points(study.start_xy_m, study.target_xy_m)
-    return plan_study(study, points), list(participants(study))
+    try:
+        return plan_study(study, points), list(participants(study))
+    finally:
+        site.close()  # the probe of practice points; forked workers must not inherit it
 
 
 def _execute(

@@ -9,7 +9,7 @@ import numpy as np
 
 from arteleop.errors import WorkspaceError
 from arteleop.robot import BaxterKinematics, TopDownReach, load_baxter_description
-from arteleop.scene import SiteConfig, Workspace, reach_problem
+from arteleop.scene import RemoteSite, SiteConfig, Workspace, reach_problem
 from arteleop.study.plan import PracticePoints, TrialSpec
 
 PRACTICE_MARGIN_M = 0.10
@@ -29,6 +29,23 @@ class StudySite:
         self.base = base or SiteConfig()
         description = load_baxter_description(self.base.robot)
         self._reach = TopDownReach.from_kinematics(BaxterKinematics(description.urdf_path))
+        self._probe: RemoteSite | None = None
+
+    def seen_at_rest(self, xy_m: tuple[float, float]) -> bool:
+        """Whether the head camera's tracker finds the bowl at ``xy_m`` while the arm rests
+        (the model of the tracker, :meth:`RemoteSite.sight_bowl`). The synthetic operator
+        reaches only for a bowl it has seen, so a practice trial with a hidden bowl would wait
+        out its timeout."""
+        if self._probe is None:
+            self._probe = RemoteSite(self.base)
+        self._probe.place_bowl(xy_m)
+        return self._probe.sight_bowl().found
+
+    def close(self) -> None:
+        """Frees the simulator that :meth:`seen_at_rest` started, if any."""
+        if self._probe is not None:
+            self._probe.close()
+            self._probe = None
 
     def workspace(
         self, start_xy_m: tuple[float, float], target_xy_m: tuple[float, float]
@@ -56,12 +73,22 @@ class StudySite:
         self, start_xy_m: tuple[float, float], target_xy_m: tuple[float, float]
     ) -> PracticePoints:
         """Practice points within :data:`PRACTICE_MARGIN_M` of the box that the experimental
-        start and target span, where the bowl fits on the table and the arm reaches."""
+        start and target span, where the bowl fits on the table, the arm reaches, and the head
+        camera sees the bowl at the start while the arm rests."""
         lower, upper = self.base.workspace.table_bounds_xy_m()
         r = self.base.workspace.bowl.rim_radius_m
         points = np.array([start_xy_m, target_xy_m])
         low = np.maximum(points.min(axis=0) - PRACTICE_MARGIN_M, lower + r)
         high = np.minimum(points.max(axis=0) + PRACTICE_MARGIN_M, upper - r)
         return PracticePoints(
-            self.problem, (float(low[0]), float(low[1])), (float(high[0]), float(high[1]))
-        )
+            self._practice_problem, (float(low[0]), float(low[1])),
+            (float(high[0]), float(high[1])),
+        )  # fmt: skip
+
+    def _practice_problem(
+        self, start_xy_m: tuple[float, float], target_xy_m: tuple[float, float]
+    ) -> str | None:
+        problem = self.problem(start_xy_m, target_xy_m)
+        if problem is None and not self.seen_at_rest(start_xy_m):
+            return f"the arm at rest hides the bowl at {start_xy_m} from the head camera"
+        return problem

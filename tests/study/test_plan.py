@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections import Counter
+from collections.abc import Iterator
 
 import pytest
 
@@ -16,8 +17,10 @@ from arteleop.study import (
 
 
 @pytest.fixture(scope="module")
-def study_site() -> StudySite:
-    return StudySite()
+def study_site() -> Iterator[StudySite]:
+    site = StudySite()
+    yield site
+    site.close()
 
 
 def test_the_default_cohort_has_the_original_expertise() -> None:
@@ -48,8 +51,12 @@ def test_the_plan_counterbalances_and_seeds_every_trial(study_site: StudySite) -
     practice = [s for s in plan if s.phase == "familiarization"]
     assert all(s.modality == "none" for s in practice)
     assert len({(s.start_xy_m, s.target_xy_m) for s in practice}) == len(practice)
-    for s in practice:  # the site would accept every practice position
+    for s in practice:  # the site would accept every practice position, and the camera sees it
         assert study_site.problem(s.start_xy_m, s.target_xy_m) is None
+        assert study_site.seen_at_rest(s.start_xy_m)
+    # Where the resting arm stands between the head camera and the table, the bowl is hidden.
+    assert not study_site.seen_at_rest((0.60, -0.43))
+    assert study_site.seen_at_rest(study.start_xy_m)
     again = plan_study(study, study_site.practice_points(study.start_xy_m, study.target_xy_m))
     assert again == plan
 
