@@ -398,8 +398,8 @@ def study_init(cmd: StudyInitCommand) -> int:
 class StudyRunCommand:
     """Run a study (the built-in default without a file), then analyse it into RUN_DIR/report."""
 
-    file: tyro.conf.Positional[Path | None] = None
-    """the study definition (TOML; 'arteleop study init FILE' writes one); none: the default"""
+    file: Annotated[tyro.conf.Positional[Path | None], tyro.conf.arg(metavar="[STUDY.toml]")] = None
+    """the study definition ('arteleop study init FILE' writes one); none: the default"""
     out: Path = Path("arteleop-study")
     """the run folder to create (must be new or empty)"""
     workers: int = 0
@@ -412,7 +412,7 @@ class StudyRunCommand:
 class StudyResumeCommand:
     """Continue a run folder after a crash, Ctrl-C or kill; then analyse it."""
 
-    run_dir: tyro.conf.Positional[Path]
+    run_dir: Annotated[tyro.conf.Positional[Path], tyro.conf.arg(metavar="RUN_DIR")]
     """the run folder that 'arteleop study run' began"""
     workers: int = 0
     """processes running trials; 0: one per core"""
@@ -493,9 +493,9 @@ def _study_done(run: Any) -> int:
 class StudyAnswerCommand:
     """Merge real questionnaire answers into a run folder's questionnaire.csv."""
 
-    run_dir: tyro.conf.Positional[Path]
+    run_dir: Annotated[tyro.conf.Positional[Path], tyro.conf.arg(metavar="RUN_DIR")]
     """the run folder"""
-    answers: tyro.conf.Positional[Path]
+    answers: Annotated[tyro.conf.Positional[Path], tyro.conf.arg(metavar="ANSWERS.csv")]
     """CSV with participant, ar_class, item, score (docs/data-format.md); these participants'
     answers replace the simulated ones"""
 
@@ -514,11 +514,13 @@ def study_answer(cmd: StudyAnswerCommand) -> int:
 class StudyReplayCommand(CameraSize):
     """Play a trial of a run folder back in the operator's view, with its modality's layers."""
 
-    run_dir: tyro.conf.Positional[Path] = Path("arteleop-study")
+    run_dir: Annotated[tyro.conf.Positional[Path], tyro.conf.arg(metavar="RUN_DIR")] = Path(
+        "arteleop-study"
+    )
     """the run folder"""
-    participant: tyro.conf.Positional[str] = "P01"
+    participant: Annotated[tyro.conf.Positional[str], tyro.conf.arg(metavar="PARTICIPANT")] = "P01"
     """the participant's id, as in trials.csv"""
-    trial: tyro.conf.Positional[int] = 1
+    trial: Annotated[tyro.conf.Positional[int], tyro.conf.arg(metavar="TRIAL")] = 1
     """the trial's index in the participant's session (trial_index in trials.csv)"""
     speed: float = 1.0
     """times real time; 0 plays as fast as the camera renders"""
