@@ -466,9 +466,7 @@ def _study_progress(run_dir: Path, quiet: bool) -> Iterator[Any]:
     try:
         yield None if quiet else update
     except KeyboardInterrupt:
-        print(f"arteleop: interrupted; 'arteleop study resume {run_dir}' continues the run",
-              file=sys.stderr)  # fmt: skip
-        raise
+        raise KeyboardInterrupt(f"'arteleop study resume {run_dir}' continues the run") from None
     finally:
         for bar in bars:
             bar.close()
@@ -626,8 +624,8 @@ def main(argv: list[str] | None = None) -> int:
     except ArteleopError as err:
         print(f"arteleop: error: {err}", file=sys.stderr)
         return 2
-    except KeyboardInterrupt:
-        print("arteleop: interrupted", file=sys.stderr)
+    except KeyboardInterrupt as stop:
+        print(f"arteleop: interrupted{'; ' + str(stop) if str(stop) else ''}", file=sys.stderr)
         return 130
     except ImportError as err:
         if "libusb" not in str(err):

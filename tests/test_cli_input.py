@@ -6,6 +6,7 @@ traceback or a hang.
 
 from __future__ import annotations
 
+import os
 import signal
 import socket
 import subprocess
@@ -157,6 +158,31 @@ def test_ctrl_c_ends_a_trial_cleanly() -> None:
     _, err = proc.communicate(timeout=30)
     assert proc.returncode == 130
     assert err.strip() == "arteleop: interrupted"
+
+
+def test_ctrl_c_stops_a_parallel_study_at_once_and_resume_finishes_it(tmp_path) -> None:
+    definition = tmp_path / "s.toml"
+    definition.write_text('modalities = ["full"]\ntimeout_s = 15.0\n[familiarization]\n'
+                          "trials = 0\n[cohort]\nsize = 2\navr_experts = 0\n"
+                          "games_experts = 0\nboth_experts = 0\n")  # fmt: skip
+    run = tmp_path / "run"
+    proc = subprocess.Popen(
+        [*ARTELEOP, "study", "run", str(definition), "--out", str(run), "--workers", "2"],
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
+    )  # fmt: skip
+    time.sleep(7.0)  # both workers into a 15 s trial
+    os.killpg(proc.pid, signal.SIGINT)  # a terminal's Ctrl-C reaches the whole group
+    start = time.monotonic()
+    _, err = proc.communicate(timeout=60)
+    assert time.monotonic() - start < 10  # not after the trials under way
+    assert proc.returncode == 130
+    lines = [line for line in err.replace("\r", "\n").splitlines() if line.strip()]
+    assert lines[-1] == f"arteleop: interrupted; 'arteleop study resume {run}' continues the run"
+    assert not any("Traceback" in line for line in lines)
+    done = subprocess.run([*ARTELEOP, "study", "resume", str(run), "--quiet", "--workers", "2"],
+                          capture_output=True, text=True, timeout=300)  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.startswith(f"2 trials in {run} (")
 
 
 def test_progress_is_shown_unless_quiet() -> None:

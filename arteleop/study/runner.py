@@ -11,6 +11,7 @@ from __future__ import annotations
 import multiprocessing
 import os
 import platform
+import signal
 from collections.abc import Callable, Sequence
 from concurrent.futures import Executor, Future, ProcessPoolExecutor, as_completed
 from dataclasses import dataclass
@@ -186,7 +187,7 @@ def _execute(
     else:
         own = executor is None
         pool = executor or ProcessPoolExecutor(
-            workers, mp_context=multiprocessing.get_context("fork")
+            workers, mp_context=multiprocessing.get_context("fork"), initializer=_ignore_ctrl_c
         )
         futures: list[Future[TrialRecord]] = []
         try:
@@ -196,9 +197,13 @@ def _execute(
             ]
             for future in as_completed(futures):
                 keep(future.result())
-        finally:
+        except BaseException:
             for future in futures:
                 future.cancel()
+            if own:  # a stop (Ctrl-C, a failed write) must not wait for the trials under way
+                _stop_workers(pool)  # type: ignore[arg-type]
+            raise
+        finally:
             if own:
                 pool.shutdown(wait=True, cancel_futures=True)
     order = [spec.key for spec in plan]
@@ -212,6 +217,18 @@ def _execute(
 
 
 _WORKER_SITE: StudySite | None = None
+
+
+def _ignore_ctrl_c() -> None:
+    """In a worker: Ctrl-C reaches the whole process group, and the parent alone handles it."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _stop_workers(pool: ProcessPoolExecutor) -> None:
+    """End the pool's worker processes now; their trials are lost and run again on resume.
+    (``ProcessPoolExecutor`` has no public way to do this before Python 3.14.)"""
+    for process in list(getattr(pool, "_processes", {}).values()):
+        process.terminate()
 
 
 def _run_in_worker(study: StudyConfig, person: ParticipantSpec, spec: TrialSpec) -> TrialRecord:
