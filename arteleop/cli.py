@@ -4,7 +4,10 @@ from __future__ import annotations
 
 import contextlib
 import math
+import os
+import signal
 import sys
+import threading
 import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
@@ -308,13 +311,14 @@ def _progress(
 ) -> Iterator[Callable[[TrialProgress], None] | None]:
     """A progress bar over simulated seconds, on stderr; nothing with --quiet."""
     if quiet:
-        yield None
+        yield _check_ctrl_c
         return
     from tqdm import tqdm
 
     with tqdm(total=round(total_s), desc=what, unit="s simulated", leave=False) as bar:
 
         def update(status: TrialProgress) -> None:
+            _check_ctrl_c()
             if int(status.time_s) > bar.n:
                 bar.update(int(status.time_s) - bar.n)
 
@@ -457,6 +461,9 @@ def _study_progress(run_dir: Path, quiet: bool) -> Iterator[Any]:
     bars: list[tqdm] = []  # made at the first trial, after the definition has been checked
 
     def update(spec: Any, done: int, total: int) -> None:
+        _check_ctrl_c()
+        if quiet:
+            return
         if not bars:
             bars.append(tqdm(desc="trials", unit="trial", total=total, initial=done - 1,
                              leave=False))  # fmt: skip
@@ -464,7 +471,7 @@ def _study_progress(run_dir: Path, quiet: bool) -> Iterator[Any]:
         bars[0].set_postfix_str(f"last: {spec.participant} trial {spec.trial_index}")
 
     try:
-        yield None if quiet else update
+        yield update
     except KeyboardInterrupt:
         raise KeyboardInterrupt(f"'arteleop study resume {run_dir}' continues the run") from None
     finally:
@@ -602,9 +609,31 @@ commands:
 'arteleop COMMAND --help' lists a command's options."""
 
 
+_CTRL_C = threading.Event()
+"""Set by the first Ctrl-C. Some libraries turn a KeyboardInterrupt raised while they import into
+an ImportError (open3d: "initialization failed"), and some swallow that in an optional-import
+guard; the command still ends as interrupted."""
+
+
+def _on_ctrl_c(signum: int, frame: object) -> None:
+    _CTRL_C.set()
+    raise KeyboardInterrupt
+
+
+def _check_ctrl_c(*_: object) -> None:
+    """Raise KeyboardInterrupt if a Ctrl-C came and was swallowed on its way up."""
+    if _CTRL_C.is_set():
+        raise KeyboardInterrupt
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the `arteleop` command."""
     argv = sys.argv[1:] if argv is None else list(argv)
+    if (
+        threading.current_thread() is threading.main_thread()
+        and signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    ):
+        signal.signal(signal.SIGINT, _on_ctrl_c)
     if not argv or argv[0] in ("-h", "--help"):
         print(OVERVIEW, file=sys.stdout if argv else sys.stderr)
         return 0 if argv else 2
@@ -628,6 +657,10 @@ def main(argv: list[str] | None = None) -> int:
         print(f"arteleop: interrupted{'; ' + str(stop) if str(stop) else ''}", file=sys.stderr)
         return 130
     except ImportError as err:
+        if _CTRL_C.is_set():  # interrupted while importing: nothing of the user's is pending
+            print("arteleop: interrupted", file=sys.stderr, flush=True)
+            sys.stdout.flush()
+            os._exit(130)  # a half-imported open3d's exit handlers print a leak report, exit 1
         if "libusb" not in str(err):
             raise
         print(

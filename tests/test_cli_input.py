@@ -156,8 +156,8 @@ def test_ctrl_c_ends_a_trial_cleanly() -> None:
     time.sleep(6.0)  # into the trial
     proc.send_signal(signal.SIGINT)
     _, err = proc.communicate(timeout=30)
-    assert proc.returncode == 130
-    assert err.strip() == "arteleop: interrupted"
+    assert proc.returncode == 130, err
+    assert err.strip() == "arteleop: interrupted", err
 
 
 def test_ctrl_c_stops_a_parallel_study_at_once_and_resume_finishes_it(tmp_path) -> None:
@@ -170,7 +170,10 @@ def test_ctrl_c_stops_a_parallel_study_at_once_and_resume_finishes_it(tmp_path) 
         [*ARTELEOP, "study", "run", str(definition), "--out", str(run), "--workers", "2"],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
     )  # fmt: skip
-    time.sleep(7.0)  # both workers into a 15 s trial
+    deadline = time.monotonic() + 120  # start-up and planning take longer on a busy machine
+    while not (run / "trials.csv").exists() and time.monotonic() < deadline:
+        time.sleep(0.1)
+    time.sleep(3.0)  # both workers into a 15 s trial
     os.killpg(proc.pid, signal.SIGINT)  # a terminal's Ctrl-C reaches the whole group
     start = time.monotonic()
     _, err = proc.communicate(timeout=60)
