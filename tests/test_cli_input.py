@@ -24,6 +24,13 @@ from arteleop.cli import main
 ARTELEOP = [sys.executable, "-m", "arteleop.cli"]
 
 
+def _ctrl_c_reaches_it() -> None:
+    """In the child: Ctrl-C's default action, whatever the test runner inherited (a runner
+    started in the background by a shell without job control ignores SIGINT, and so would
+    every child)."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def _error(capsys: pytest.CaptureFixture[str], argv: list[str]) -> str:
     assert main(argv) == 2
     err = capsys.readouterr().err
@@ -151,7 +158,11 @@ def test_pybullet_prints_no_banner() -> None:
 
 def test_ctrl_c_ends_a_trial_cleanly() -> None:
     proc = subprocess.Popen(
-        [*ARTELEOP, "trial", "--quiet"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+        [*ARTELEOP, "trial", "--quiet"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        preexec_fn=_ctrl_c_reaches_it,
     )
     time.sleep(6.0)  # into the trial
     proc.send_signal(signal.SIGINT)
@@ -169,6 +180,7 @@ def test_ctrl_c_stops_a_parallel_study_at_once_and_resume_finishes_it(tmp_path) 
     proc = subprocess.Popen(
         [*ARTELEOP, "study", "run", str(definition), "--out", str(run), "--workers", "2"],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
+        preexec_fn=_ctrl_c_reaches_it,
     )  # fmt: skip
     deadline = time.monotonic() + 120  # start-up and planning take longer on a busy machine
     while not (run / "trials.csv").exists() and time.monotonic() < deadline:
@@ -201,7 +213,7 @@ def test_the_view_keeps_serving_after_the_trial_until_ctrl_c() -> None:
     proc = subprocess.Popen(
         [*ARTELEOP, "trial", "--view", "--port", "0", "--timeout-s", "2", "--quiet",
          "--width-px", "160", "--height-px", "120"],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, preexec_fn=_ctrl_c_reaches_it,
     )  # fmt: skip
     assert proc.stdout is not None
     lines = []
