@@ -25,8 +25,6 @@ from __future__ import annotations
 
 import hashlib
 import importlib.metadata
-import os
-import tempfile
 import xml.etree.ElementTree as ET
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -37,6 +35,7 @@ import pinocchio as pin
 import platformdirs
 
 from arteleop.errors import ConfigurationError, RobotDataNotFoundError
+from arteleop.files import write_atomic
 from arteleop.robot.render_meshes import decimated_mesh
 
 DISTRIBUTION = "example-robot-data"
@@ -171,7 +170,7 @@ def load_baxter_description(config: BaxterDescriptionConfig | None = None) -> Ba
     urdf_path = out_dir / f"baxter-{key}.urdf"
     if not urdf_path.is_file():
         text = _rewrite_urdf(source, share, config, out_dir)
-        _atomic_write(urdf_path, text)
+        write_atomic(urdf_path, text)
     return BaxterDescription(urdf_path=urdf_path, source_urdf_path=source, share_dir=share)
 
 
@@ -220,7 +219,7 @@ def freeze_joints(description: BaxterDescription, positions_rad: Mapping[str, fl
         for tag in ("axis", "limit", "dynamics", "mimic", "safety_controller", "calibration"):
             for el in joint.findall(tag):
                 joint.remove(el)
-    _atomic_write(out, ET.tostring(root, encoding="unicode"))
+    write_atomic(out, ET.tostring(root, encoding="unicode"))
     return out
 
 
@@ -259,11 +258,3 @@ def _rewrite_urdf(source: Path, share: Path, config: BaxterDescriptionConfig, ou
         xyz[1] += sign * config.finger_slot_offset_m
         origin.attrib["xyz"] = " ".join(f"{v:.6f}" for v in xyz)
     return ET.tostring(root, encoding="unicode")
-
-
-def _atomic_write(path: Path, text: str) -> None:
-    # Several processes (tests, benchmarks) may build the cache at once: write, then rename.
-    fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".tmp")
-    with os.fdopen(fd, "w") as f:
-        f.write(text)
-    os.replace(tmp, path)

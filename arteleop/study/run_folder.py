@@ -12,7 +12,6 @@
 
 from __future__ import annotations
 
-import contextlib
 import csv
 import io
 import json
@@ -24,6 +23,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from arteleop import files
 from arteleop.analysis.data import TRIAL_COLUMNS
 from arteleop.errors import RunFolderError
 
@@ -59,30 +59,12 @@ def csv_line(values: Iterable[object]) -> str:
 
 
 def write_atomic(path: Path, text: str) -> None:
-    """Write ``text`` to ``path`` through a synced temporary file and a rename."""
-    tmp = path.with_name(f".{path.name}.tmp-{os.getpid()}")
+    """:func:`arteleop.files.write_atomic`, failing with a :class:`RunFolderError` that names
+    the file."""
     try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        with open(tmp, "w", encoding="utf-8", newline="") as f:
-            f.write(text)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
+        files.write_atomic(path, text)
     except OSError as err:
-        with contextlib.suppress(OSError):
-            tmp.unlink()
         raise RunFolderError(f"Cannot write {path}: {err.strerror or err}.") from err
-    _sync_folder(path.parent)
-
-
-def _sync_folder(folder: Path) -> None:
-    """Make a rename in ``folder`` durable."""
-    with contextlib.suppress(OSError):
-        fd = os.open(folder, os.O_RDONLY)
-        try:
-            os.fsync(fd)
-        finally:
-            os.close(fd)
 
 
 def table_text(columns: Sequence[str], rows: Iterable[Sequence[object]]) -> str:
