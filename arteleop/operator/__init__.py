@@ -13,6 +13,13 @@ from arteleop.operator.arm_model import (
 from arteleop.operator.calibration import SensorMounting, calibrate
 from arteleop.operator.live import HandTarget, LiveOperator
 from arteleop.operator.minimum_jerk import minimum_jerk, minimum_jerk_profile
+from arteleop.operator.perception import (
+    BowlMemory,
+    Perceived,
+    PerceptionParams,
+    PerceptualNoise,
+    perceive,
+)
 from arteleop.operator.reconstruction import (
     HandSample,
     HandTrajectory,
@@ -62,6 +69,7 @@ __all__ = [
     "SEGMENTS",
     "ArmAngles",
     "ArmModel",
+    "BowlMemory",
     "CalibrationPosture",
     "Expertise",
     "HandModel",
@@ -74,6 +82,9 @@ __all__ = [
     "LoaderConfig",
     "OperatorParams",
     "OperatorSource",
+    "Perceived",
+    "PerceptionParams",
+    "PerceptualNoise",
     "Phase",
     "Recording",
     "RecordingInfo",
@@ -97,6 +108,7 @@ __all__ = [
     "load_recording",
     "minimum_jerk",
     "minimum_jerk_profile",
+    "perceive",
     "reconstruct",
     "record_hand_motion",
     "segment_rotations",

@@ -22,7 +22,13 @@ from arteleop.ar_features import DisplayFrame
 from arteleop.errors import ConfigurationError
 from arteleop.operator.arm_model import ArmModel, hand_pose, segment_rotations
 from arteleop.operator.minimum_jerk import minimum_jerk_profile
-from arteleop.operator.perception import BowlMemory, Perceived, PerceptionParams, perceive
+from arteleop.operator.perception import (
+    BowlMemory,
+    Perceived,
+    PerceptionParams,
+    PerceptualNoise,
+    perceive,
+)
 from arteleop.operator.recording import CalibrationPosture
 
 
@@ -44,6 +50,10 @@ class OperatorParams:
         tremor_amplitude_m: Physiological tremor, per axis, below a millimetre.
         tremor_hz: Its two frequency components, in the 8-12 Hz band.
         max_corrections: Corrective sub-movements per phase before carrying on regardless.
+        discrimination_sd: A perceived error below this many standard deviations of its own
+            judgement (``Perceived.grasp_sd_m``, ``placement_sd_m``) is not corrected, however
+            strict the movement's tolerance: the operator cannot tell it from no error. 1 is
+            the conventional discrimination threshold (d' = 1, Green & Swets 1966).
         max_regrasps: Times the operator goes back for a bowl that a missed grasp left behind,
             seen on the table while lifting or carrying.
         grip_ramp_s: Time to squeeze or release the pinch sensor.
@@ -65,6 +75,7 @@ class OperatorParams:
     tremor_amplitude_m: float = 0.0003
     tremor_hz: tuple[float, float] = (9.0, 11.0)
     max_corrections: int = 4
+    discrimination_sd: float = 1.0
     max_regrasps: int = 2
     grip_ramp_s: float = 0.3
     grasp_wait_known_s: float = 0.4
@@ -185,7 +196,9 @@ class SyntheticOperator:
         self.corrections_total = 0
         self._tremor_phase = rng.uniform(0, 2 * np.pi, (2, 3))
         self._grasped_at: NDArray[np.float64] | None = None
+        self._released_at: NDArray[np.float64] | None = None
         self._bowl_memory = BowlMemory()
+        self._perceptual_noise = PerceptualNoise(rng, self.p.perception.persistence_s)
         self.regrasps = 0
         self._previous_view: DisplayFrame | None = None  # the display's last two contents
         self._last_view: DisplayFrame | None = None
@@ -208,7 +221,7 @@ class SyntheticOperator:
     def _look(self, view: DisplayFrame) -> tuple[Perceived, NDArray[np.float64] | None]:
         """One look at the display: the estimates, and the bowl as seen or remembered (None
         before it was ever seen)."""
-        seen = perceive(view, self.p.perception, self._rng, self._noise)
+        seen = perceive(view, self.p.perception, self._perceptual_noise, self._noise)
         return seen, self._bowl_memory.bowl_m(seen)
 
     def _goal_gripper(
@@ -220,13 +233,15 @@ class SyntheticOperator:
         place[2] = seen.target_m[2] + self.task.grasp_offset_m[2] + 0.005
         up = np.array([0.0, 0.0, 1.0])
         lift_from = self._grasped_at if self._grasped_at is not None else grasp
+        retract_from = self._released_at if self._released_at is not None else place
         return {
             Phase.REACH: grasp + up * self.p.approach_height_m,
             Phase.DESCEND: grasp,
             Phase.LIFT: lift_from + up * self.p.carry_height_m,
             Phase.TRANSPORT: place + up * self.p.carry_height_m,
             Phase.LOWER: place,
-            Phase.RETRACT: place + up * self.p.approach_height_m,
+            # Straight up from where the hand let go, to clear the bowl.
+            Phase.RETRACT: retract_from + up * self.p.approach_height_m,
             # Back to rest: the arm leaves the camera's view of the bowl for it to be tracked.
             Phase.HOME: self.task.rest_gripper_m,
         }[phase]
@@ -250,7 +265,10 @@ class SyntheticOperator:
         goal = self._goal_gripper(self.phase, seen, bowl)
         error = goal - seen.gripper_m
         width = _TOLERANCE[self.phase]
-        if np.linalg.norm(error) <= width / 2 or self._corrections > self.p.max_corrections:
+        if (
+            np.linalg.norm(error) <= max(width / 2, self._discernible_m(seen))
+            or self._corrections > self.p.max_corrections
+        ):
             self._advance(t)
             return
         if self._corrections > 0:
@@ -261,6 +279,14 @@ class SyntheticOperator:
             self._to_hand(seen.gripper_m + error) - self._to_hand(seen.gripper_m)
         )
         self._start_segment(t, hand_goal, width)
+
+    def _discernible_m(self, seen: Perceived) -> float:
+        """The smallest error (m) the operator can tell from none in the current phase."""
+        if self.phase in (Phase.REACH, Phase.DESCEND):
+            return self.p.discrimination_sd * seen.grasp_sd_m
+        if self.phase in (Phase.TRANSPORT, Phase.LOWER):
+            return self.p.discrimination_sd * seen.placement_sd_m
+        return 0.0
 
     def _regrasp(self, t: float, seen: Perceived) -> None:
         """The bowl stayed on the table: open the hand and reach for it again."""
@@ -324,6 +350,7 @@ class SyntheticOperator:
                 self._grasped_at = seen.gripper_m
                 self._bowl_memory.grasp(seen, bowl)
             else:
+                self._released_at = seen.gripper_m
                 self._bowl_memory.release()
             wait = self.p.grasp_wait_known_s if seen.closure_known else self.p.grasp_wait_unknown_s
             self._advance(t)

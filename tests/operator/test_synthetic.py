@@ -1,15 +1,28 @@
 """The synthetic operator's perception and expertise, checked statistically."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
 from arteleop.ar_features import MODALITIES, ArCues, DisplayFrame
 from arteleop.operator import ArmModel, CalibrationPosture
-from arteleop.operator.perception import BowlMemory, Perceived, PerceptionParams, perceive
-from arteleop.operator.synthetic import Expertise, SyntheticOperator, TaskGeometry
+from arteleop.operator.perception import (
+    BowlMemory,
+    Perceived,
+    PerceptionParams,
+    PerceptualNoise,
+    perceive,
+)
+from arteleop.operator.synthetic import Expertise, Phase, SyntheticOperator, TaskGeometry
 from tests.ar_features.frames import display_frame
 
 P = PerceptionParams()
+
+
+def _independent(seed: int) -> PerceptualNoise:
+    """Every look independent of the last (no persistence), to sample the errors' spread."""
+    return PerceptualNoise(np.random.default_rng(seed), persistence_s=0.0)
 
 
 def _view(cues: ArCues, gripper_in_camera: bool = True) -> DisplayFrame:
@@ -17,9 +30,9 @@ def _view(cues: ArCues, gripper_in_camera: bool = True) -> DisplayFrame:
 
 
 def _errors(cues: ArCues, n: int = 4000, **kw) -> dict[str, np.ndarray]:
-    rng = np.random.default_rng(0)
+    noise = _independent(0)
     view = _view(cues, **kw)
-    seen = [perceive(view, P, rng) for _ in range(n)]
+    seen = [perceive(view, P, noise) for _ in range(n)]
     return {
         "relative": np.array(
             [(s.gripper_m - s.bowl_m) - (view.gripper_m - view.bowl_m) for s in seen]
@@ -50,12 +63,12 @@ def test_target_mesh_turns_placement_into_a_coincidence_judgement() -> None:
 
 
 def test_ghost_shows_a_gripper_the_camera_cannot() -> None:
-    rng = np.random.default_rng(1)
+    noise = _independent(1)
     hidden = [
-        perceive(_view(MODALITIES["none"], gripper_in_camera=False), P, rng) for _ in range(3000)
+        perceive(_view(MODALITIES["none"], gripper_in_camera=False), P, noise) for _ in range(3000)
     ]
     ghost = [
-        perceive(_view(MODALITIES["embodiment"], gripper_in_camera=False), P, rng)
+        perceive(_view(MODALITIES["embodiment"], gripper_in_camera=False), P, noise)
         for _ in range(3000)
     ]
     assert not hidden[0].gripper_seen and ghost[0].gripper_seen
@@ -82,9 +95,9 @@ def test_expertise_speeds_up_and_steadies_the_operator() -> None:
 
 
 def test_a_bowl_the_display_does_not_show_is_not_perceived() -> None:
-    rng = np.random.default_rng(2)
+    noise = _independent(2)
     view = display_frame(cues=MODALITIES["full"], bowl_m=None)
-    seen = [perceive(view, P, rng) for _ in range(4000)]
+    seen = [perceive(view, P, noise) for _ in range(4000)]
     assert all(s.bowl_m is None for s in seen)
     # No bar or beam value without a tracked bowl: the gripper is judged from the cloud alone.
     err = np.array([s.gripper_m - view.gripper_m for s in seen])
@@ -96,7 +109,13 @@ def test_a_bowl_the_display_does_not_show_is_not_perceived() -> None:
 def test_the_operator_remembers_a_hidden_bowl_and_carries_it_with_the_hand() -> None:
     def look(gripper: list[float], bowl: list[float] | None) -> Perceived:
         return Perceived(
-            np.array(gripper), None if bowl is None else np.array(bowl), np.zeros(3), True, True
+            np.array(gripper),
+            None if bowl is None else np.array(bowl),
+            np.zeros(3),
+            True,
+            True,
+            0.01,
+            0.01,
         )
 
     memory = BowlMemory()
@@ -123,3 +142,64 @@ def test_the_bar_and_beam_are_read_along_the_drawn_beam() -> None:
     across = relative - np.outer(along, beam)
     assert along.std() == pytest.approx(P.bar_sd_m, rel=0.05)  # the bar: the distance
     assert np.sqrt((across**2).sum(axis=1).mean() / 2) == pytest.approx(P.beam_sd_m, rel=0.05)
+
+
+def test_perceptual_errors_persist_with_the_stated_correlation_time() -> None:
+    noise = PerceptualNoise(np.random.default_rng(3), persistence_s=10.0)
+    streams = [f"s{i}" for i in range(6000)]
+    first = np.array([noise.draw(s, 0.0, 1)[0] for s in streams])
+    again = np.array([noise.draw(s, 0.0, 1)[0] for s in streams])
+    later = np.array([noise.draw(s, 5.0, 1)[0] for s in streams])
+    np.testing.assert_array_equal(again, first)  # the same frame, the same judgement
+    assert later.std() == pytest.approx(1.0, abs=0.03)  # each look keeps the stated SD
+    assert np.corrcoef(first, later)[0, 1] == pytest.approx(np.exp(-0.5), abs=0.03)
+
+
+def test_persistent_errors_do_not_average_out_over_looks() -> None:
+    """Looking again a second later gives nearly the same misjudgement: the mean of ten looks
+    errs almost as much as one look (independent looks would err sqrt(10) times less)."""
+    view = _view(MODALITIES["none"])
+    means = []
+    for seed in range(400):
+        noise = PerceptualNoise(np.random.default_rng(seed), P.persistence_s)
+        looks = [perceive(replace(view, time_s=t), P, noise).bowl_m for t in range(10)]
+        means.append(np.mean(looks, axis=0) - view.bowl_m)
+    rms = np.sqrt(np.mean(np.sum(np.array(means) ** 2, axis=1)))
+    one_look = np.sqrt(P.depth_sd_m**2 + 2 * P.lateral_sd_m**2)
+    assert 0.8 * one_look < rms < one_look
+
+
+def test_the_mesh_guides_the_gripper_while_the_arm_hides_the_bowl() -> None:
+    """With the bowl in hand hidden, the mesh is judged against the gripper beside it: the
+    target relative to the gripper errs by the mesh's SD; without the mesh, by two points'."""
+    noise = _independent(4)
+    hidden = {"bowl_m": None, "gripper_in_camera": True}
+    for cues, sd in (
+        (MODALITIES["task"], P.target_mesh_sd_m),
+        (MODALITIES["none"], None),
+    ):
+        view = display_frame(cues=cues, **hidden)
+        seen = [perceive(view, P, noise) for _ in range(4000)]
+        relative = np.array(
+            [(s.target_m - s.gripper_m)[:2] - (view.target_m - view.gripper_m)[:2] for s in seen]
+        )
+        if sd is not None:
+            np.testing.assert_allclose(relative.std(axis=0), sd, rtol=0.06)
+            assert seen[0].placement_sd_m == pytest.approx(np.sqrt(2) * sd)
+        else:
+            assert np.all(relative.std(axis=0) > 3 * P.target_mesh_sd_m)
+            assert seen[0].placement_sd_m > 5 * np.sqrt(2) * P.target_mesh_sd_m
+
+
+def test_the_operator_does_not_correct_an_error_it_cannot_see() -> None:
+    task = TaskGeometry(np.zeros(3), np.array([0.3, -0.56, 0.0]))
+    operator = SyntheticOperator(
+        task, lambda p: p, ArmModel(), CalibrationPosture(), np.random.default_rng(0)
+    )
+    seen = Perceived(np.zeros(3), np.zeros(3), np.zeros(3), True, True, 0.004, 0.02)
+    operator.phase = Phase.DESCEND
+    assert operator._discernible_m(seen) == pytest.approx(0.004)
+    operator.phase = Phase.LOWER
+    assert operator._discernible_m(seen) == pytest.approx(0.02)
+    operator.phase = Phase.LIFT  # moving the hand, not judging a scene
+    assert operator._discernible_m(seen) == 0.0
