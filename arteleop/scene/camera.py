@@ -94,14 +94,19 @@ def render(client: BulletClient, request: RenderRequest) -> RawImage:
 
 
 class HeadCamera:
-    """Renders RGB-D frames of a PyBullet scene with the CPU TinyRenderer."""
+    """Renders RGB-D frames of a PyBullet scene with the CPU TinyRenderer.
+
+    A frame's depth noise is drawn from ``seed`` and the frame's timestamp alone, not from the
+    frames rendered before it: a frame rendered on demand (the tracker's, or only when needed)
+    is the frame an every-tick render would have given at that instant.
+    """
 
     def __init__(
         self,
         client: BulletClient,
         config: HeadCameraConfig,
         T_base_mount: NDArray[np.float64],
-        rng: np.random.Generator,
+        seed: int,
     ) -> None:
         self._client = client
         self.config = config
@@ -109,7 +114,7 @@ class HeadCamera:
         self.geometry = CameraGeometry(config, T_base_mount @ config.T_mount_camera())
         """Pose and field of view: what the camera can see, without rendering."""
         self.T_base_camera = self.geometry.T_base_camera
-        self._rng = rng
+        self._seed = seed
         self._projection = self.intrinsics.opengl_projection(config.near_clip_m, config.far_clip_m)
         view = invert_transform(self.T_base_camera @ _T_CV_GL)
         # PyBullet takes OpenGL matrices as 16 floats in column-major order.
@@ -135,9 +140,9 @@ class HeadCamera:
         n, f = c.near_clip_m, c.far_clip_m
         depth = f * n / (f - (f - n) * zbuf)
         depth[zbuf >= 1.0] = 0.0  # background: nothing rendered there
-        depth = apply_depth_noise(
-            depth.astype(np.float32), self.intrinsics.fx_px, c.noise, self._rng
-        )
+        # The frame's instant in microseconds: distinct for any two camera ticks.
+        rng = np.random.default_rng((self._seed, round(timestamp_s * 1e6)))
+        depth = apply_depth_noise(depth.astype(np.float32), self.intrinsics.fx_px, c.noise, rng)
         depth[(depth < c.min_depth_m) | (depth > c.max_depth_m)] = 0.0
         segmentation = None
         if raw.segmentation is not None:

@@ -153,7 +153,7 @@ class RemoteSite(Closeable):
                 self.render_world.client,
                 config.camera,
                 self.robot.link_transform(config.camera.mount_link),
-                np.random.default_rng(config.seed),
+                config.seed,
             )
             rim = np.array([0.0, 0.0, ws.bowl.height_m])
             self.camera.check_sees(

@@ -143,6 +143,7 @@ class _Loop:
             track_every=config.rates.frames_per_track,
         )
         self._background = background
+        self._gate_tracker = config.skip_hidden_tracker_renders
         self.hand_t: list[float] = []
         self.hand_p: list[NDArray[np.float64]] = []
         self.samples_lost_wearable = 0
@@ -162,7 +163,9 @@ class _Loop:
             if tick.camera:
                 state = site.observe()
                 self.feed.camera_tick(state, control.engaged, control.applied_sample_time_s)
-                outcome = self.monitor.camera(t, state, site.capture)
+                outcome = self.monitor.camera(
+                    t, state, site.capture, site.sight_bowl if self._gate_tracker else None
+                )
                 if outcome is not None:
                     return self._result(outcome, t)
                 if self._progress is not None:
@@ -247,6 +250,7 @@ class _Loop:
             "unreachable_ticks": self.control.unreachable_ticks,
             "held_samples": r.held if (r := self.control.reconstructor) else 0,
             "camera_frames_skipped": self.feed.frames_skipped,
+            "tracker_renders_skipped": self.monitor.renders_skipped,
         }  # fmt: skip
         success = outcome is Outcome.SUCCESS
         return TrialResult(

@@ -44,6 +44,9 @@ class TrialConfig:
         controller: Robot-side settings.
         record_trace: Record every control tick in ``TrialResult.trace`` (the study's
             trajectory files; about 4 MB of memory per simulated minute).
+        skip_hidden_tracker_renders: After the release, do not render the tracker's frame when
+            the tracker's model sees none of the bowl (:mod:`arteleop.teleop.task_monitor`);
+            False renders every look, the plain path it is checked against.
     """
 
     modality: str = "full"
@@ -56,6 +59,7 @@ class TrialConfig:
     site: SiteConfig = field(default_factory=SiteConfig)
     controller: ControllerConfig = field(default_factory=ControllerConfig)
     record_trace: bool = False
+    skip_hidden_tracker_renders: bool = True
 
     def __post_init__(self) -> None:
         modality_cues(self.modality)
@@ -149,7 +153,7 @@ class TrialResult:
         latency_wall_ms: (frames,) see above.
         stages: Service time and latency per stage of the loop.
         counts: Samples sent, lost and late; samples the wearable lost; unreachable IK ticks;
-            held samples; camera frames skipped.
+            held samples; camera frames skipped; tracker renders skipped.
         trace: With ``TrialConfig.record_trace``, every control tick by the columns of
             :data:`~arteleop.teleop.trace.TRACE_COLUMNS`; else None.
     """

@@ -102,6 +102,26 @@ def test_same_seed_same_frame(site_config: SiteConfig) -> None:
     assert not np.array_equal(a, c)
 
 
+def test_a_frames_noise_depends_on_its_time_not_on_the_frames_before(
+    site_config: SiteConfig,
+) -> None:
+    """Rendering only some frames (the tracker's) gives the frames an every-tick render gives."""
+
+    def depths(render_first: bool) -> tuple[np.ndarray, np.ndarray]:
+        with RemoteSite(site_config) as s:
+            if render_first:
+                s.capture()
+            s.step()
+            later = s.capture().depth_m
+            s.step()
+            return later, s.capture().depth_m
+
+    every, every_next = depths(render_first=True)
+    some, some_next = depths(render_first=False)
+    assert np.array_equal(every, some) and np.array_equal(every_next, some_next)
+    assert not np.array_equal(every, every_next)  # fresh noise at another instant
+
+
 def _links_seen(site: RemoteSite, description: BaxterDescription, n_poses: int = 25) -> set[str]:
     """Links of ``description`` that the site's head camera sees over random right-arm poses.
 

@@ -1,5 +1,6 @@
 """Whole trials, headless, and the loop's parts."""
 
+from collections.abc import Callable
 from dataclasses import replace
 
 import numpy as np
@@ -7,7 +8,7 @@ import pytest
 
 from arteleop.errors import ConfigurationError
 from arteleop.operator import ImuErrorConfig, RecordingSource, load_recording, write_recording
-from arteleop.scene import RemoteSite, SiteConfig
+from arteleop.scene import RemoteSite, RGBDFrame, SiteConfig
 from arteleop.teleop import (
     LoopClock,
     LoopRates,
@@ -171,3 +172,50 @@ def test_failures_are_named_by_what_had_happened() -> None:
     assert monitor.operator_stopped() is Outcome.OPERATOR_STOPPED
     monitor.released = True
     assert monitor.timed_out() is Outcome.TRACKING_LOST
+
+
+def test_the_tracker_renders_only_what_its_model_sees() -> None:
+    """After the release, a look at which the tracker's model sees none of the bowl is not
+    rendered, and counts as a look: the next is a tracking period later, as when rendered."""
+    from arteleop.scene import (
+        BowlTrack,
+        BowlTracker,
+        CameraGeometry,
+        HeadCameraConfig,
+        SiteState,
+        Workspace,
+    )
+    from arteleop.teleop import TaskMonitor
+    from arteleop.teleop.task_monitor import TRACKING_PERIOD_S
+
+    ws = Workspace()
+    monitor = TaskMonitor(ws, BowlTracker(ws.bowl))
+    monitor.released = True
+    T_base_bowl = np.eye(4)
+    T_base_bowl[:3, 3] = ws.target_m
+    state = SiteState(
+        time_s=0.0, arm_q_rad=np.zeros(7), gripper_closure=0.0, pads_touch_bowl=(False, False),
+        T_base_bowl=T_base_bowl, bowl_speed_m_s=0.0,
+        camera=CameraGeometry(HeadCameraConfig(), np.eye(4)), links={},
+    )  # fmt: skip
+    renders: list[float] = []
+
+    def capture() -> RGBDFrame:
+        renders.append(len(renders))
+        raise _Rendered
+
+    def sight(n: int) -> Callable[[], BowlTrack]:
+        return lambda: BowlTrack(n > 0, None, n, float("nan"), "", 0.0)
+
+    assert monitor.camera(1.0, state, capture, sight(0)) is None
+    assert monitor.renders_skipped == 1 and not renders
+    # Within the tracking period: no look at all, whatever the model sees.
+    assert monitor.camera(1.0 + TRACKING_PERIOD_S / 2, state, capture, sight(5)) is None
+    assert not renders
+    with pytest.raises(_Rendered):  # the next look, with part of the bowl in sight, renders
+        monitor.camera(1.0 + TRACKING_PERIOD_S, state, capture, sight(1))
+    assert renders == [0] and monitor.renders_skipped == 1
+
+
+class _Rendered(Exception):
+    pass
