@@ -23,7 +23,7 @@ from arteleop.ar_features import (
 )
 from arteleop.ar_features.browser import VIEWPORT, BrowserError, browser_page, chromium_path
 from arteleop.ar_features.layers.beam import BEAM_WIDTH_PX
-from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
+from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig, Workspace
 from arteleop.teleop import TrialConfig, display_frame_at, trial_operator, view_assets
 
 MOMENT_S = 8.0
@@ -120,9 +120,13 @@ def test_the_page_opens_on_the_head_cameras_view(
         view.show(replace(frame, cues=ArCues(target_mesh=True)))
         with browser_page(view.url) as page:
             shot = page.screenshot(tmp_path / "task.png")
-    green = (shot[..., 1].astype(int) - np.maximum(shot[..., 0], shot[..., 2])) > 35
+    # Left of the panel, whose "connected" icon is green too.
+    page_left = shot[:, :PANEL_X_PX]
+    green = (page_left[..., 1].astype(int) - np.maximum(page_left[..., 0], page_left[..., 2])) > 35
     v, u = np.nonzero(green)
-    expected = _pixel(frame, frame.target_m, config.vertical_fov_deg)
+    # The mesh's middle: half the bowl's height above the target (its bottom centre).
+    middle = frame.target_m + [0.0, 0.0, Workspace().bowl.height_m / 2]
+    expected = _pixel(frame, middle, config.vertical_fov_deg)
     assert np.hypot(u.mean() - expected[0], v.mean() - expected[1]) < 25
     # viser's default viewpoint showed the cloud as a 130x110 px patch; the table and what is
     # on it now cover more than half of the page (beyond the table nothing returns: white).
