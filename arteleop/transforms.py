@@ -9,6 +9,8 @@ Conventions (see README, "Conventions"):
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pinocchio as pin
 from numpy.typing import ArrayLike, NDArray
@@ -45,6 +47,63 @@ def quat_to_matrix(quat_wxyz: ArrayLike) -> NDArray[np.float64]:
     return pin.Quaternion(w, x, y, z).normalized().toRotationMatrix()
 
 
+_FEW = 16
+"""Up to this many rotations are converted one by one in pinocchio (about 4 us each), more in
+one scipy call, which costs 30-60 us in its input checks before it starts: a control tick
+converts three rotations at a time, a recording thousands."""
+
+
+def quats_to_matrices(quat_wxyz: ArrayLike) -> NDArray[np.float64]:
+    """Rotation matrices (..., 3, 3) of (w, x, y, z) quaternions (..., 4), normalised first."""
+    q = np.asarray(quat_wxyz, dtype=np.float64)
+    flat = q.reshape(-1, 4)
+    if len(flat) <= _FEW:
+        R = np.array([quat_to_matrix(row) for row in flat]).reshape(-1, 3, 3)
+    else:
+        R = Rotation.from_quat(flat, scalar_first=True).as_matrix()
+    return R.reshape(q.shape[:-1] + (3, 3))
+
+
+def matrices_to_quats(R: ArrayLike) -> NDArray[np.float64]:
+    """(w, x, y, z) quaternions (..., 4) of rotation matrices (..., 3, 3), with w >= 0."""
+    R = np.asarray(R, dtype=np.float64)
+    flat = R.reshape(-1, 3, 3)
+    if len(flat) <= _FEW:
+        q = np.empty((len(flat), 4))
+        for i, m in enumerate(flat):
+            c = pin.Quaternion(m)
+            w, x, y, z = c.w, c.x, c.y, c.z
+            scale = math.copysign(1.0 / math.sqrt(w * w + x * x + y * y + z * z), w)
+            q[i] = (w * scale, x * scale, y * scale, z * scale)
+    else:
+        q = Rotation.from_matrix(flat).as_quat(scalar_first=True, canonical=True)
+    return q.reshape(R.shape[:-2] + (4,))
+
+
+def rotvecs_to_matrices(rotvec_rad: ArrayLike) -> NDArray[np.float64]:
+    """Rotation matrices (..., 3, 3) of rotation vectors (..., 3): axis times angle (rad)."""
+    v = np.asarray(rotvec_rad, dtype=np.float64)
+    flat = v.reshape(-1, 3)
+    if len(flat) <= _FEW:
+        R = np.array([pin.exp3(row) for row in flat]).reshape(-1, 3, 3)
+    else:
+        R = Rotation.from_rotvec(flat).as_matrix()
+    return R.reshape(v.shape[:-1] + (3, 3))
+
+
+def rotations_z(angle_rad: ArrayLike) -> NDArray[np.float64]:
+    """Rotation matrices (..., 3, 3) about z by ``angle_rad`` (...,)."""
+    a = np.asarray(angle_rad, dtype=np.float64)
+    c, s = np.cos(a), np.sin(a)
+    R = np.zeros(a.shape + (3, 3))
+    R[..., 0, 0] = c
+    R[..., 0, 1] = -s
+    R[..., 1, 0] = s
+    R[..., 1, 1] = c
+    R[..., 2, 2] = 1.0
+    return R
+
+
 def pybullet_pose_to_transform(
     position_m: tuple[float, float, float], quat_xyzw: tuple[float, float, float, float]
 ) -> NDArray[np.float64]:
@@ -71,8 +130,7 @@ def pose_to_transform(position_m: ArrayLike, quat_wxyz: ArrayLike) -> NDArray[np
 def transform_to_pose(T: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Split a 4x4 transform into (position in m, (w, x, y, z) quaternion with w >= 0)."""
     T = np.asarray(T, dtype=np.float64)
-    q = Rotation.from_matrix(T[:3, :3]).as_quat(scalar_first=True, canonical=True)
-    return T[:3, 3].copy(), q
+    return T[:3, 3].copy(), matrices_to_quats(T[:3, :3])
 
 
 def invert_transform(T: ArrayLike) -> NDArray[np.float64]:

@@ -4,11 +4,15 @@ from scipy.spatial.transform import Rotation
 
 from arteleop.transforms import (
     invert_transform,
+    matrices_to_quats,
     pose_to_transform,
     pybullet_pose_to_transform,
     quat_to_matrix,
     quat_wxyz_to_xyzw,
     quat_xyzw_to_wxyz,
+    quats_to_matrices,
+    rotations_z,
+    rotvecs_to_matrices,
     transform_points,
     transform_to_pose,
 )
@@ -64,3 +68,34 @@ def test_pybullet_poses_convert_as_the_general_path_does() -> None:
         np.testing.assert_allclose(
             fast, pose_to_transform(p, quat_xyzw_to_wxyz(q_xyzw)), atol=1e-12
         )
+
+
+@pytest.mark.parametrize("n", [1, 3, 16, 17, 500])  # one by one in pinocchio up to 16, then scipy
+def test_batch_conversions_match_scipy_on_either_path(n: int) -> None:
+    rng = np.random.default_rng(n)
+    rotations = Rotation.random(n, random_state=n)
+    R = rotations.as_matrix().reshape(n, 1, 3, 3)
+    q = rotations.as_quat(scalar_first=True, canonical=True).reshape(n, 1, 4)
+    assert matrices_to_quats(R).shape == (n, 1, 4)
+    np.testing.assert_allclose(matrices_to_quats(R), q, atol=1e-14)
+    np.testing.assert_allclose(
+        quats_to_matrices(q * rng.uniform(0.2, 5.0, (n, 1, 1))), R, atol=1e-14
+    )
+    # Down to angles where Rodrigues' closed form would cancel.
+    rotvec = rng.normal(size=(n, 3)) * np.logspace(-9, 0.5, n)[:, None]
+    np.testing.assert_allclose(
+        rotvecs_to_matrices(rotvec), Rotation.from_rotvec(rotvec).as_matrix(), atol=1e-15
+    )
+    angle = rng.uniform(-4, 4, n)
+    np.testing.assert_allclose(
+        rotations_z(angle), Rotation.from_euler("z", angle[:, None]).as_matrix(), atol=1e-15
+    )
+
+
+def test_matrix_to_quaternion_keeps_w_non_negative_at_half_turns() -> None:
+    """w is zero for half turns: the sign of the rest is then that of the matrix's axis."""
+    for axis in np.eye(3):
+        R = Rotation.from_rotvec(np.pi * axis).as_matrix()
+        np.testing.assert_allclose(matrices_to_quats(R), np.concatenate([[0.0], axis]), atol=1e-15)
+    q = matrices_to_quats(Rotation.from_rotvec([0.0, 0.0, -3.0]).as_matrix())
+    assert q[0] > 0 and q[3] < 0

@@ -12,6 +12,7 @@ the body), internal rotation; elbow flexion, forearm pronation; wrist flexion, r
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -21,7 +22,6 @@ from scipy.spatial.transform import Rotation
 from arteleop.errors import ConfigurationError
 
 SEGMENTS: tuple[str, str, str] = ("upper_arm", "forearm", "hand")
-_X = np.array([1.0, 0.0, 0.0])
 _HANGING = Rotation.from_euler("y", np.pi / 2)  # segment x along -z_torso, z along +x_torso
 
 
@@ -78,8 +78,8 @@ class ArmAngles:
     wrist_deviation: float = 0.0
 
 
-def segment_rotations(angles: ArmAngles) -> Rotation:
-    """Orientations of upper arm, forearm and hand in the torso frame (a stack of 3)."""
+def segment_rotations(angles: ArmAngles) -> NDArray[np.float64]:
+    """``R_torso_segment`` of upper arm, forearm and hand, shape (3, 3, 3)."""
     a = angles
     shoulder = Rotation.from_euler("y", -a.shoulder_flexion) * Rotation.from_euler(
         "x", -a.shoulder_abduction
@@ -93,73 +93,84 @@ def segment_rotations(angles: ArmAngles) -> Rotation:
         * Rotation.from_euler("y", -a.wrist_flexion)
         * Rotation.from_euler("z", a.wrist_deviation)
     )
-    return Rotation.concatenate([upper, fore, hand])
+    return Rotation.concatenate([upper, fore, hand]).as_matrix()
 
 
-def joint_positions(arm: ArmModel, segments: Rotation) -> NDArray[np.float64]:
+def joint_positions(arm: ArmModel, segments: ArrayLike) -> NDArray[np.float64]:
     """Shoulder, elbow, wrist and pinch point in the torso frame, shape (N, 4, 3).
 
-    ``segments`` stacks N postures of 3 segment rotations each (upper arm, forearm, hand).
+    ``segments``: ``R_torso_segment`` of N postures, shape (N, 3, 3, 3) (or (3, 3, 3) for one).
     """
-    rot = segments.as_matrix().reshape(-1, 3, 3, 3)  # (N, segment, 3, 3)
+    rot = np.asarray(segments, dtype=np.float64).reshape(-1, 3, 3, 3)
     bones = rot[..., :, 0] * arm.lengths_m[None, :, None]  # each segment's x axis times length
     shoulder = np.broadcast_to(np.asarray(arm.shoulder_m), (len(rot), 1, 3))
     return np.concatenate([shoulder, shoulder + np.cumsum(bones, axis=1)], axis=1)
 
 
-def hand_pose(arm: ArmModel, segments: Rotation) -> tuple[NDArray[np.float64], Rotation]:
-    """Pinch point (m, torso frame) and hand orientation for one posture (3 rotations)."""
-    return joint_positions(arm, segments)[0, -1], segments[2]
+def hand_pose(
+    arm: ArmModel, segments: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Pinch point (m) and ``R_torso_hand`` for one posture (segments (3, 3, 3)), torso frame."""
+    return joint_positions(arm, segments)[0, -1], segments[2].copy()
 
 
 def segments_for_hand_pose(
-    arm: ArmModel, hand_position_m: ArrayLike, hand_rotation: Rotation
-) -> Rotation:
-    """Segment orientations that put the pinch point at ``hand_position_m`` with ``hand_rotation``.
+    arm: ArmModel, hand_position_m: ArrayLike, R_torso_hand: ArrayLike
+) -> NDArray[np.float64]:
+    """``R_torso_segment`` (3, 3, 3) that put the pinch point at ``hand_position_m`` (torso
+    frame, m) with the hand's orientation ``R_torso_hand`` (3, 3).
 
     The arm's redundancy (the elbow's swivel about the shoulder-wrist line) is resolved the way a
     relaxed person does: the elbow hangs as low as it can. Targets beyond reach are pulled in to
     99.9 % of the arm's length along the shoulder-wrist line.
     """
-    # Plain 3x3 matrices inside: this runs at the wearable's rate in the loop.
-    R_hand = hand_rotation.as_matrix()
+    # Scalars and 3x3 matrices only, through math where numpy's per-call cost would dominate:
+    # this runs at the wearable's rate in the loop.
+    R_hand = np.asarray(R_torso_hand, dtype=np.float64)
     s = np.asarray(arm.shoulder_m)
     wrist = np.asarray(hand_position_m, dtype=np.float64) - R_hand[:, 0] * arm.hand_m
     lu, lf = arm.upper_arm_m, arm.forearm_m
     axis = wrist - s
-    d = float(np.linalg.norm(axis))
-    d_clamped = float(np.clip(d, abs(lu - lf) * 1.001 + 1e-6, (lu + lf) * 0.999))
+    ax, ay, az = axis.tolist()
+    d = math.sqrt(ax * ax + ay * ay + az * az)
+    d_clamped = min(max(d, abs(lu - lf) * 1.001 + 1e-6), (lu + lf) * 0.999)
     n = axis / d
     wrist = s + n * d_clamped
     # Elbow on the circle around the shoulder-wrist axis; pick its lowest point.
     cos_a = (lu**2 + d_clamped**2 - lf**2) / (2 * lu * d_clamped)
-    center = s + n * lu * cos_a
-    radius = lu * np.sqrt(max(0.0, 1 - cos_a**2))
-    down = np.array([0.0, 0.0, -1.0]) - n * -n[2]
-    if np.linalg.norm(down) < 1e-9:  # arm pointing straight down or up: let the elbow go out
-        down = np.array([0.0, -1.0, 0.0]) - n * -n[1]
-    elbow = center + radius * down / np.linalg.norm(down)
+    center = s + n * (lu * cos_a)
+    radius = lu * math.sqrt(max(0.0, 1 - cos_a**2))
+    down = np.array([0.0, 0.0, -1.0]) + n * n[2]
+    if down @ down < 1e-18:  # arm pointing straight down or up: let the elbow go out
+        down = np.array([0.0, -1.0, 0.0]) + n * n[1]
+    elbow = center + down * (radius / math.sqrt(down @ down))
     x_u = (elbow - s) / lu
     x_f = (wrist - elbow) / lf
-    z_u = x_f - np.dot(x_f, x_u) * x_u  # the forearm bends towards the upper arm's z
-    z_u /= np.linalg.norm(z_u)
-    upper = np.column_stack([x_u, np.cross(z_u, x_u), z_u])
-    flexion = float(np.arccos(np.clip(np.dot(x_u, x_f), -1.0, 1.0)))
+    cos_flexion = float(x_f @ x_u)
+    z_u = x_f - cos_flexion * x_u  # the forearm bends towards the upper arm's z
+    z_u /= math.sqrt(z_u @ z_u)
+    y_u = np.array(
+        (z_u[1] * x_u[2] - z_u[2] * x_u[1], z_u[2] * x_u[0] - z_u[0] * x_u[2],
+         z_u[0] * x_u[1] - z_u[1] * x_u[0])
+    )  # fmt: skip
+    segments = np.empty((3, 3, 3))
+    upper = segments[0]
+    upper[:, 0], upper[:, 1], upper[:, 2] = x_u, y_u, z_u
+    flexion = math.acos(min(1.0, max(-1.0, cos_flexion)))
     fore0 = upper @ _rot_y(-flexion)
     # Pronation takes the part of the wrist's rotation about the forearm's own axis: the first
     # angle of the intrinsic x-y-z decomposition of the wrist's rotation.
     rel = fore0.T @ R_hand
-    pronation = float(np.arctan2(-rel[1, 2], rel[2, 2]))
-    fore = fore0 @ _rot_x(pronation)
-    # Orthonormal by construction: skip scipy's projection, which costs 8x the conversion.
-    return Rotation.from_matrix(np.stack([upper, fore, R_hand]), assume_valid=True)
+    segments[1] = fore0 @ _rot_x(math.atan2(-rel[1, 2], rel[2, 2]))
+    segments[2] = R_hand
+    return segments
 
 
 def _rot_x(a: float) -> NDArray[np.float64]:
-    c, s = np.cos(a), np.sin(a)
+    c, s = math.cos(a), math.sin(a)
     return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
 
 
 def _rot_y(a: float) -> NDArray[np.float64]:
-    c, s = np.cos(a), np.sin(a)
+    c, s = math.cos(a), math.sin(a)
     return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])

@@ -6,12 +6,13 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 from scipy.spatial.transform import Rotation
 
 from arteleop.errors import RecordingError
 from arteleop.operator.arm_model import SEGMENTS, segment_rotations
 from arteleop.operator.recording import CalibrationPosture, Recording
+from arteleop.transforms import quats_to_matrices, rotations_z
 
 MAX_POSTURE_SPREAD_DEG = 10.0
 """A sensor moving more than this during the hold means the posture was not held."""
@@ -29,26 +30,22 @@ class SensorMounting:
     segment_sensor_wxyz: NDArray[np.float64]
     torso_heading_rad: float
 
-    def segment_orientations(self, sensor_quat_wxyz: NDArray[np.float64]) -> Rotation:
-        """Segment orientations in the torso frame, (N * 3) rotations, from (N, 3, 4) IMU data.
+    def segment_orientations(self, sensor_quat_wxyz: ArrayLike) -> NDArray[np.float64]:
+        """``R_torso_segment`` (N, 3, 3, 3) from (N, 3, 4) IMU quaternions.
 
         ``q_torso_segment = Rz(-heading) * q_earth_sensor * inverse(q_segment_sensor)``.
         """
         q = np.asarray(sensor_quat_wxyz, dtype=np.float64).reshape(-1, 3, 4)
-        # Composed as matrices, broadcast over the samples: one scipy call per factor instead of
-        # one per product (this runs for every live sample).
-        earth_sensor = Rotation.from_quat(q.reshape(-1, 4), scalar_first=True).as_matrix()
-        torso_segment = self._torso_earth @ earth_sensor.reshape(-1, 3, 3, 3) @ self._sensor_segment
-        return Rotation.from_matrix(torso_segment.reshape(-1, 3, 3), assume_valid=True)
+        return self._torso_earth @ quats_to_matrices(q) @ self._sensor_segment
 
     @cached_property
     def _torso_earth(self) -> NDArray[np.float64]:
-        return Rotation.from_euler("z", -self.torso_heading_rad).as_matrix()
+        return rotations_z(-self.torso_heading_rad)
 
     @cached_property
     def _sensor_segment(self) -> NDArray[np.float64]:
         """(3, 3, 3) inverse mountings, one per segment."""
-        return Rotation.from_quat(self.segment_sensor_wxyz, scalar_first=True).inv().as_matrix()
+        return quats_to_matrices(self.segment_sensor_wxyz).transpose(0, 2, 1)
 
 
 def calibrate(recording: Recording, posture: CalibrationPosture | None = None) -> SensorMounting:
@@ -84,6 +81,6 @@ def calibrate_from_hold(
                 f"calibration hold (at most {MAX_POSTURE_SPREAD_DEG:.0f} deg allowed): the "
                 "operator must hold the calibration posture still at the start."
             )
-        segment_sensor = (heading * torso_segment[k]).inv() * mean
+        segment_sensor = (heading * Rotation.from_matrix(torso_segment[k])).inv() * mean
         mounting[k] = segment_sensor.as_quat(scalar_first=True, canonical=True)
     return SensorMounting(mounting, posture.torso_heading_rad)

@@ -75,18 +75,20 @@ class LiveOperator:
         hold_s = self._calibration.hold_s
         if time_s < hold_s:
             self.phase = Phase.CALIBRATE
-            return OperatorOutput(time_s, self._hand.copy(), self._rot_path(0.0), 0.0, self.phase)
+            return OperatorOutput(
+                time_s, self._hand.copy(), self._rot_path(0.0).as_matrix(), 0.0, self.phase
+            )
         s = (time_s - hold_s) / ALIGN_S
         if s < 1.0:
             self.phase = Phase.ALIGN
             k = float(minimum_jerk_profile(s))
             self._hand = self._from + k * (goal - self._from)
-            rotation = self._rot_path(k)
+            rotation = self._rot_path(k).as_matrix()
         else:
             self.phase = Phase.REACH
             dt = 0.0 if self._last_t is None else time_s - self._last_t
             follow = 1.0 - np.exp(-dt / FOLLOW_TIME_CONSTANT_S)
             self._hand = self._hand + (goal - self._hand) * follow
-            rotation = self._rot_path(1.0)
+            rotation = self._rot_path(1.0).as_matrix()
         self._last_t = time_s
         return OperatorOutput(time_s, self._hand.copy(), rotation, grip, self.phase)

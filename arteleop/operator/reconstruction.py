@@ -12,6 +12,7 @@ from arteleop.errors import ConfigurationError
 from arteleop.operator.arm_model import ArmModel, joint_positions
 from arteleop.operator.calibration import SensorMounting, calibrate
 from arteleop.operator.recording import Recording
+from arteleop.transforms import matrices_to_quats
 
 
 @dataclass(frozen=True)
@@ -47,7 +48,7 @@ def reconstruct(
     arm = arm or recording.info.arm
     mounting = mounting or calibrate(recording)
     segments = mounting.segment_orientations(recording.sensor_quat_wxyz)
-    hand = segments[2::3].as_quat(scalar_first=True, canonical=True)
+    hand = matrices_to_quats(segments[:, 2])
     return HandTrajectory(
         recording.time_s.copy(), joint_positions(arm, segments), hand, recording.grip.copy()
     )
@@ -95,11 +96,11 @@ class StreamingReconstructor:
         valid = q is not None and q.shape == (3, 4) and bool(np.isfinite(q).all())
         valid = valid and np.isfinite(grip)
         if valid:
-            segments = self.mounting.segment_orientations(q[None])  # type: ignore[index]
+            segments = self.mounting.segment_orientations(q)
             sample = HandSample(
                 time_s,
                 joint_positions(self.arm, segments)[0, -1],
-                segments[2].as_quat(scalar_first=True, canonical=True),
+                matrices_to_quats(segments[0, 2]),
                 float(np.clip(grip, 0.0, 1.0)),
                 SampleStatus.MEASURED,
             )

@@ -70,7 +70,9 @@ class WornSource:
         self.arm = arm
         self.calibration = calibration
         self.operator = operator
-        self.wearable = WearableSimulator(wearable or WearableConfig(), rng)
+        # A stream of its own: the sensor errors of a seed stay the same whatever the operator
+        # does (how often it looks, under which modality), so conditions share them.
+        self.wearable = WearableSimulator(wearable or WearableConfig(), rng.spawn(1)[0])
         self._calibration_segments = segment_rotations(self.calibration.angles)
         self._log: list[tuple[float, NDArray[np.float64] | None, float]] = []
 
@@ -79,7 +81,7 @@ class WornSource:
         if out.phase is Phase.CALIBRATE:
             segments = self._calibration_segments
         else:
-            segments = segments_for_hand_pose(self.arm, out.hand_m, out.hand_rotation)
+            segments = segments_for_hand_pose(self.arm, out.hand_m, out.R_torso_hand)
         quats = self.wearable.sample(segments)
         self._log.append((time_s, quats, out.grip))
         return WearableSample(time_s, quats, out.grip, out.hand_m)

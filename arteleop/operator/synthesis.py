@@ -72,16 +72,14 @@ def record_hand_motion(
     n_hold = round(info.calibration.hold_s * rate) + 1
     tau = minimum_jerk_profile(np.arange(1, round(TRANSITION_S * rate) + 1) / (TRANSITION_S * rate))
     blend_pos = calib_pos + np.outer(tau, hand_m[0] - calib_pos)
+    calib_rot = Rotation.from_matrix(calib_rot)
     blend_rot = Slerp([0.0, 1.0], Rotation.concatenate([calib_rot, hand_rotations[0]]))(tau)
 
     positions = np.vstack([np.tile(calib_pos, (n_hold, 1)), blend_pos, hand_m])
     rotations = Rotation.concatenate([calib_rot] * n_hold + [blend_rot, hand_rotations])
-    segments = Rotation.concatenate(
-        [calib] * n_hold
-        + [
-            segments_for_hand_pose(info.arm, p, r)
-            for p, r in zip(positions[n_hold:], rotations[n_hold:], strict=True)
-        ]
+    moving = zip(positions[n_hold:], rotations[n_hold:].as_matrix(), strict=True)
+    segments = np.stack(
+        [calib] * n_hold + [segments_for_hand_pose(info.arm, p, R) for p, R in moving]
     )
     grips = np.concatenate([np.full(n_hold + len(tau), grip[0]), grip])
     signals = simulate_wearable(segments, grips, wearable, rng)

@@ -133,7 +133,7 @@ class OperatorOutput:
 
     time_s: float
     hand_m: NDArray[np.float64]
-    hand_rotation: Rotation
+    R_torso_hand: NDArray[np.float64]
     grip: float
     phase: Phase
 
@@ -157,9 +157,9 @@ def hand_from_calibration(
     """The hand's position in the calibration posture (torso frame, m), and the path of its
     rotation from that posture (0) to the working one, pitched ``hand_pitch_rad`` about the
     torso's y (1)."""
-    position, rotation = hand_pose(arm, segment_rotations(calibration.angles))
-    work = Rotation.from_euler("y", hand_pitch_rad)
-    return position, Slerp([0.0, 1.0], Rotation.concatenate([rotation, work]))
+    position, R_hand = hand_pose(arm, segment_rotations(calibration.angles))
+    path = [Rotation.from_matrix(R_hand), Rotation.from_euler("y", hand_pitch_rad)]
+    return position, Slerp([0.0, 1.0], Rotation.concatenate(path))
 
 
 class SyntheticOperator:
@@ -185,7 +185,7 @@ class SyntheticOperator:
         self._noise = self.p.expertise_noise if expert else 1.0
         self._calib = calibration
         calib_pos, self._rot_path = hand_from_calibration(arm, calibration, self.p.hand_pitch_rad)
-        self._work_rot = Rotation.from_euler("y", self.p.hand_pitch_rad)
+        self._work_R = Rotation.from_euler("y", self.p.hand_pitch_rad).as_matrix()
         self._phases = list(Phase)
         self.phase = Phase.CALIBRATE
         self._hand = calib_pos.copy()
@@ -364,13 +364,13 @@ class SyntheticOperator:
             self.p.tremor_amplitude_m * np.sin(w[:, None] * t + self._tremor_phase).sum(axis=0) / 2
         )
         if self.phase is Phase.CALIBRATE:
-            rot = self._rot_path(0.0)
+            rot = self._rot_path(0.0).as_matrix()
             tremor = np.zeros(3)  # the posture is held against a support during calibration
         elif self.phase is Phase.ALIGN and self._seg is not None:
             t0, _, _, dur = self._seg
-            rot = self._rot_path(float(minimum_jerk_profile((t - t0) / dur)))
+            rot = self._rot_path(float(minimum_jerk_profile((t - t0) / dur))).as_matrix()
         else:
-            rot = self._work_rot
+            rot = self._work_R
         grip = self._grip
         if self.phase in (Phase.CLOSE, Phase.OPEN):
             target = 1.0 if self.phase is Phase.CLOSE else 0.0

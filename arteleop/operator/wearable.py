@@ -17,6 +17,12 @@ from scipy.signal import lfilter
 from scipy.spatial.transform import Rotation
 
 from arteleop.errors import ConfigurationError
+from arteleop.transforms import (
+    matrices_to_quats,
+    quats_to_matrices,
+    rotations_z,
+    rotvecs_to_matrices,
+)
 
 
 @dataclass(frozen=True)
@@ -113,12 +119,19 @@ class WearableSignals:
     dropped: int
 
 
+BLOCK_SAMPLES = 512
+"""The simulator draws its errors this many samples at a time, whatever the calls ask for: the
+per-sample work in the loop is then two matrix products and a conversion, and a trial
+simulated one sample at a time equals one simulated in a single block."""
+
+
 class WearableSimulator:
     """IMU model with state: mounting, torso heading, drift and noise processes, packet loss.
 
     The orientation error is a first-order Gauss-Markov process per axis and sensor, and the
-    heading bias a random walk; their states carry over between calls, so a trial can be
-    simulated sample by sample (:meth:`sample`) or in one block (:meth:`run`).
+    heading bias a random walk. They depend on the random generator alone, not on the motion,
+    so they are drawn ahead in blocks of :data:`BLOCK_SAMPLES`; a trial can be simulated sample
+    by sample (:meth:`sample`) or in one block (:meth:`run`), with the same result.
     """
 
     def __init__(self, config: WearableConfig, rng: np.random.Generator) -> None:
@@ -126,23 +139,57 @@ class WearableSimulator:
         self._rng = rng
         err = config.errors
         self._dt = 1.0 / config.rate_hz
-        self._mounting = Rotation.from_quat(
-            np.asarray(config.mounting_wxyz, dtype=np.float64), scalar_first=True
-        ).as_matrix()
+        self._mounting = quats_to_matrices(config.mounting_wxyz)
         self._sigma = np.radians(err.noise_deg_rms) / np.sqrt(3.0)  # per axis: RMS angle / sqrt(3)
         corr = err.noise_correlation_s * config.rate_hz
         self._a = float(np.exp(-1.0 / corr)) if corr > 0 else 0.0
         self._noise = rng.standard_normal((3, 3)) * self._sigma  # start in the stationary law
         self._bias = np.zeros(3)
         self._drop_left = 0
+        self._drawn = 0  # samples drawn ahead so far
+        # The current block: earth_torso (B, 3, 3, 3), segment_sensor_noisy (B, 3, 3, 3), keep.
+        self._block: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]] | None
+        self._block, self._used = None, 0
         self.dropped = 0
         self.samples = 0
 
     def run(
-        self, segments_torso: Rotation, n: int
+        self, segments_torso: ArrayLike, n: int
     ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
-        """IMU quaternions (n, 3, 4) for n postures (3n rotations), and which packets arrived."""
+        """IMU quaternions (n, 3, 4) for n postures (``R_torso_segment``, (n, 3, 3, 3)), and
+        which packets arrived."""
+        parts = []
+        left = n
+        while left > 0:
+            if self._block is None or self._used == len(self._block[2]):
+                self._block, self._used = self._draw_block(), 0
+            take = min(left, len(self._block[2]) - self._used)
+            parts.append(tuple(x[self._used : self._used + take] for x in self._block))
+            self._used += take
+            left -= take
+        earth_torso, segment_sensor, keep = (
+            (parts[0][k] if len(parts) == 1 else np.concatenate([p[k] for p in parts]))
+            for k in range(3)
+        )
+        segments = np.asarray(segments_torso, dtype=np.float64).reshape(n, 3, 3, 3)
+        # q_earth_sensor = Rz(heading + bias) * q_torso_segment * q_segment_sensor * noise
+        quats = matrices_to_quats(earth_torso @ segments @ segment_sensor)
+        self.samples += n
+        self.dropped += int(n - keep.sum())
+        return quats, keep
+
+    def sample(self, segments_torso: ArrayLike) -> NDArray[np.float64] | None:
+        """(3, 4) IMU quaternions for one posture (``R_torso_segment``, (3, 3, 3)), or None if
+        the packet is lost."""
+        quats, keep = self.run(segments_torso, 1)
+        return quats[0] if keep[0] else None
+
+    def _draw_block(
+        self,
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
+        """The next :data:`BLOCK_SAMPLES` samples' errors, as the rotations they multiply."""
         err = self.config.errors
+        n = BLOCK_SAMPLES
         bias = np.zeros((n, 3))
         if err.heading_drift_deg_per_sqrt_s > 0:
             step = np.radians(err.heading_drift_deg_per_sqrt_s) * np.sqrt(self._dt)
@@ -158,59 +205,42 @@ class WearableSimulator:
             )[0]
             self._noise = noise[-1]
         keep = self._arrivals(n)
-        # q_earth_sensor = Rz(heading + bias) * q_torso_segment * q_segment_sensor * noise,
-        # composed as matrices: one scipy call per factor instead of one per product.
-        heading = self.config.torso_heading_rad + bias.reshape(-1, 1)
-        segment_sensor = (segments_torso.as_matrix().reshape(n, 3, 3, 3) @ self._mounting).reshape(
-            -1, 3, 3
-        )
-        sensor = (
-            Rotation.from_euler("z", heading).as_matrix()
-            @ segment_sensor
-            @ Rotation.from_rotvec(noise.reshape(-1, 3)).as_matrix()
-        )
-        quats = Rotation.from_matrix(sensor, assume_valid=True).as_quat(
-            scalar_first=True, canonical=True
-        )
-        return quats.reshape(n, 3, 4), keep
-
-    def sample(self, segments_torso: Rotation) -> NDArray[np.float64] | None:
-        """(3, 4) IMU quaternions for one posture, or None if the packet is lost."""
-        quats, keep = self.run(segments_torso, 1)
-        return quats[0] if keep[0] else None
+        earth_torso = rotations_z(self.config.torso_heading_rad + bias)
+        return earth_torso, self._mounting @ rotvecs_to_matrices(noise), keep
 
     def _arrivals(self, n: int) -> NDArray[np.bool_]:
         err = self.config.errors
         keep = np.ones(n, dtype=bool)
         if err.drop_probability <= 0:
-            self.samples += n
             return keep
         starts = self._rng.random(n) < err.drop_probability
         bursts = self._rng.integers(1, err.drop_burst_max + 1, n)
         for i in range(n):
-            self.samples += 1
-            if self._drop_left == 0 and starts[i] and self.samples > 1:  # the first one anchors
+            self._drawn += 1
+            if self._drop_left == 0 and starts[i] and self._drawn > 1:  # the first one anchors
                 self._drop_left = int(bursts[i])
             if self._drop_left > 0:
                 self._drop_left -= 1
                 keep[i] = False
-        self.dropped += int(n - keep.sum())
         return keep
 
 
 def simulate_wearable(
-    segments_torso: Rotation,
+    segments_torso: ArrayLike,
     grip: ArrayLike,
     config: WearableConfig,
     rng: np.random.Generator,
     start_time_s: float = 0.0,
 ) -> WearableSignals:
-    """Turn segment orientations (N postures x 3, torso frame) into the wearable's signals."""
+    """Turn segment orientations (``R_torso_segment``, (N, 3, 3, 3)) into the wearable's
+    signals."""
     grip = np.asarray(grip, dtype=np.float64)
     n = len(grip)
-    if len(segments_torso) != 3 * n:
+    segments_torso = np.asarray(segments_torso, dtype=np.float64)
+    if segments_torso.shape != (n, 3, 3, 3):
         raise ConfigurationError(
-            f"{len(segments_torso)} segment rotations for {n} grip samples; need 3 per sample"
+            f"segment rotations of shape {segments_torso.shape} for {n} grip samples; need "
+            f"({n}, 3, 3, 3): three segments' rotation matrices per sample"
         )
     sim = WearableSimulator(config, rng)
     quats, keep = sim.run(segments_torso, n)

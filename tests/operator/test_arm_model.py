@@ -41,7 +41,7 @@ def test_analytic_postures(angles: ArmAngles, expected: list[float]) -> None:
 def test_joint_positions_keep_segment_lengths() -> None:
     rng = np.random.default_rng(0)
     postures = [segment_rotations(ArmAngles(*rng.uniform(-1.5, 1.5, 7))) for _ in range(20)]
-    joints = joint_positions(ARM, Rotation.concatenate(postures))
+    joints = joint_positions(ARM, np.stack(postures))
     assert joints.shape == (20, 4, 3)
     np.testing.assert_allclose(
         np.linalg.norm(np.diff(joints, axis=1), axis=2), np.tile(ARM.lengths_m, (20, 1))
@@ -64,9 +64,9 @@ def test_inverse_reproduces_reachable_poses() -> None:
         segs = segments_for_hand_pose(ARM, p, r)
         p2, r2 = hand_pose(ARM, segs)
         np.testing.assert_allclose(p2, p, atol=1e-9)
-        assert (r2.inv() * r).magnitude() < 1e-9
+        assert Rotation.from_matrix(r2.T @ r).magnitude() < 1e-9
         # The elbow is a hinge: the forearm stays in the upper arm's x-z plane.
-        upper, fore = segs[0].as_matrix(), segs[1].as_matrix()
+        upper, fore = segs[0], segs[1]
         assert abs(np.dot(upper[:, 1], fore[:, 0])) < 1e-9
 
 

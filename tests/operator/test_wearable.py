@@ -16,21 +16,21 @@ from arteleop.operator.wearable import WearableSimulator
 def test_orientation_error_is_gauss_markov_with_the_stated_correlation() -> None:
     errors = ImuErrorConfig(heading_drift_deg_per_sqrt_s=0.0, drop_probability=0.0)
     n = 40_000
-    still = Rotation.concatenate([segment_rotations(ArmAngles())] * n)
+    still = np.stack([segment_rotations(ArmAngles())] * n)
     sim = WearableSimulator(WearableConfig(errors=errors), np.random.default_rng(0))
     quats, _ = sim.run(still, n)
     ideal = WearableSimulator(
         WearableConfig(errors=ImuErrorConfig.ideal()), np.random.default_rng(0)
     )
-    ref = Rotation.from_quat(ideal.sample(still[:3])[0], scalar_first=True)
+    ref = Rotation.from_quat(ideal.sample(still[0])[0], scalar_first=True)
     x = (ref.inv() * Rotation.from_quat(quats[:, 0], scalar_first=True)).as_rotvec()
     np.testing.assert_allclose(x.std(axis=0), np.radians(1.0) / np.sqrt(3), rtol=0.1)
     lag1 = np.corrcoef(x[:-1, 0], x[1:, 0])[0, 1]
     assert lag1 == pytest.approx(np.exp(-1 / 20), abs=0.01)  # 0.2 s at 100 Hz
 
 
-def _still(n: int = 20_000) -> Rotation:
-    return Rotation.concatenate([segment_rotations(ArmAngles(elbow_flexion=1.0))] * n)
+def _still(n: int = 20_000) -> np.ndarray:
+    return np.stack([segment_rotations(ArmAngles(elbow_flexion=1.0))] * n)
 
 
 def test_orientation_noise_is_1_deg_rms() -> None:
@@ -87,3 +87,21 @@ def test_drops_remove_whole_packets() -> None:
 def test_bad_error_config() -> None:
     with pytest.raises(ConfigurationError, match=r"drop_probability=1.5 must be in"):
         ImuErrorConfig(drop_probability=1.5)
+
+
+def test_sample_by_sample_equals_one_block() -> None:
+    """The errors are drawn ahead in blocks, so the loop's per-sample calls give exactly the
+    batch simulation's signals, across block boundaries and packet losses (to rounding: a
+    block's quaternions come out of scipy, a sample's out of pinocchio)."""
+    rng = np.random.default_rng(4)
+    n = 1300
+    angles = rng.uniform(-1.0, 1.0, (n, 7))
+    segments = np.stack([segment_rotations(ArmAngles(*a)) for a in angles])
+    config = WearableConfig(errors=ImuErrorConfig(drop_probability=0.05))
+    batch, keep = WearableSimulator(config, np.random.default_rng(9)).run(segments, n)
+    one_by_one = WearableSimulator(config, np.random.default_rng(9))
+    samples = [one_by_one.sample(s) for s in segments]
+    assert [q is not None for q in samples] == keep.tolist()
+    assert 0 < one_by_one.dropped == n - keep.sum()
+    kept = np.stack([q for q in samples if q is not None])
+    np.testing.assert_allclose(kept, batch[keep], rtol=0, atol=1e-15)
