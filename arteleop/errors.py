@@ -49,3 +49,8 @@ class StudyDefinitionError(ConfigurationError):
 
 class RunFolderError(ArteleopError):
     """A run folder cannot be created, resumed or written: the message names the file."""
+
+
+class FrameGraphError(ArteleopError):
+    """A transform graph cannot answer or be built: no path between two frames, a malformed
+    transform or covariance, or a graph file whose edge is corrupt (the message names it)."""

@@ -177,3 +177,16 @@ def test_a_foreign_trials_file_is_refused(tmp_path: Path) -> None:
     folder.trials_path.write_text("participant,phase\nP01,experimental\n")
     with pytest.raises(RunFolderError, match=r"trials.csv line 1: expected the header"):
         folder.done_rows()
+
+
+def test_written_files_get_the_umask_permissions_not_private_ones(tmp_path: Path) -> None:
+    """The temporary file behind the rename is made private; the file written must not be."""
+    old = os.umask(0o022)
+    try:
+        write_atomic(tmp_path / "a.csv", "a\n")
+        os.umask(0o077)
+        write_atomic(tmp_path / "b.csv", "b\n")
+    finally:
+        os.umask(old)
+    assert (tmp_path / "a.csv").stat().st_mode & 0o777 == 0o644
+    assert (tmp_path / "b.csv").stat().st_mode & 0o777 == 0o600
