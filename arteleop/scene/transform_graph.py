@@ -2,19 +2,22 @@
 
 An edge ``parent -> child`` holds ``T_parent_child`` (:class:`UncertainTransform`) and a kind
 (:class:`EdgeKind`). A query between any two frames walks the edges, forwards or backwards
-(inverted), and composes them with their covariances. Queries remember their path; runs of
-``fixed`` edges along it are multiplied once and kept, so a cached query multiplies only the
-edges that change. Changing the graph's shape (an edge added or removed, or a fixed edge given
-a new value) forgets the cached paths that need it.
+(inverted), and composes them with their covariances. Queries remember their path, with each
+run of ``fixed`` edges along it multiplied once, and their last answer, given again while no
+edge along the path has been set since; so a repeated query multiplies only the edges that
+changed. Changing the graph's shape (an edge added or removed, or a fixed edge given a new
+value) forgets what was remembered.
 """
 
 from __future__ import annotations
 
 import json
+import operator
 from collections import deque
 from collections.abc import Iterator
 from dataclasses import dataclass
 from enum import StrEnum
+from functools import reduce
 from itertools import pairwise
 from pathlib import Path
 
@@ -55,6 +58,11 @@ class TransformGraph:
         self._edges: dict[tuple[str, str], Edge] = {}
         self._neighbours: dict[str, set[str]] = {}
         self._paths: dict[tuple[str, str], list[tuple[str, str, bool] | UncertainTransform]] = {}
+        # Each edge's stamp: a counter value, new whenever the edge is set. A query's answer is
+        # kept with the stamps of the edges it read, and reused while they are unchanged.
+        self._stamps: dict[tuple[str, str], int] = {}
+        self._counter = 0
+        self._answers: dict[tuple[str, str], tuple[tuple[int, ...], UncertainTransform]] = {}
 
     # -- building -------------------------------------------------------------------------------
     def set(
@@ -77,12 +85,16 @@ class TransformGraph:
         transform = _transform(T_parent_child, covariance, f"edge {parent} -> {child}")
         old = self._edges.get((parent, child))
         self._edges[(parent, child)] = Edge(parent, child, kind, transform)
+        self._counter += 1
+        self._stamps[(parent, child)] = self._counter
         if old is None:
             self._neighbours.setdefault(parent, set()).add(child)
             self._neighbours.setdefault(child, set()).add(parent)
             self._paths.clear()
+            self._answers.clear()
         elif old.kind is EdgeKind.FIXED or kind is EdgeKind.FIXED:
             self._paths.clear()  # products of fixed runs may hold the old value
+            self._answers.clear()
 
     def remove(self, parent: str, child: str) -> None:
         """Remove the edge ``parent -> child`` (e.g. a temporary one); frames left without
@@ -90,11 +102,13 @@ class TransformGraph:
         if (parent, child) not in self._edges:
             raise FrameGraphError(f"no edge {parent} -> {child} to remove")
         del self._edges[(parent, child)]
+        del self._stamps[(parent, child)]
         for a, b in ((parent, child), (child, parent)):
             self._neighbours[a].discard(b)
             if not self._neighbours[a]:
                 del self._neighbours[a]
         self._paths.clear()
+        self._answers.clear()
 
     # -- reading --------------------------------------------------------------------------------
     @property
@@ -141,14 +155,26 @@ class TransformGraph:
         steps = self._paths.get((a, b))
         if steps is None:
             steps = self._paths[(a, b)] = self._compile(self.path(a, b))
-        result: UncertainTransform | None = None
+            self._answers.pop((a, b), None)
+        stamps = self._stamps
+        read = tuple(stamps[step[:2]] for step in steps if type(step) is tuple)
+        answer = self._answers.get((a, b))
+        if answer is not None and answer[0] == read:
+            return answer[1]
+        transforms = []
         for step in steps:
-            if not isinstance(step, UncertainTransform):
+            if type(step) is tuple:
                 parent, child, forward = step
                 step = self._edges[(parent, child)].transform
                 step = step if forward else step.inverse()
-            result = step if result is None else result @ step
-        return result if result is not None else UncertainTransform._trusted(np.eye(4))
+            transforms.append(step)
+        if any(t.covariance is not None for t in transforms):
+            result = reduce(operator.matmul, transforms)
+        else:  # no covariance on the path (most queries): plain matrix products
+            T = reduce(np.matmul, [t.T for t in transforms]) if transforms else np.eye(4)
+            result = UncertainTransform._trusted(T)
+        self._answers[(a, b)] = (read, result)
+        return result
 
     def T(self, a: str, b: str) -> NDArray[np.float64]:
         """``T_a_b`` (4x4, m) without its covariance."""

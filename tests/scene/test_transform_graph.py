@@ -134,7 +134,10 @@ def test_queries_compose_along_the_path_forwards_and_backwards() -> None:
 def test_cached_queries_follow_new_values_of_every_kind_of_edge() -> None:
     g = _chain()
     before = g.T("gripper", "marker")
+    assert g.lookup("gripper", "marker") is g.lookup("gripper", "marker")  # nothing changed
     g.set("base", "gripper", _random_transform(30), EdgeKind.DYNAMIC)
+    moved = np.linalg.inv(_random_transform(30)) @ g.T("base", "marker")
+    np.testing.assert_allclose(g.T("gripper", "marker"), moved, atol=1e-12)
     g.set("world", "table", _random_transform(31), EdgeKind.FIXED)  # inside a pre-multiplied run
     T = {(e.parent, e.child): e.transform.T for e in g.edges()}
     expected = (
