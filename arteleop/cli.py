@@ -89,6 +89,83 @@ def scene(cmd: SceneCommand) -> int:
     return 0
 
 
+CalibrationMethod = Literal["best", "tsai", "park", "horaud", "andreff", "daniilidis", "shah", "li"]
+
+
+@dataclass(frozen=True)
+class CalibrateCommand(CameraSize):
+    """Register the head camera to the robot, in simulation, with the camera's true pose hidden
+    from the solvers: a marker on the table (helper-based) and a board in the gripper shown in
+    --poses poses (hand-eye: seven OpenCV methods, the best refined on the marker's corners).
+    Prints each estimate's error against the true pose, its reprojection error and the ghost's
+    co-location error, and writes the refined estimate, with its covariance, into a transform
+    graph file."""
+
+    poses: int = 10
+    """hand-eye: poses with the board in view (3 or more)"""
+    seed: int = 0
+    """seed of the poses and of the marker's placements (0 or more)"""
+    method: CalibrationMethod = "best"
+    """the closed-form hand-eye estimate that starts the refinement written to --out; 'best' is
+    the one with the lowest reprojection error (which needs no ground truth)"""
+    out: Path = Path("calibration.json")
+    """transform graph file (JSON) to write: the edge base -> head_camera, kind calibration"""
+
+
+def calibrate(cmd: CalibrateCommand) -> int:
+    from arteleop.scene import (
+        HAND_EYE_METHODS,
+        CalibrationConfig,
+        EdgeKind,
+        RemoteSite,
+        SiteConfig,
+        TransformGraph,
+        calibrate_with_table_marker,
+        calibration_errors,
+        collect_hand_eye,
+        refine_hand_eye,
+        solve_hand_eye,
+    )
+
+    _check_seed(cmd.seed)
+    config = CalibrationConfig(poses=cmd.poses, seed=cmd.seed)
+    with RemoteSite(SiteConfig(camera=cmd.camera_config(), seed=cmd.seed)) as site:
+        helper = calibrate_with_table_marker(site, config)
+        data = collect_hand_eye(site, config)
+        T_true = site.camera.T_base_camera
+        intrinsics = site.camera.intrinsics
+    closed_form = [
+        solve_hand_eye(data, method, config.board, intrinsics) for method in HAND_EYE_METHODS
+    ]
+    best = min(closed_form, key=lambda r: r.reprojection_error_px)
+    start = best if cmd.method == "best" else next(r for r in closed_form if r.method == cmd.method)
+    chosen = refine_hand_eye(data, start, config.board, intrinsics)
+    positions = data.T_base_gripper[:, :3, 3]
+    print(
+        f"hand-eye: {len(positions)} usable poses of {data.attempts} tried; helper: "
+        f"{helper.poses} sightings of the table marker\n"
+    )
+    print(
+        "| method | poses | error (mm) | error (deg) | reprojection (px) "
+        "| co-location (px) | co-location (mm) |"
+    )
+    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: |")
+    for r in [helper, *closed_form, chosen]:
+        e = calibration_errors(r.T_base_camera, T_true, intrinsics, positions)
+        print(
+            f"| {r.method} | {r.poses} | {e.error_mm:.1f} | {e.error_deg:.2f} "
+            f"| {r.reprojection_error_px:.2f} | {e.colocation_px:.1f} | {e.colocation_mm:.1f} |"
+        )
+    graph = TransformGraph()
+    graph.set("base", "head_camera", chosen.transform, EdgeKind.CALIBRATION)
+    graph.save(cmd.out)
+    print(
+        f"\nwrote {cmd.out}: base -> head_camera from {chosen.method} (co-location is measured "
+        "at the hand-eye poses' gripper positions)"
+    )
+    return 0
+
+
 @dataclass(frozen=True)
 class OperatorCheckCommand:
     """Validate a wearable recording and summarise it; exit non-zero if it is invalid."""
@@ -572,6 +649,7 @@ COMMANDS: dict[str, Command] = {
     "trial": (TrialCommand, trial),
     "teleop": (TeleopCommand, teleop),
     "scene": (SceneCommand, scene),
+    "calibrate": (CalibrateCommand, calibrate),
     "analyze": (AnalyzeCommand, analyze),
 }
 GROUPS: dict[str, dict[str, Command]] = {
@@ -596,6 +674,8 @@ commands:
   teleop           teleoperate in real time in the browser, trial after trial: a synthetic
                    participant, a recording, or you (--operator live: gizmo and grip slider)
   scene            render one head-camera frame, write it, and track the bowl
+  calibrate        register the head camera to the robot (ArUco on the table; hand-eye with
+                   a board in the gripper), score it against the truth, write the graph file
   operator synth   one synthetic trial, written as the operator's wearable recording
   operator check   validate a wearable recording and summarise it
   study run        run a study (the default: 22 simulated participants, five modalities)

@@ -54,3 +54,8 @@ class RunFolderError(ArteleopError):
 class FrameGraphError(ArteleopError):
     """A transform graph cannot answer or be built: no path between two frames, a malformed
     transform or covariance, or a graph file whose edge is corrupt (the message names it)."""
+
+
+class CalibrationError(ArteleopError):
+    """A calibration cannot be solved: the marker was not seen, or the poses were too few or too
+    similar. The message says how many were usable and what is needed."""

@@ -70,3 +70,30 @@ def test_operator_check_fails_on_an_invalid_recording(
     path.write_text("\n".join(lines) + "\n")
     assert main(["operator", "check", str(path)]) == 2
     assert "line 4, column grip: 2.0; expected 0 (open) to 1 (pinched)" in capsys.readouterr().err
+
+
+def test_calibrate_prints_every_method_and_writes_the_graph(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from arteleop.scene import EdgeKind, TransformGraph
+
+    out = tmp_path / "frames" / "calibration.json"
+    assert main(["calibrate", "--poses", "6", "--out", str(out)]) == 0
+    text = capsys.readouterr().out
+    rows = [line.split(" | ") for line in text.splitlines() if line.startswith("| ")][2:]
+    methods = [r[0].lstrip("| ") for r in rows]
+    assert methods[:2] == ["helper", "tsai"] and methods[-1].endswith(" + refined")
+    assert len(methods) == 9
+    graph = TransformGraph.load(out)
+    edge = graph.edge("base", "head_camera")
+    assert edge.kind is EdgeKind.CALIBRATION and edge.transform.covariance is not None
+    # The file holds the refined estimate that the last row scores.
+    refined_mm = float(rows[-1][2])
+    assert refined_mm < 20.0
+
+
+def test_calibrate_refuses_too_few_poses(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["calibrate", "--poses", "2"]) == 2
+    assert capsys.readouterr().err == (
+        "arteleop: error: --poses 2: hand-eye calibration needs at least 3 poses\n"
+    )

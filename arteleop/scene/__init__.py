@@ -4,6 +4,7 @@
 from arteleop.robot import native_output  # noqa: F401
 
 # isort: split
+from arteleop.scene.aruco import ArucoMarker, MarkerBody, MarkerObservation, detect_marker
 from arteleop.scene.bowl import (
     GRASP_DEPTH_M,
     BowlSpec,
@@ -14,6 +15,19 @@ from arteleop.scene.bowl import (
 from arteleop.scene.bowl_sight import BowlSight, BowlSightConfig
 from arteleop.scene.bowl_tracking import BowlTrack, BowlTracker, BowlTrackerConfig
 from arteleop.scene.camera import HeadCamera, RGBDFrame
+from arteleop.scene.camera_calibration import (
+    HAND_EYE_METHODS,
+    CalibrationConfig,
+    CalibrationErrors,
+    CameraCalibration,
+    HandEyeData,
+    calibrate_with_table_marker,
+    calibration_errors,
+    check_hand_eye_data,
+    collect_hand_eye,
+    refine_hand_eye,
+    solve_hand_eye,
+)
 from arteleop.scene.camera_config import CameraIntrinsics, HeadCameraConfig
 from arteleop.scene.camera_geometry import CameraGeometry
 from arteleop.scene.depth_mesh import DepthMesh, MeshReconstructor, MeshReconstructorConfig
@@ -34,6 +48,8 @@ from arteleop.scene.workspace import Box, Workspace
 
 __all__ = [
     "GRASP_DEPTH_M",
+    "HAND_EYE_METHODS",
+    "ArucoMarker",
     "BowlSight",
     "BowlSightConfig",
     "BowlSpec",
@@ -41,6 +57,9 @@ __all__ = [
     "BowlTracker",
     "BowlTrackerConfig",
     "Box",
+    "CalibrationConfig",
+    "CalibrationErrors",
+    "CameraCalibration",
     "CameraGeometry",
     "CameraIntrinsics",
     "CollisionBox",
@@ -48,8 +67,11 @@ __all__ = [
     "DepthNoiseConfig",
     "Edge",
     "EdgeKind",
+    "HandEyeData",
     "HeadCamera",
     "HeadCameraConfig",
+    "MarkerBody",
+    "MarkerObservation",
     "MeshReconstructor",
     "MeshReconstructorConfig",
     "PointCloud",
@@ -65,11 +87,18 @@ __all__ = [
     "apply_depth_noise",
     "bowl_collision_boxes",
     "bowl_mesh",
+    "calibrate_with_table_marker",
+    "calibration_errors",
+    "check_hand_eye_data",
+    "collect_hand_eye",
     "depth_to_camera_points",
+    "detect_marker",
     "frame_to_point_cloud",
     "fuse",
     "left_error",
     "mean_transform",
     "reach_problem",
+    "refine_hand_eye",
+    "solve_hand_eye",
     "write_snapshot",
 ]
