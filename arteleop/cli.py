@@ -40,11 +40,23 @@ class CameraSize:
     """camera image width (px); 320x240 keeps 30 frames/s in real time on two cores"""
     height_px: int = 480
     """camera image height (px)"""
+    camera_offset_mm: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    """a mis-registered camera: the pose the system uses for it (for the point cloud, the
+    tracked bowl, the operator's eye) is the true one moved by this (mm, camera frame: x right,
+    y down, z forward), while the ghost and the target stay where they are"""
+    camera_offset_deg: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    """the registration's rotation error, a rotation vector (deg, camera frame)"""
 
     def camera_config(self, **overrides: Any) -> HeadCameraConfig:
         from arteleop.scene import HeadCameraConfig
 
-        return HeadCameraConfig(width_px=self.width_px, height_px=self.height_px, **overrides)
+        return HeadCameraConfig(
+            width_px=self.width_px,
+            height_px=self.height_px,
+            registration_offset_mm=self.camera_offset_mm,
+            registration_offset_deg=self.camera_offset_deg,
+            **overrides,
+        )
 
 
 @dataclass(frozen=True)
@@ -113,6 +125,8 @@ class CalibrateCommand(CameraSize):
 
 
 def calibrate(cmd: CalibrateCommand) -> int:
+    import numpy as np
+
     from arteleop.scene import (
         HAND_EYE_METHODS,
         CalibrationConfig,
@@ -133,6 +147,7 @@ def calibrate(cmd: CalibrateCommand) -> int:
         helper = calibrate_with_table_marker(site, config)
         data = collect_hand_eye(site, config)
         T_true = site.camera.T_base_camera
+        registered = site.camera.registered.T_base_camera
         intrinsics = site.camera.intrinsics
     closed_form = [
         solve_hand_eye(data, method, config.board, intrinsics) for method in HAND_EYE_METHODS
@@ -150,6 +165,12 @@ def calibrate(cmd: CalibrateCommand) -> int:
         "| co-location (px) | co-location (mm) |"
     )
     print("| --- | ---: | ---: | ---: | ---: | ---: | ---: |")
+    if not np.array_equal(registered, T_true):
+        e = calibration_errors(registered, T_true, intrinsics, positions)
+        print(
+            f"| registration given (--camera-offset-*) | - | {e.error_mm:.1f} | {e.error_deg:.2f} "
+            f"| - | {e.colocation_px:.1f} | {e.colocation_mm:.1f} |"
+        )
     for r in [helper, *closed_form, chosen]:
         e = calibration_errors(r.T_base_camera, T_true, intrinsics, positions)
         print(
@@ -421,6 +442,11 @@ class TeleopCommand:
     """camera image width (px); 320x240 keeps 30 frames/s in real time on two cores"""
     height_px: int = 240
     """camera image height (px)"""
+    camera_offset_mm: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    """a mis-registered camera: its pose as the system uses it, moved by this (mm, camera
+    frame), so the cloud sits off the ghost and the target (see 'arteleop trial --help')"""
+    camera_offset_deg: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    """the registration's rotation error, a rotation vector (deg, camera frame)"""
     host: str = "127.0.0.1"
     """interface to serve the page on; 0.0.0.0 lets other machines connect (and drive the robot)"""
     port: int = 8080
@@ -434,7 +460,8 @@ def teleop(cmd: TeleopCommand) -> int:
     from arteleop.teleop.live_app import trial_summary
 
     _check_trial(cmd)
-    camera = CameraSize(cmd.width_px, cmd.height_px).camera_config()
+    size = CameraSize(cmd.width_px, cmd.height_px, cmd.camera_offset_mm, cmd.camera_offset_deg)
+    camera = size.camera_config()
     trial_config = TrialConfig(
         modality=cmd.modality, seed=cmd.seed, timeout_s=cmd.timeout_s,
         network=NetworkConfig(delay_s=cmd.delay_ms / 1000), site=SiteConfig(camera=camera),
@@ -610,6 +637,11 @@ class StudyReplayCommand(CameraSize):
     """camera image width (px); 320x240 keeps 30 frames/s on two cores"""
     height_px: int = 240
     """camera image height (px)"""
+    camera_offset_mm: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    """a mis-registered camera: its pose as the system uses it, moved by this (mm, camera
+    frame), so the cloud sits off the ghost and the target (see 'arteleop trial --help')"""
+    camera_offset_deg: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    """the registration's rotation error, a rotation vector (deg, camera frame)"""
     host: str = "127.0.0.1"
     """interface to serve the page on; 0.0.0.0 lets other machines connect"""
     port: int = 8080

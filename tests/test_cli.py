@@ -92,6 +92,22 @@ def test_calibrate_prints_every_method_and_writes_the_graph(
     assert refined_mm < 20.0
 
 
+def test_calibrate_measures_a_mis_set_camera_and_brings_it_back(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    args = ["--camera-offset-mm", "20", "0", "0", "--camera-offset-deg", "0", "1", "0"]
+    assert main(["calibrate", "--poses", "8", "--out", str(tmp_path / "c.json"), *args]) == 0
+    rows = {
+        r[0].lstrip("| "): r
+        for r in (line.split(" | ") for line in capsys.readouterr().out.splitlines())
+        if len(r) == 7
+    }
+    given = rows["registration given (--camera-offset-*)"]
+    assert (given[2], given[3]) == ("20.0", "1.00")
+    refined = next(r for name, r in rows.items() if name.endswith(" + refined"))
+    assert float(refined[5]) < float(given[5]) / 5  # co-location (px): calibration fixes it
+
+
 def test_calibrate_refuses_too_few_poses(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["calibrate", "--poses", "2"]) == 2
     assert capsys.readouterr().err == (

@@ -33,7 +33,9 @@ class RGBDFrame:
         rgb: (H, W, 3) uint8 colour image.
         depth_m: (H, W) float32 depth along the optical axis (m); 0 = no valid return.
         intrinsics: Pinhole intrinsics of both images (they are registered).
-        T_base_camera: Pose of the optical frame in Baxter's base frame.
+        T_base_camera: Pose of the optical frame in Baxter's base frame, as the remote system
+            has it registered (``HeadCamera.registered``): the true pose unless
+            ``HeadCameraConfig.registration_offset_*`` says otherwise.
         timestamp_s: Simulation time of the exposure (s).
         segmentation: (H, W) int32 PyBullet body id per pixel (-1 background), if requested.
             Ground truth for tests and evaluation; trackers must not use it.
@@ -112,8 +114,11 @@ class HeadCamera:
         self.config = config
         self.intrinsics = config.intrinsics
         self.geometry = CameraGeometry(config, T_base_mount @ config.T_mount_camera())
-        """Pose and field of view: what the camera can see, without rendering."""
+        """True pose and field of view: what the camera can see, without rendering."""
         self.T_base_camera = self.geometry.T_base_camera
+        """The true pose (the simulator's): for rendering and for measuring errors."""
+        self.registered = CameraGeometry(config, self.T_base_camera @ config.T_camera_registered())
+        """The pose the remote system uses for the camera: its frames carry it."""
         self._seed = seed
         self._projection = self.intrinsics.opengl_projection(config.near_clip_m, config.far_clip_m)
         view = invert_transform(self.T_base_camera @ _T_CV_GL)
@@ -148,7 +153,8 @@ class HeadCamera:
         if raw.segmentation is not None:
             segmentation = raw.segmentation & ((1 << 24) - 1)
             segmentation[raw.segmentation < 0] = -1
-        return RGBDFrame(rgb, depth, self.intrinsics, self.T_base_camera, timestamp_s, segmentation)
+        T = self.registered.T_base_camera
+        return RGBDFrame(rgb, depth, self.intrinsics, T, timestamp_s, segmentation)
 
     def check_sees(
         self, points_base_m: dict[str, NDArray[np.float64]], margin_px: int = 10

@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from arteleop.errors import ConfigurationError
 from arteleop.scene.depth_noise import DepthNoiseConfig
-from arteleop.transforms import make_transform
+from arteleop.transforms import make_transform, rotvecs_to_matrices
 
 
 @dataclass(frozen=True)
@@ -117,6 +117,12 @@ class HeadCameraConfig:
         yaw_deg: Turn of the optical axis about the head's z axis (positive to the left).
         noise: Depth error model.
         near_clip_m, far_clip_m: Rendering clip planes (m).
+        registration_offset_mm, registration_offset_deg: How far the pose the remote system
+            uses for the camera (its registration: to place the point cloud, the tracked bowl
+            and the operator's eye in the base frame) is from the true pose: a translation (mm)
+            and a rotation vector (deg), both in the true optical frame. Zero is a perfect
+            registration; the renderer always uses the true pose. ``arteleop calibrate``
+            measures what calibration brings such an error down to.
     """
 
     width_px: int = 640
@@ -132,6 +138,8 @@ class HeadCameraConfig:
     noise: DepthNoiseConfig = field(default_factory=DepthNoiseConfig)
     near_clip_m: float = 0.05
     far_clip_m: float = 6.0
+    registration_offset_mm: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    registration_offset_deg: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
     def __post_init__(self) -> None:
         if self.width_px < 8 or self.height_px < 8:
@@ -149,11 +157,29 @@ class HeadCameraConfig:
             )
         if self.rate_hz <= 0:
             raise ConfigurationError(f"camera rate_hz must be > 0, got {self.rate_hz}")
+        for name, limit, unit in (
+            ("registration_offset_mm", 500.0, "mm"),
+            ("registration_offset_deg", 45.0, "deg"),
+        ):
+            value = np.asarray(getattr(self, name), dtype=np.float64)
+            if value.shape != (3,) or not np.isfinite(value).all() or np.linalg.norm(value) > limit:
+                option = "--camera-offset-" + unit
+                raise ConfigurationError(
+                    f"{option} {' '.join(map(str, np.ravel(value).tolist()))}: expected three "
+                    f"numbers ({unit}, camera frame) whose length is at most {limit:.0f} {unit}"
+                )
 
     @property
     def intrinsics(self) -> CameraIntrinsics:
         return CameraIntrinsics.from_horizontal_fov(
             self.width_px, self.height_px, self.horizontal_fov_deg
+        )
+
+    def T_camera_registered(self) -> NDArray[np.float64]:
+        """The registered optical frame in the true one (the registration's error)."""
+        rotvec = np.radians(np.asarray(self.registration_offset_deg, dtype=np.float64))
+        return make_transform(
+            rotvecs_to_matrices(rotvec), np.asarray(self.registration_offset_mm) / 1000.0
         )
 
     def T_mount_camera(self) -> NDArray[np.float64]:

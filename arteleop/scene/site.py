@@ -7,7 +7,7 @@ of the configuration runs in the constructor, so a bad setting stops the program
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import pybullet as p
@@ -39,7 +39,7 @@ from arteleop.scene.render_process import RenderProcess
 from arteleop.scene.render_world import RenderWorld, SceneState
 from arteleop.scene.site_state import SiteState
 from arteleop.scene.workspace import Workspace
-from arteleop.transforms import pybullet_pose_to_transform
+from arteleop.transforms import invert_transform, pybullet_pose_to_transform, transform_points
 
 RAY_OVERSHOOT_M = 0.02
 """:meth:`RemoteSite.sight_bowl`'s rays run this far past their surface point (m)."""
@@ -170,6 +170,11 @@ class RemoteSite(Closeable):
             self._client.disconnect()
             raise
         self._sight = BowlSight(ws.bowl, config.bowl_sight)
+        registered, true = self.camera.registered.T_base_camera, self.camera.T_base_camera
+        # T_registered_true in the base frame: what the registration does to a seen point.
+        self._registration_error = (
+            None if np.array_equal(registered, true) else registered @ invert_transform(true)
+        )
         self._steps = 0
         self._renderer: RenderProcess | None = None
         self._requested_s = 0.0
@@ -198,7 +203,7 @@ class RemoteSite(Closeable):
             pads_touch_bowl=robot.gripper.touching(self._bowl_id),
             T_base_bowl=self._bowl_transform(),
             bowl_speed_m_s=float(np.linalg.norm(velocity)),
-            camera=self.camera.geometry,
+            camera=self.camera.registered,
             links={name: robot.link_transform(name) for name in links},
         )
 
@@ -270,7 +275,12 @@ class RemoteSite(Closeable):
         ends = points + RAY_OVERSHOOT_M * rays / np.linalg.norm(rays, axis=1, keepdims=True)
         results = self._client.rayTestBatch([eye.tolist()] * len(points), ends.tolist())
         hits = np.array([r[3] if r[0] >= 0 else (np.nan,) * 3 for r in results])
-        return self._sight.look(T_base_bowl, self.camera.geometry, hits, self.time_s)
+        track = self._sight.look(T_base_bowl, self.camera.geometry, hits, self.time_s)
+        if track.position_m is None or self._registration_error is None:
+            return track
+        # Seen in the camera's frame, placed in the base frame through the registered pose.
+        seen = transform_points(self._registration_error, track.position_m[None])[0]
+        return replace(track, position_m=seen)
 
     def capture(self, with_segmentation: bool = False) -> RGBDFrame:
         """One head-camera frame of the current state, stamped with :attr:`time_s`."""

@@ -29,7 +29,8 @@ class SiteState:
         pads_touch_bowl: Whether the (left, right) finger pad touches the bowl.
         T_base_bowl: (4, 4) pose of the bowl's frame (centre of its bottom face).
         bowl_speed_m_s: Linear speed of the bowl's centre of mass (m/s).
-        camera: The head camera's pose and field of view.
+        camera: The head camera's pose, as the remote system has it registered (the true pose
+            unless ``HeadCameraConfig.registration_offset_*`` says otherwise), and field of view.
         links: ``T_base_link`` (4, 4) of each link asked for in ``RemoteSite.observe``.
     """
 

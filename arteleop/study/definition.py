@@ -164,6 +164,11 @@ class StudyConfig:
             the data format (version 1) records.
         timeout_s: Simulated time after which an experimental trial ends as a timeout (s).
         delay_ms: One-way network delay between operator and robot (ms).
+        camera_offset_mm, camera_offset_deg: A mis-registered head camera in every trial: the
+            pose the system uses for it is the true one moved by this translation (mm) and
+            rotation vector (deg), in the camera's frame (``HeadCameraConfig``'s
+            ``registration_offset_*``), so the point cloud and the tracked bowl sit off the
+            ghost and the target by that much. Zero: a perfect registration.
         start_xy_m: Where the bowl starts in every experimental trial (base frame, m).
         target_xy_m: Where the bowl must go (base frame, m).
         familiarization: Practice trials.
@@ -179,6 +184,8 @@ class StudyConfig:
     trials_per_modality: int = 1
     timeout_s: float = 120.0
     delay_ms: float = 0.0
+    camera_offset_mm: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    camera_offset_deg: tuple[float, float, float] = (0.0, 0.0, 0.0)
     start_xy_m: tuple[float, float] = (0.68, -0.45)
     target_xy_m: tuple[float, float] = (0.68, -0.10)
     familiarization: FamiliarizationConfig = field(default_factory=FamiliarizationConfig)
@@ -225,6 +232,17 @@ class StudyConfig:
                 f"delay_ms = {self.delay_ms}: expected 0 ms or more, with a round trip shorter "
                 f"than timeout_s ({self.timeout_s} s)."
             )
+        for key, limit, unit in (("camera_offset_mm", 500, "mm"), ("camera_offset_deg", 45, "deg")):
+            value = getattr(self, key)
+            if (
+                len(value) != 3
+                or not all(math.isfinite(v) for v in value)
+                or math.hypot(*value) > limit
+            ):
+                raise StudyDefinitionError(
+                    f"{key} = {list(value)}: expected three numbers ({unit}, camera frame) whose "
+                    f"length is at most {limit} {unit}."
+                )
         ids = [p.id for p in self.participants]
         twice = sorted({i for i in ids if ids.count(i) > 1})
         if twice:

@@ -41,6 +41,8 @@ class ReplaySource:
     modality: str
     outcome: str
     trajectory: pd.DataFrame
+    camera_offset_mm: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    camera_offset_deg: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
 
 def load_replay(run_dir: Path, participant: str, trial_index: int) -> ReplaySource:
@@ -78,13 +80,23 @@ def load_replay(run_dir: Path, participant: str, trial_index: int) -> ReplaySour
         )
     if len(trajectory) == 0:
         raise RunFolderError(f"{path} has no rows to replay.")
-    return ReplaySource(spec, str(row["modality"]), str(row["outcome"]), trajectory)
+    return ReplaySource(
+        spec, str(row["modality"]), str(row["outcome"]), trajectory,
+        study.camera_offset_mm, study.camera_offset_deg,
+    )  # fmt: skip
 
 
 def replay_site(source: ReplaySource, camera: HeadCameraConfig | None = None) -> SiteConfig:
-    """The site the trial ran on (its start and target), with ``camera`` if given."""
-    config = StudySite().site_config(source.spec)
-    return config if camera is None else replace(config, camera=camera)
+    """The site the trial ran on (its start and target, its camera's registration), with
+    ``camera``'s image size and settings if given."""
+    config = StudySite().site_config(source.spec, source.camera_offset_mm, source.camera_offset_deg)
+    if camera is None:
+        return config
+    registration = {
+        "registration_offset_mm": source.camera_offset_mm,
+        "registration_offset_deg": source.camera_offset_deg,
+    }
+    return replace(config, camera=replace(camera, **registration))
 
 
 def replay(

@@ -63,10 +63,23 @@ class StudySite:
             return str(err)
         return reach_problem(ws, self._reach, self.base.reach_margin)
 
-    def site_config(self, spec: TrialSpec) -> SiteConfig:
-        """The site of one planned trial."""
+    def site_config(
+        self,
+        spec: TrialSpec,
+        camera_offset_mm: tuple[float, float, float] = (0.0, 0.0, 0.0),
+        camera_offset_deg: tuple[float, float, float] = (0.0, 0.0, 0.0),
+    ) -> SiteConfig:
+        """The site of one planned trial, its camera registered with the given error."""
+        camera = replace(
+            self.base.camera,
+            registration_offset_mm=camera_offset_mm,
+            registration_offset_deg=camera_offset_deg,
+        )
         return replace(
-            self.base, workspace=self.workspace(spec.start_xy_m, spec.target_xy_m), seed=spec.seed
+            self.base,
+            workspace=self.workspace(spec.start_xy_m, spec.target_xy_m),
+            seed=spec.seed,
+            camera=camera,
         )
 
     def practice_points(

@@ -126,8 +126,10 @@ def _convert(value: Any, hint: Any, at: str, table: str, key: str) -> Any:
         if not all(_is(v, expected) for v in value):
             kind = "text" if expected is str else "numbers"
             raise StudyDefinitionError(f"{at}: {name} must be a list of {kind}, got {value!r}.")
-        if "float, float" in hint_text and len(value) != 2:
-            raise StudyDefinitionError(f"{at}: {name} must be two numbers (x, y), got {value!r}.")
+        size = hint_text.count("float")
+        if size in (2, 3) and len(value) != size:
+            what = "two numbers (x, y)" if size == 2 else "three numbers (x, y, z)"
+            raise StudyDefinitionError(f"{at}: {name} must be {what}, got {value!r}.")
         return tuple(float(v) if expected is float else v for v in value)
     for kind, label in ((bool, "true or false"), (int, "a whole number"), (str, "text")):
         if hint is kind and not _is(value, kind):
@@ -210,6 +212,8 @@ _COMMENTS = {
     "trials_per_modality": "experimental trials per modality (data format version 1: 1)",
     "timeout_s": "simulated time after which a trial ends as a timeout (s)",
     "delay_ms": "one-way network delay between operator and robot (ms)",
+    "camera_offset_mm": "a mis-registered camera: its pose as believed, moved (mm, camera frame)",
+    "camera_offset_deg": "and turned by this rotation vector (deg, camera frame)",
     "start_xy_m": "where the bowl starts, Baxter's base frame (m)",
     "target_xy_m": "where it must go (m)",
     "familiarization.trials": "practice trials per participant, random start and target",

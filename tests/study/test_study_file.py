@@ -47,8 +47,13 @@ def test_study_init_writes_the_commented_default(tmp_path: Path, capsys) -> None
     [
         ('seed = 1\nordr = "williams"\n',
          "s.toml line 2: unknown key 'ordr'. Valid keys: name, seed, modalities, order, "
-         "orders, trials_per_modality, timeout_s, delay_ms, start_xy_m, target_xy_m, "
-         "familiarization, cohort, participants."),
+         "orders, trials_per_modality, timeout_s, delay_ms, camera_offset_mm, "
+         "camera_offset_deg, start_xy_m, target_xy_m, familiarization, cohort, participants."),
+        ("camera_offset_mm = [600, 0, 0]\n",
+         "s.toml line 1: camera_offset_mm = [600.0, 0.0, 0.0]: expected three numbers (mm, "
+         "camera frame) whose length is at most 500 mm."),
+        ("camera_offset_deg = [1, 2]\n",
+         "s.toml line 1: camera_offset_deg must be three numbers (x, y, z), got [1, 2]."),
         ("[cohort]\nsize = 3\nsizes = 4\n",
          "s.toml line 3: unknown key 'cohort.sizes'. Valid keys in [cohort]: size, "
          "avr_experts, games_experts, both_experts, movement_time_sd, id_prefix."),
@@ -112,3 +117,22 @@ def test_first_difference_names_the_dotted_key() -> None:
     assert first_difference(a, StudyConfig(seed=1)) == "seed"
     fewer = CohortConfig(size=10, avr_experts=3, games_experts=3, both_experts=1)
     assert first_difference(a, StudyConfig(cohort=fewer)) == "cohort.size"
+
+
+def test_a_mis_registered_camera_reaches_every_trial_of_the_study() -> None:
+    from arteleop.study.plan import plan_study
+    from arteleop.study.protocol import trial_config
+    from arteleop.study.sites import StudySite
+
+    study = parse_study(
+        "camera_offset_mm = [10, 0, -5]\ncamera_offset_deg = [0, 0.5, 0]\n"
+        "[familiarization]\ntrials = 0\n",
+        "s.toml",
+    )
+    site = StudySite()
+    specs = plan_study(study)
+    cameras = {trial_config(study, site, spec).site.camera for spec in specs}
+    assert len(specs) == 110 and len(cameras) == 1
+    (camera,) = cameras
+    assert camera.registration_offset_mm == (10.0, 0.0, -5.0)
+    assert camera.registration_offset_deg == (0.0, 0.5, 0.0)
