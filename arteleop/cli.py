@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Annotated, Any, Literal
 
 import tyro
 
-from arteleop.errors import ArteleopError, ConfigurationError
+from arteleop.errors import ArteleopError, ConfigurationError, FrameGraphError
 
 if TYPE_CHECKING:
     from arteleop.scene import HeadCameraConfig
@@ -46,16 +46,34 @@ class CameraSize:
     y down, z forward), while the ghost and the target stay where they are"""
     camera_offset_deg: tuple[float, float, float] = (0.0, 0.0, 0.0)
     """the registration's rotation error, a rotation vector (deg, camera frame)"""
+    camera_graph: Path | None = None
+    """a transform graph file (from 'arteleop calibrate') whose base -> head_camera edge is the
+    camera's pose as the system uses it, instead of --camera-offset-*"""
 
     def camera_config(self, **overrides: Any) -> HeadCameraConfig:
-        from arteleop.scene import HeadCameraConfig
+        from arteleop.scene import HeadCameraConfig, TransformGraph
 
+        registration: dict[str, Any] = {
+            "registration_offset_mm": self.camera_offset_mm,
+            "registration_offset_deg": self.camera_offset_deg,
+        }
+        if self.camera_graph is not None:
+            if any(self.camera_offset_mm) or any(self.camera_offset_deg):
+                raise ConfigurationError(
+                    "--camera-graph and --camera-offset-mm/--camera-offset-deg: give one of them"
+                )
+            try:
+                T = TransformGraph.load(self.camera_graph).T("base", "head_camera")
+            except FrameGraphError as err:
+                if str(err).startswith(str(self.camera_graph)):
+                    raise
+                raise FrameGraphError(
+                    f"--camera-graph {self.camera_graph}: {err}. 'arteleop calibrate' writes "
+                    "such a file, with the edge base -> head_camera."
+                ) from None
+            registration = {"registered_pose": tuple(tuple(row) for row in T.tolist())}
         return HeadCameraConfig(
-            width_px=self.width_px,
-            height_px=self.height_px,
-            registration_offset_mm=self.camera_offset_mm,
-            registration_offset_deg=self.camera_offset_deg,
-            **overrides,
+            width_px=self.width_px, height_px=self.height_px, **registration, **overrides
         )
 
 
@@ -447,6 +465,9 @@ class TeleopCommand:
     frame), so the cloud sits off the ghost and the target (see 'arteleop trial --help')"""
     camera_offset_deg: tuple[float, float, float] = (0.0, 0.0, 0.0)
     """the registration's rotation error, a rotation vector (deg, camera frame)"""
+    camera_graph: Path | None = None
+    """a transform graph file (from 'arteleop calibrate') whose base -> head_camera edge is the
+    camera's pose as the system uses it, instead of --camera-offset-*"""
     host: str = "127.0.0.1"
     """interface to serve the page on; 0.0.0.0 lets other machines connect (and drive the robot)"""
     port: int = 8080
@@ -460,7 +481,9 @@ def teleop(cmd: TeleopCommand) -> int:
     from arteleop.teleop.live_app import trial_summary
 
     _check_trial(cmd)
-    size = CameraSize(cmd.width_px, cmd.height_px, cmd.camera_offset_mm, cmd.camera_offset_deg)
+    size = CameraSize(
+        cmd.width_px, cmd.height_px, cmd.camera_offset_mm, cmd.camera_offset_deg, cmd.camera_graph
+    )
     camera = size.camera_config()
     trial_config = TrialConfig(
         modality=cmd.modality, seed=cmd.seed, timeout_s=cmd.timeout_s,

@@ -113,3 +113,30 @@ def test_calibrate_refuses_too_few_poses(capsys: pytest.CaptureFixture[str]) -> 
     assert capsys.readouterr().err == (
         "arteleop: error: --poses 2: hand-eye calibration needs at least 3 poses\n"
     )
+
+
+def test_a_camera_graph_file_sets_the_registration(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], site
+) -> None:
+    """A graph whose camera sits 25 mm off the true pose (along base x) moves the tracked bowl
+    by that much; a graph without the camera's edge is refused, naming the file."""
+    from arteleop.scene import EdgeKind, TransformGraph
+
+    T = site.camera.T_base_camera.copy()
+    T[0, 3] += 0.025
+    graph = TransformGraph()
+    graph.set("base", "head_camera", T, EdgeKind.CALIBRATION)
+    graph.save(tmp_path / "g.json")
+    assert (
+        main(["scene", "--out", str(tmp_path / "s"), "--camera-graph", str(tmp_path / "g.json")])
+        == 0
+    )
+    out = capsys.readouterr().out
+    assert float(out.split("tracking error")[1].split("mm")[0]) == pytest.approx(25.0, abs=4.0)
+    TransformGraph().save(tmp_path / "empty.json")
+    assert main(["scene", "--camera-graph", str(tmp_path / "empty.json")]) == 2
+    assert capsys.readouterr().err == (
+        f"arteleop: error: --camera-graph {tmp_path / 'empty.json'}: no frame 'base' in the graph; "
+        "its frames are []. 'arteleop calibrate' writes such a file, with the edge base -> "
+        "head_camera.\n"
+    )

@@ -117,7 +117,7 @@ class HeadCamera:
         """True pose and field of view: what the camera can see, without rendering."""
         self.T_base_camera = self.geometry.T_base_camera
         """The true pose (the simulator's): for rendering and for measuring errors."""
-        self.registered = CameraGeometry(config, self.T_base_camera @ config.T_camera_registered())
+        self.registered = CameraGeometry(config, config.T_base_registered(self.T_base_camera))
         """The pose the remote system uses for the camera: its frames carry it."""
         self._seed = seed
         self._projection = self.intrinsics.opengl_projection(config.near_clip_m, config.far_clip_m)

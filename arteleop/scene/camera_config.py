@@ -123,6 +123,8 @@ class HeadCameraConfig:
             and a rotation vector (deg), both in the true optical frame. Zero is a perfect
             registration; the renderer always uses the true pose. ``arteleop calibrate``
             measures what calibration brings such an error down to.
+        registered_pose: Instead of the offsets, the pose itself (``T_base_camera``, 4x4 rows,
+            m), e.g. the ``base -> head_camera`` edge of ``arteleop calibrate``'s graph file.
     """
 
     width_px: int = 640
@@ -140,6 +142,7 @@ class HeadCameraConfig:
     far_clip_m: float = 6.0
     registration_offset_mm: tuple[float, float, float] = (0.0, 0.0, 0.0)
     registration_offset_deg: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    registered_pose: tuple[tuple[float, ...], ...] | None = None
 
     def __post_init__(self) -> None:
         if self.width_px < 8 or self.height_px < 8:
@@ -157,6 +160,19 @@ class HeadCameraConfig:
             )
         if self.rate_hz <= 0:
             raise ConfigurationError(f"camera rate_hz must be > 0, got {self.rate_hz}")
+        if self.registered_pose is not None:
+            try:
+                T = np.asarray(self.registered_pose, dtype=np.float64)
+            except (TypeError, ValueError):
+                T = np.full(1, np.nan)
+            offsets = any(self.registration_offset_mm) or any(self.registration_offset_deg)
+            rigid = T.shape == (4, 4) and np.isfinite(T).all()
+            rigid = rigid and np.abs(T[:3, :3].T @ T[:3, :3] - np.eye(3)).max() < 1e-6
+            if offsets or not rigid or np.abs(T[3] - (0, 0, 0, 1)).max() > 1e-12:
+                raise ConfigurationError(
+                    "HeadCameraConfig.registered_pose: expected a rigid 4x4 transform, and no "
+                    "registration offsets beside it (give the pose or the offsets)"
+                )
         for name, limit, unit in (
             ("registration_offset_mm", 500.0, "mm"),
             ("registration_offset_deg", 45.0, "deg"),
@@ -174,6 +190,12 @@ class HeadCameraConfig:
         return CameraIntrinsics.from_horizontal_fov(
             self.width_px, self.height_px, self.horizontal_fov_deg
         )
+
+    def T_base_registered(self, T_base_camera_true: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The pose the system uses for the camera, given the true one."""
+        if self.registered_pose is not None:
+            return np.array(self.registered_pose, dtype=np.float64)
+        return T_base_camera_true @ self.T_camera_registered()
 
     def T_camera_registered(self) -> NDArray[np.float64]:
         """The registered optical frame in the true one (the registration's error)."""

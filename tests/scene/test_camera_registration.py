@@ -51,3 +51,20 @@ def test_an_implausible_registration_error_is_refused() -> None:
     )
     with pytest.raises(ConfigurationError, match=r"--camera-offset-deg 0.0 90.0 0.0: expected"):
         HeadCameraConfig(registration_offset_deg=(0.0, 90.0, 0.0))
+
+
+def test_a_registered_pose_replaces_the_offsets(site_config: SiteConfig) -> None:
+    with RemoteSite(site_config) as plain:
+        truth = plain.camera.T_base_camera.copy()
+    T = truth.copy()
+    T[:3, 3] += (0.01, 0.02, -0.01)
+    pose = tuple(tuple(row) for row in T.tolist())
+    camera = replace(site_config.camera, registered_pose=pose)
+    with RemoteSite(replace(site_config, camera=camera)) as site:
+        np.testing.assert_array_equal(site.camera.registered.T_base_camera, T)
+        np.testing.assert_array_equal(site.camera.T_base_camera, truth)
+        np.testing.assert_array_equal(site.capture().T_base_camera, T)
+    with pytest.raises(ConfigurationError, match=r"registered_pose: expected a rigid 4x4"):
+        HeadCameraConfig(registered_pose=pose, registration_offset_mm=(1.0, 0.0, 0.0))
+    with pytest.raises(ConfigurationError, match=r"registered_pose: expected a rigid 4x4"):
+        HeadCameraConfig(registered_pose=((1.0, 2.0), (3.0,)))
