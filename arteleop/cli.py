@@ -62,11 +62,10 @@ class CameraSize:
                 raise ConfigurationError(
                     "--camera-graph and --camera-offset-mm/--camera-offset-deg: give one of them"
                 )
+            graph = TransformGraph.load(self.camera_graph)  # its errors name the file
             try:
-                T = TransformGraph.load(self.camera_graph).T("base", "head_camera")
+                T = graph.T("base", "head_camera")
             except FrameGraphError as err:
-                if str(err).startswith(str(self.camera_graph)):
-                    raise
                 raise FrameGraphError(
                     f"--camera-graph {self.camera_graph}: {err}. 'arteleop calibrate' writes "
                     "such a file, with the edge base -> head_camera."

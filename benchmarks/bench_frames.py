@@ -44,9 +44,9 @@ def main() -> None:
     urdf = load_baxter_description().urdf_path
     positions = dict(zip(RIGHT_ARM_JOINTS, np.linspace(-0.5, 0.5, 7).tolist(), strict=True))
     graph = TransformGraph()
-    robot = RobotFrames(urdf)
-    robot.attach(graph, positions)
     kinematics = BaxterKinematics(urdf)
+    robot = RobotFrames(kinematics)
+    robot.attach(graph, positions)
     T_graph = graph.T("base", GRIPPER_FRAME)
     T_pin = kinematics.frame_transform(positions, GRIPPER_FRAME)
     assert np.allclose(T_graph, T_pin, atol=1e-12), "the graph and pinocchio disagree"

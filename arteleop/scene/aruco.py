@@ -19,7 +19,7 @@ from pybullet_utils.bullet_client import BulletClient
 
 from arteleop.errors import ConfigurationError
 from arteleop.scene.camera_config import CameraIntrinsics
-from arteleop.transforms import make_transform, matrices_to_quats, quat_wxyz_to_xyzw
+from arteleop.transforms import make_transform, quat_wxyz_to_xyzw, transform_to_pose
 
 _TEXTURE_PX = 64
 """Texture pixels per marker cell: enough that the drawn edges are the renderer's, not the
@@ -105,9 +105,10 @@ class MarkerBody:
 
     def place(self, T_base_marker: ArrayLike) -> None:
         """Put the marker's frame at ``T_base_marker`` (4x4, base frame, m)."""
-        T = np.asarray(T_base_marker, dtype=np.float64)
-        quat = quat_wxyz_to_xyzw(matrices_to_quats(T[:3, :3]))
-        self._client.resetBasePositionAndOrientation(self.body_id, T[:3, 3].tolist(), quat.tolist())
+        position, quat_wxyz = transform_to_pose(T_base_marker)
+        self._client.resetBasePositionAndOrientation(
+            self.body_id, position.tolist(), quat_wxyz_to_xyzw(quat_wxyz).tolist()
+        )
 
     def remove(self) -> None:
         self._client.removeBody(self.body_id)

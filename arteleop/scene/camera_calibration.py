@@ -287,11 +287,7 @@ def solve_hand_eye(
         )  # fmt: skip
         T_base_camera = make_transform(R, t.ravel())
         T_camera_base = invert_transform(T_base_camera)
-        # The board's mounting, for the reprojection check: the mean over the sightings.
-        T_gripper_marker = mean_transform(
-            [invert_transform(Tg) @ T_base_camera @ Tm
-             for Tg, Tm in zip(data.T_base_gripper, T_camera_marker, strict=True)]
-        ).T  # fmt: skip
+        T_gripper_marker = _board_mounting(data, T_base_camera)  # for the reprojection check
     else:
         # T_camera_marker = T_camera_base T_base_gripper T_gripper_marker is OpenCV's
         # T_cam_world = T_cam_gripper T_gripper_base T_base_world with the robot's base in the
@@ -303,12 +299,10 @@ def solve_hand_eye(
         T_camera_base = make_transform(R_gc, t_gc.ravel())
         T_gripper_marker = invert_transform(make_transform(R_bw, t_bw.ravel()))
         T_base_camera = invert_transform(T_camera_base)
-    predicted = [
-        intrinsics.project(transform_points(T_camera_base @ Tg @ T_gripper_marker, board.corners_m))
-        for Tg in data.T_base_gripper
-    ]
-    error = float(np.sqrt(np.mean(np.sum((np.array(predicted) - data.corners_px) ** 2, axis=-1))))
-    return CameraCalibration(method, T_base_camera, None, len(data.T_base_gripper), error)
+    residuals = _corner_residuals(data, T_camera_base, T_gripper_marker, board, intrinsics)
+    return CameraCalibration(
+        method, T_base_camera, None, len(data.T_base_gripper), _rms_px(residuals)
+    )
 
 
 def refine_hand_eye(
@@ -329,11 +323,7 @@ def refine_hand_eye(
     residuals' variance.
     """
     T_camera_base = invert_transform(initial.T_base_camera)
-    T_gripper_marker = mean_transform(
-        [invert_transform(Tg) @ initial.T_base_camera @ Tm
-         for Tg, Tm in zip(data.T_base_gripper, data.T_camera_marker, strict=True)]
-    ).T  # fmt: skip
-    corners = data.corners_px.reshape(-1, 2)
+    T_gripper_marker = _board_mounting(data, initial.T_base_camera)
 
     def poses(x: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         return (
@@ -342,12 +332,7 @@ def refine_hand_eye(
         )
 
     def residuals(x: NDArray[np.float64]) -> NDArray[np.float64]:
-        T_cb, T_gm = poses(x)
-        predicted = [
-            intrinsics.project(transform_points(T_cb @ Tg @ T_gm, board.corners_m))
-            for Tg in data.T_base_gripper
-        ]
-        return (np.concatenate(predicted) - corners).ravel()
+        return _corner_residuals(data, *poses(x), board, intrinsics).ravel()
 
     fit = least_squares(residuals, np.zeros(12), loss="cauchy", f_scale=outlier_px)
     T_cb, _ = poses(fit.x)
@@ -365,7 +350,7 @@ def refine_hand_eye(
         Ad = pin.SE3(T_base_camera).action
         covariance = Ad @ cov_x @ Ad.T
         covariance = (covariance + covariance.T) / 2
-    rms = float(np.sqrt(np.mean(np.sum(residuals(fit.x).reshape(-1, 2) ** 2, axis=1))))
+    rms = _rms_px(fit.fun.reshape(-1, 2))  # the residuals at the solution
     return CameraCalibration(
         f"{initial.method} + refined", T_base_camera, covariance, len(data.T_base_gripper), rms
     )
@@ -392,6 +377,34 @@ def calibration_errors(
         float(np.median(px)),
         float(np.median(mm)),
     )
+
+
+def _board_mounting(data: HandEyeData, T_base_camera: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``T_gripper_marker`` given the camera's pose: the mean over the sightings."""
+    return mean_transform(
+        [invert_transform(Tg) @ T_base_camera @ Tm
+         for Tg, Tm in zip(data.T_base_gripper, data.T_camera_marker, strict=True)]
+    ).T  # fmt: skip
+
+
+def _corner_residuals(
+    data: HandEyeData,
+    T_camera_base: NDArray[np.float64],
+    T_gripper_marker: NDArray[np.float64],
+    board: ArucoMarker,
+    intrinsics: CameraIntrinsics,
+) -> NDArray[np.float64]:
+    """(N * 4, 2) corners predicted through the two transforms minus those detected (px)."""
+    predicted = [
+        intrinsics.project(transform_points(T_camera_base @ Tg @ T_gripper_marker, board.corners_m))
+        for Tg in data.T_base_gripper
+    ]
+    return np.concatenate(predicted) - data.corners_px.reshape(-1, 2)
+
+
+def _rms_px(residuals: NDArray[np.float64]) -> float:
+    """RMS length of (N, 2) pixel residuals."""
+    return float(np.sqrt(np.mean(np.sum(residuals**2, axis=1))))
 
 
 def _facing(towards: NDArray[np.float64]) -> NDArray[np.float64]:

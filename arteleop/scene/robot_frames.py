@@ -1,13 +1,12 @@
-"""A robot's links as frames of a :class:`TransformGraph`, from its URDF through pinocchio."""
+"""A robot's links as frames of a :class:`TransformGraph`, from its pinocchio model."""
 
 from __future__ import annotations
 
 from collections.abc import Mapping
-from pathlib import Path
 
 import pinocchio as pin
 
-from arteleop.errors import ConfigurationError
+from arteleop.robot import BaxterKinematics
 from arteleop.scene.transform_graph import EdgeKind, TransformGraph
 
 
@@ -16,8 +15,9 @@ class RobotFrames:
     a ``fixed`` edge for a fixed joint, a ``dynamic`` one for a moving joint, whose transform
     :meth:`update` sets from joint positions (rad or m, by joint name)."""
 
-    def __init__(self, urdf_path: Path) -> None:
-        self.model = pin.buildModelFromUrdf(str(urdf_path))
+    def __init__(self, kinematics: BaxterKinematics) -> None:
+        self._kinematics = kinematics
+        self.model = kinematics.model
         self._data = self.model.createData()
         frames = self.model.frames
         # (parent link, child link, moving) per joint: a link's frame hangs off the frame of the
@@ -36,10 +36,6 @@ class RobotFrames:
             moving = joint.type == pin.FrameType.JOINT
             self.links.append((frames[parent].name, frame.name, moving))
             self._ids.append((parent, i))
-        self._q_index = {
-            name: self.model.joints[self.model.getJointId(name)].idx_q
-            for name in self.model.names[1:]
-        }
 
     def attach(self, graph: TransformGraph, positions: Mapping[str, float] | None = None) -> None:
         """Add every link to ``graph``, the moving joints at ``positions`` (0 if not named)."""
@@ -52,13 +48,7 @@ class RobotFrames:
     def _write(
         self, graph: TransformGraph, positions: Mapping[str, float], everything: bool
     ) -> None:
-        q = pin.neutral(self.model)
-        for name, value in positions.items():
-            if name not in self._q_index:
-                raise ConfigurationError(
-                    f"unknown joint '{name}'; the robot's moving joints: {list(self._q_index)}"
-                )
-            q[self._q_index[name]] = value
+        q = self._kinematics.configuration(positions)
         pin.framesForwardKinematics(self.model, self._data, q)
         oMf = self._data.oMf
         for (parent, child, moving), (i, j) in zip(self.links, self._ids, strict=True):

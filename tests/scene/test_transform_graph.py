@@ -7,7 +7,7 @@ import pinocchio as pin
 import pytest
 from scipy.spatial.transform import Rotation
 
-from arteleop.errors import FrameGraphError
+from arteleop.errors import ConfigurationError, FrameGraphError
 from arteleop.robot import GRIPPER_FRAME, RIGHT_ARM_JOINTS
 from arteleop.scene import (
     EdgeKind,
@@ -227,7 +227,7 @@ def test_robot_links_match_the_simulator(site: RemoteSite) -> None:
     q = rng.uniform(limits.lower, limits.upper)
     positions = dict(zip(RIGHT_ARM_JOINTS, q.tolist(), strict=True))
     site.robot.set_joint_positions(positions)
-    robot = RobotFrames(site.robot.urdf_path)
+    robot = RobotFrames(site.kinematics)
     graph = TransformGraph()
     robot.attach(graph)
     robot.update(graph, positions)
@@ -235,5 +235,5 @@ def test_robot_links_match_the_simulator(site: RemoteSite) -> None:
     np.testing.assert_allclose(graph.T("base", GRIPPER_FRAME), T_pybullet, atol=1e-6)
     kinds = {e.kind for e in graph.edges() if e.child == "right_upper_shoulder"}
     assert kinds == {EdgeKind.DYNAMIC}
-    with pytest.raises(Exception, match=r"unknown joint 'right_s9'"):
+    with pytest.raises(ConfigurationError, match=r"Unknown joint 'right_s9'. Baxter's movable"):
         robot.update(graph, {"right_s9": 0.0})
