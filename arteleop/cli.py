@@ -51,7 +51,7 @@ class CameraSize:
     camera's pose as the system uses it, instead of --camera-offset-*"""
 
     def camera_config(self, **overrides: Any) -> HeadCameraConfig:
-        from arteleop.scene import HeadCameraConfig, TransformGraph
+        from arteleop.scene import BASE_FRAME, CAMERA_FRAME, HeadCameraConfig, TransformGraph
 
         registration: dict[str, Any] = {
             "registration_offset_mm": self.camera_offset_mm,
@@ -64,7 +64,7 @@ class CameraSize:
                 )
             graph = TransformGraph.load(self.camera_graph)  # its errors name the file
             try:
-                T = graph.T("base", "head_camera")
+                T = graph.T(BASE_FRAME, CAMERA_FRAME)
             except FrameGraphError as err:
                 raise FrameGraphError(
                     f"--camera-graph {self.camera_graph}: {err}. 'arteleop calibrate' writes "
@@ -138,19 +138,21 @@ class CalibrateCommand(CameraSize):
     """the closed-form hand-eye estimate that starts the refinement written to --out; 'best' is
     the one with the lowest reprojection error (which needs no ground truth)"""
     out: Path = Path("calibration.json")
-    """transform graph file (JSON) to write: the edge base -> head_camera, kind calibration"""
+    """transform graph file (JSON) to write: the site's frames (the robot's links at rest, the
+    table, the markers) and the camera's, joined to base by an edge of kind calibration"""
 
 
 def calibrate(cmd: CalibrateCommand) -> int:
     import numpy as np
 
     from arteleop.scene import (
+        BASE_FRAME,
+        CAMERA_FRAME,
         HAND_EYE_METHODS,
         CalibrationConfig,
         EdgeKind,
         RemoteSite,
         SiteConfig,
-        TransformGraph,
         calibrate_with_table_marker,
         calibration_errors,
         collect_hand_eye,
@@ -166,6 +168,7 @@ def calibrate(cmd: CalibrateCommand) -> int:
         T_true = site.camera.T_base_camera
         registered = site.camera.registered.T_base_camera
         intrinsics = site.camera.intrinsics
+        graph = site.frames.graph  # the robot at rest, the table, the markers, the camera
     closed_form = [
         solve_hand_eye(data, method, config.board, intrinsics) for method in HAND_EYE_METHODS
     ]
@@ -194,12 +197,11 @@ def calibrate(cmd: CalibrateCommand) -> int:
             f"| {r.method} | {r.poses} | {e.error_mm:.1f} | {e.error_deg:.2f} "
             f"| {r.reprojection_error_px:.2f} | {e.colocation_px:.1f} | {e.colocation_mm:.1f} |"
         )
-    graph = TransformGraph()
-    graph.set("base", "head_camera", chosen.transform, EdgeKind.CALIBRATION)
+    graph.set(BASE_FRAME, CAMERA_FRAME, chosen.transform, EdgeKind.CALIBRATION)
     graph.save(cmd.out)
     print(
-        f"\nwrote {cmd.out}: base -> head_camera from {chosen.method} (co-location is measured "
-        "at the hand-eye poses' gripper positions)"
+        f"\nwrote {cmd.out}: the site's frames, with base -> head_camera from {chosen.method} "
+        "(co-location is measured at the hand-eye poses' gripper positions)"
     )
     return 0
 

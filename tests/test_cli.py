@@ -87,6 +87,12 @@ def test_calibrate_prints_every_method_and_writes_the_graph(
     graph = TransformGraph.load(out)
     edge = graph.edge("base", "head_camera")
     assert edge.kind is EdgeKind.CALIBRATION and edge.transform.covariance is not None
+    # The site's other frames come with it: the robot at rest, the table and the markers.
+    from arteleop.robot import GRIPPER_FRAME
+    from arteleop.scene import Workspace
+
+    assert {GRIPPER_FRAME, "table", "start_marker"} <= set(graph.frames)
+    np.testing.assert_array_equal(graph.T("base", "target_marker")[:3, 3], Workspace().target_m)
     # The file holds the refined estimate that the last row scores.
     refined_mm = float(rows[-1][2])
     assert refined_mm < 20.0

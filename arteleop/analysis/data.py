@@ -21,7 +21,8 @@ QUESTIONNAIRE_ITEMS = ("presence", "embodiment", "ease")
 TRIAL_COLUMNS = (
     "participant", "phase", "trial_index", "modality", "position", "seed", "outcome",
     "completion_time_s", "placement_error_m", "placement_error_true_m", "normalized_jerk_xy",
-    "grasp_attempts", "hand_path_length_m", "latency_median_ms", "trajectory_file",
+    "grasp_attempts", "hand_path_length_m", "latency_median_ms", "colocation_error_px",
+    "colocation_error_m", "trajectory_file",
 )  # fmt: skip
 TRIAL_REQUIRED = (
     "participant", "phase", "modality", "position", "outcome", "completion_time_s",
@@ -32,7 +33,7 @@ SUCCESS_ONLY = ("completion_time_s", "placement_error_m")
 TRIAL_NUMERIC = (
     "trial_index", "position", "seed", "completion_time_s", "placement_error_m",
     "placement_error_true_m", "normalized_jerk_xy", "grasp_attempts", "hand_path_length_m",
-    "latency_median_ms",
+    "latency_median_ms", "colocation_error_px", "colocation_error_m",
 )  # fmt: skip
 PARTICIPANT_COLUMNS = (
     "participant", "age", "gender", "handedness", "avr_experience", "avr_hours",

@@ -35,6 +35,15 @@ from arteleop.scene.depth_noise import DepthNoiseConfig, apply_depth_noise
 from arteleop.scene.pointcloud import PointCloud, depth_to_camera_points, frame_to_point_cloud
 from arteleop.scene.robot_frames import RobotFrames
 from arteleop.scene.site import RemoteSite, SiteConfig, reach_problem
+from arteleop.scene.site_frames import (
+    BASE_FRAME,
+    BOWL_FRAME,
+    CAMERA_FRAME,
+    START_MARKER_FRAME,
+    TABLE_FRAME,
+    TARGET_MARKER_FRAME,
+    SiteFrames,
+)
 from arteleop.scene.site_state import SiteState
 from arteleop.scene.snapshot import SceneSnapshot, write_snapshot
 from arteleop.scene.transform_graph import Edge, EdgeKind, TransformGraph
@@ -47,8 +56,14 @@ from arteleop.scene.uncertain_transform import (
 from arteleop.scene.workspace import Box, Workspace
 
 __all__ = [
+    "BASE_FRAME",
+    "BOWL_FRAME",
+    "CAMERA_FRAME",
     "GRASP_DEPTH_M",
     "HAND_EYE_METHODS",
+    "START_MARKER_FRAME",
+    "TABLE_FRAME",
+    "TARGET_MARKER_FRAME",
     "ArucoMarker",
     "BowlSight",
     "BowlSightConfig",
@@ -80,6 +95,7 @@ __all__ = [
     "RobotFrames",
     "SceneSnapshot",
     "SiteConfig",
+    "SiteFrames",
     "SiteState",
     "TransformGraph",
     "UncertainTransform",

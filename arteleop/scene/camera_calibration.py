@@ -28,6 +28,7 @@ from arteleop.errors import CalibrationError, ConfigurationError
 from arteleop.robot import GRIPPER_FRAME, RIGHT_ARM_JOINTS
 from arteleop.scene.aruco import ArucoMarker, MarkerBody, detect_marker
 from arteleop.scene.camera_config import CameraIntrinsics
+from arteleop.scene.camera_geometry import colocation_errors
 from arteleop.scene.site import RemoteSite
 from arteleop.scene.uncertain_transform import UncertainTransform, mean_transform
 from arteleop.transforms import invert_transform, make_transform, transform_points
@@ -366,16 +367,12 @@ def calibration_errors(
     the given gripper positions (base frame, m)."""
     error = invert_transform(T_base_camera_true) @ T_base_camera
     angle = Rotation.from_matrix(error[:3, :3]).magnitude()
-    points = np.asarray(gripper_positions_m, dtype=np.float64).reshape(-1, 3)
-    true_cam = transform_points(invert_transform(T_base_camera_true), points)
-    ghost_cam = transform_points(invert_transform(T_base_camera), points)
-    px = np.linalg.norm(intrinsics.project(ghost_cam) - intrinsics.project(true_cam), axis=1)
-    mm = np.linalg.norm(ghost_cam - true_cam, axis=1) * 1000
+    px, m = colocation_errors(T_base_camera_true, T_base_camera, intrinsics, gripper_positions_m)
     return CalibrationErrors(
         float(np.linalg.norm(error[:3, 3]) * 1000),
         float(np.degrees(angle)),
         float(np.median(px)),
-        float(np.median(mm)),
+        float(np.median(m) * 1000),
     )
 
 

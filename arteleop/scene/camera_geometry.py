@@ -69,3 +69,20 @@ class CameraGeometry:
             & (margin_px <= uv[:, 0]) & (uv[:, 0] <= c.width_px - 1 - margin_px)
             & (margin_px <= uv[:, 1]) & (uv[:, 1] <= c.height_px - 1 - margin_px)
         )  # fmt: skip
+
+
+def colocation_errors(
+    T_base_camera_true: NDArray[np.float64],
+    T_base_camera_registered: NDArray[np.float64],
+    intrinsics: CameraIntrinsics,
+    points_base_m: ArrayLike,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """How far a virtual object drawn at each of (N, 3) base-frame points lands from the real
+    one seen by the camera, when the system places the camera's view with the registered pose
+    (4x4, m) instead of the true one: (N,) distances in the image (px) and (N,) in the camera's
+    frame (m)."""
+    points = np.asarray(points_base_m, dtype=np.float64).reshape(-1, 3)
+    real = transform_points(invert_transform(T_base_camera_true), points)
+    drawn = transform_points(invert_transform(T_base_camera_registered), points)
+    px = np.linalg.norm(intrinsics.project(drawn) - intrinsics.project(real), axis=1)
+    return px, np.linalg.norm(drawn - real, axis=1)

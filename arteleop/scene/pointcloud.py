@@ -41,15 +41,19 @@ def depth_to_camera_points(
     return np.stack([(u - K.cx_px) / K.fx_px * z, (v - K.cy_px) / K.fy_px * z, z], axis=-1)
 
 
-def frame_to_point_cloud(frame: RGBDFrame, stride: int = 1) -> PointCloud:
+def frame_to_point_cloud(
+    frame: RGBDFrame, stride: int = 1, T_base_camera: NDArray[np.float64] | None = None
+) -> PointCloud:
     """Coloured point cloud of the valid pixels of ``frame``, in the base frame.
 
     ``stride`` keeps every stride-th row and column, to thin the cloud for display.
+    ``T_base_camera`` places it (4x4, m); by default the pose the frame was stamped with.
     """
     depth = frame.depth_m[::stride, ::stride]
     grid = depth_to_camera_points(depth, frame.intrinsics.strided(stride))
     valid = depth > 0
     rows, cols = np.nonzero(valid)
-    points = transform_points(frame.T_base_camera, grid[valid])
+    T = frame.T_base_camera if T_base_camera is None else T_base_camera
+    points = transform_points(T, grid[valid])
     colors = frame.rgb[::stride, ::stride][valid]
     return PointCloud(points, colors, np.column_stack([rows * stride, cols * stride]))

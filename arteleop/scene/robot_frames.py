@@ -8,6 +8,7 @@ import pinocchio as pin
 
 from arteleop.robot import BaxterKinematics
 from arteleop.scene.transform_graph import EdgeKind, TransformGraph
+from arteleop.scene.uncertain_transform import UncertainTransform
 
 
 class RobotFrames:
@@ -24,6 +25,7 @@ class RobotFrames:
         # joint that carries it, which hangs off the parent link's frame.
         self.links: list[tuple[str, str, bool]] = []
         self._ids: list[tuple[int, int]] = []
+        self._moving: dict[str, tuple[str, str, int, int]] = {}  # joint -> its edge, frame ids
         for i, frame in enumerate(frames):
             if frame.type != pin.FrameType.BODY or frame.parentFrame == i:
                 continue
@@ -36,22 +38,32 @@ class RobotFrames:
             moving = joint.type == pin.FrameType.JOINT
             self.links.append((frames[parent].name, frame.name, moving))
             self._ids.append((parent, i))
+            if moving:
+                self._moving[joint.name] = (frames[parent].name, frame.name, parent, i)
 
     def attach(self, graph: TransformGraph, positions: Mapping[str, float] | None = None) -> None:
         """Add every link to ``graph``, the moving joints at ``positions`` (0 if not named)."""
-        self._write(graph, positions or {}, everything=True)
+        oMf = self._placements(positions or {})
+        for (parent, child, moving), (i, j) in zip(self.links, self._ids, strict=True):
+            T = UncertainTransform._trusted((oMf[i].inverse() * oMf[j]).homogeneous)
+            graph.set(parent, child, T, EdgeKind.DYNAMIC if moving else EdgeKind.FIXED)
 
     def update(self, graph: TransformGraph, positions: Mapping[str, float]) -> None:
-        """Set the moving joints' edges to ``positions`` (joint name -> rad or m)."""
-        self._write(graph, positions, everything=False)
+        """Set the edges of the joints named in ``positions`` (joint name -> rad or m); the
+        other joints keep theirs."""
+        oMf = self._placements(positions)
+        # A joint's edge depends on its own position only, so the joints not named (at 0 in
+        # the configuration) do not spoil the edges of those that are.
+        for name in positions:
+            edge = self._moving.get(name)
+            if edge is not None:
+                parent, child, i, j = edge
+                # Rigid by construction: the graph's checks would cost more than the kinematics.
+                T = UncertainTransform._trusted((oMf[i].inverse() * oMf[j]).homogeneous)
+                graph.set(parent, child, T, EdgeKind.DYNAMIC)
 
-    def _write(
-        self, graph: TransformGraph, positions: Mapping[str, float], everything: bool
-    ) -> None:
-        q = self._kinematics.configuration(positions)
-        pin.framesForwardKinematics(self.model, self._data, q)
-        oMf = self._data.oMf
-        for (parent, child, moving), (i, j) in zip(self.links, self._ids, strict=True):
-            if moving or everything:
-                T = (oMf[i].inverse() * oMf[j]).homogeneous
-                graph.set(parent, child, T, EdgeKind.DYNAMIC if moving else EdgeKind.FIXED)
+    def _placements(self, positions: Mapping[str, float]) -> pin.StdVec_SE3:
+        pin.framesForwardKinematics(
+            self.model, self._data, self._kinematics.configuration(positions)
+        )
+        return self._data.oMf

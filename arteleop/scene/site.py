@@ -18,6 +18,7 @@ from arteleop.errors import ConfigurationError, WorkspaceError
 from arteleop.lifetime import Closeable
 from arteleop.robot import (
     GRIPPER_FRAME,
+    HEAD_PAN_JOINT,
     REST_POSE,
     RIGHT_ARM_JOINTS,
     ArmCommand,
@@ -35,11 +36,17 @@ from arteleop.scene.bowl_sight import BowlSight, BowlSightConfig
 from arteleop.scene.bowl_tracking import BowlTrack
 from arteleop.scene.camera import HeadCamera, RGBDFrame
 from arteleop.scene.camera_config import HeadCameraConfig
+from arteleop.scene.camera_geometry import colocation_errors
 from arteleop.scene.render_process import RenderProcess
 from arteleop.scene.render_world import RenderWorld, SceneState
+from arteleop.scene.site_frames import BASE_FRAME, BOWL_FRAME, SiteFrames
 from arteleop.scene.site_state import SiteState
 from arteleop.scene.workspace import Workspace
-from arteleop.transforms import invert_transform, pybullet_pose_to_transform, transform_points
+from arteleop.transforms import (
+    invert_transform,
+    make_transform,
+    pybullet_pose_to_transform,
+)
 
 RAY_OVERSHOOT_M = 0.02
 """:meth:`RemoteSite.sight_bowl`'s rays run this far past their surface point (m)."""
@@ -170,11 +177,15 @@ class RemoteSite(Closeable):
             self._client.disconnect()
             raise
         self._sight = BowlSight(ws.bowl, config.bowl_sight)
-        registered, true = self.camera.registered.T_base_camera, self.camera.T_base_camera
-        # T_registered_true in the base frame: what the registration does to a seen point.
-        self._registration_error = (
-            None if np.array_equal(registered, true) else registered @ invert_transform(true)
+        self.frames = SiteFrames(
+            self.kinematics,
+            ws,
+            self.camera.registered.T_base_camera,
+            {HEAD_PAN_JOINT: 0.0, **config.rest_pose.as_dict()},
         )
+        """The remote system's frames: the point cloud, the tracked bowl and the AR layers are
+        placed through it, with the camera's registration."""
+        self._T_camera_base_true = invert_transform(self.camera.T_base_camera)
         self._steps = 0
         self._renderer: RenderProcess | None = None
         self._requested_s = 0.0
@@ -276,11 +287,24 @@ class RemoteSite(Closeable):
         results = self._client.rayTestBatch([eye.tolist()] * len(points), ends.tolist())
         hits = np.array([r[3] if r[0] >= 0 else (np.nan,) * 3 for r in results])
         track = self._sight.look(T_base_bowl, self.camera.geometry, hits, self.time_s)
-        if track.position_m is None or self._registration_error is None:
+        if track.position_m is None:
             return track
-        # Seen in the camera's frame, placed in the base frame through the registered pose.
-        seen = transform_points(self._registration_error, track.position_m[None])[0]
-        return replace(track, position_m=seen)
+        # Seen in the camera's frame, placed in the base frame through the registration.
+        self.frames.set_bowl_seen(
+            self._T_camera_base_true @ make_transform(np.eye(3), track.position_m)
+        )
+        return replace(track, position_m=self.frames.T(BASE_FRAME, BOWL_FRAME)[:3, 3])
+
+    def colocation_errors(
+        self, points_base_m: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """How far virtual objects drawn at (N, 3) base-frame points land from the real ones in
+        the camera's view, the view placed through :attr:`frames`: (N,) in the image (px) and
+        (N,) in space (m). Measured against the camera's true pose (only errors use it)."""
+        camera = self.camera
+        return colocation_errors(
+            camera.T_base_camera, self.frames.T_base_camera, camera.intrinsics, points_base_m
+        )
 
     def capture(self, with_segmentation: bool = False) -> RGBDFrame:
         """One head-camera frame of the current state, stamped with :attr:`time_s`."""

@@ -161,7 +161,7 @@ class StudyConfig:
         orders: With ``order = "listed"``, the sequences of modality names, each naming every
             modality once (e.g. a published study's own square).
         trials_per_modality: Experimental trials per modality: 1, as in the original and as
-            the data format (version 1) records.
+            the data format (version 2) records.
         timeout_s: Simulated time after which an experimental trial ends as a timeout (s).
         delay_ms: One-way network delay between operator and robot (ms).
         camera_offset_mm, camera_offset_deg: A mis-registered head camera in every trial: the
@@ -223,7 +223,7 @@ class StudyConfig:
         if self.trials_per_modality != 1:
             raise StudyDefinitionError(
                 f"trials_per_modality = {self.trials_per_modality}: the study data format "
-                "(docs/data-format.md, version 1) holds one experimental trial per participant "
+                "(docs/data-format.md, version 2) holds one experimental trial per participant "
                 "and modality, so 1 is the only value it can record."
             )
         _check_timeout("timeout_s", self.timeout_s)

@@ -130,7 +130,9 @@ def replay(
         k = int(np.searchsorted(times, frame_time + 1e-9)) - 1
         site.pose(q[k], closure[k], bowl[k], times[k])
         state = site.observe()
-        frame = display_frame(state, site.sight_bowl(), site.config.workspace, cues, engaged[k])
+        frame = display_frame(
+            state, site.sight_bowl(), site.frames, site.config.workspace, cues, engaged[k]
+        )
         cloud = frame_to_point_cloud(site.capture(), stride=CLOUD_STRIDE)
         if speed > 0:
             time.sleep(max(0.0, start + frame_time / speed - time.perf_counter()))

@@ -209,7 +209,7 @@ _COMMENTS = {
     "modalities": "AR modalities compared: none, manipulation, embodiment, task, full",
     "order": "williams (balanced Latin square), cyclic, random (seeded) or listed (in orders)",
     "orders": 'with order = "listed": the sequences, e.g. [["none", "full"], ["full", "none"]]',
-    "trials_per_modality": "experimental trials per modality (data format version 1: 1)",
+    "trials_per_modality": "experimental trials per modality (data format version 2: 1)",
     "timeout_s": "simulated time after which a trial ends as a timeout (s)",
     "delay_ms": "one-way network delay between operator and robot (ms)",
     "camera_offset_mm": "error of the head camera's registration: translation (mm, camera frame)",

@@ -28,9 +28,12 @@ from arteleop.robot import (
     RIGHT_FINGER_JOINTS,
 )
 from arteleop.scene import (
+    BASE_FRAME,
+    TARGET_MARKER_FRAME,
     BowlTrack,
     RemoteSite,
     RGBDFrame,
+    SiteFrames,
     SiteState,
     Workspace,
     bowl_mesh,
@@ -44,22 +47,29 @@ CLOUD_STRIDE = 2
 
 
 def display_frame(
-    state: SiteState, bowl: BowlTrack, workspace: Workspace, cues: ArCues, engaged: bool
+    state: SiteState,
+    bowl: BowlTrack,
+    frames: SiteFrames,
+    workspace: Workspace,
+    cues: ArCues,
+    engaged: bool,
 ) -> DisplayFrame:
-    """The display's content for a site state (``GRIPPER_FRAME`` observed) and the bowl's
-    track at that instant, without a cloud."""
+    """The display's content for a site state and the bowl's track at that instant, without a
+    cloud. Placed through the site's frames: the eye at the camera's registration, the ghost at
+    the arm's encoder readings, the target mesh at the target marker."""
+    frames.set_joints(dict(zip(RIGHT_ARM_JOINTS, state.arm_q_rad.tolist(), strict=True)))
     grasp = workspace.bowl.grasp_offset_m()
     return DisplayFrame(
         time_s=state.time_s,
-        T_base_camera=state.camera.T_base_camera,
+        T_base_camera=frames.T_base_camera,
         arm_q_rad=state.arm_q_rad,
-        T_base_gripper=state.link(GRIPPER_FRAME),
+        T_base_gripper=frames.T(BASE_FRAME, GRIPPER_FRAME),
         gripper_closure=state.gripper_closure,
         gripper_in_camera=state.camera.sees(state.gripper_m),
         bowl_m=bowl.position_m if bowl.found else None,
         grasp_radius_m=float(np.hypot(grasp[0], grasp[1])),
         grasp_height_m=float(grasp[2]),
-        target_m=workspace.target_m,
+        target_m=frames.T(BASE_FRAME, TARGET_MARKER_FRAME)[:3, 3],
         cues=cues,
         engaged=engaged,
     )
@@ -123,6 +133,10 @@ class DisplayFeed:
         self._history: deque[DisplayFrame] = deque(maxlen=64)
         self._requested: tuple[float, float, DisplayFrame] | None = None  # wall, applied, frame
         self._owed = False
+        self.colocation_px: list[float] = []
+        """Per camera tick, how far the ghost's gripper lands from the real one in the image."""
+        self.colocation_m: list[float] = []
+        """The same in space (m)."""
         self.frames_skipped = 0
         """Real time: camera ticks dropped because two came while one frame rendered."""
 
@@ -132,8 +146,13 @@ class DisplayFeed:
             with self._timer.stage("tracking"):
                 self._track = self._site.sight_bowl()
         self._ticks += 1
-        frame = display_frame(state, self._track, self._workspace, self._cues, engaged)
+        frame = display_frame(
+            state, self._track, self._site.frames, self._workspace, self._cues, engaged
+        )
         self._history.append(frame)
+        px, m = self._site.colocation_errors(frame.T_base_gripper[None, :3, 3])
+        self.colocation_px.append(float(px[0]))
+        self.colocation_m.append(float(m[0]))
         if self._background:
             if not self._site.frame_pending:
                 self._request(frame, applied_sample_time_s)
@@ -158,7 +177,9 @@ class DisplayFeed:
             last = self._requested
             if last is None or state.time_s > last[2].time_s:
                 track = self._track or self._site.sight_bowl()
-                owed = display_frame(state, track, self._workspace, self._cues, engaged)
+                owed = display_frame(
+                    state, track, self._site.frames, self._workspace, self._cues, engaged
+                )
                 self._request(owed, applied_sample_time_s)
         if rgbd is None or finished is None:
             return
@@ -182,7 +203,8 @@ class DisplayFeed:
     def _show(self, frame: DisplayFrame, rgbd: RGBDFrame, applied_sample_time_s: float) -> None:
         """Point cloud and display update of a frame showing samples up to ``applied``."""
         with self._timer.stage("point_cloud"):
-            cloud = frame_to_point_cloud(rgbd, stride=CLOUD_STRIDE)
+            # Placed with the frame's camera pose: the graph's, as the layers are.
+            cloud = frame_to_point_cloud(rgbd, CLOUD_STRIDE, frame.T_base_camera)
         if self._display is not None:
             with self._timer.stage("display"):
                 self._display.show(

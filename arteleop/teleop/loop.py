@@ -269,6 +269,8 @@ class _Loop:
             hand_m=np.array(self.hand_p).reshape(-1, 3),
             latency_sim_ms=self.latency.sim_ms,
             latency_wall_ms=self.latency.wall_ms,
+            colocation_px=np.array(self.feed.colocation_px),
+            colocation_m=np.array(self.feed.colocation_m),
             stages=self.timer.summary(),
             counts=counts,
             trace=None if self.trace is None else self.trace.columns(),

@@ -151,6 +151,10 @@ class TrialResult:
         hand_m: (N, 3) the reconstructed hand, torso frame (m).
         latency_sim_ms: (frames,) see above.
         latency_wall_ms: (frames,) see above.
+        colocation_px: (camera ticks,) how far the ghost's gripper lands from the real gripper
+            in the camera's image, the view placed with the camera's registration (px): 0 for
+            a perfect one (``HeadCameraConfig.registration_offset_*``).
+        colocation_m: (camera ticks,) the same in space, in the camera's frame (m).
         stages: Service time and latency per stage of the loop.
         counts: Samples sent, lost and late; samples the wearable lost; unreachable IK ticks;
             held samples; camera frames skipped; tracker renders skipped.
@@ -173,12 +177,17 @@ class TrialResult:
     hand_m: NDArray[np.float64]
     latency_sim_ms: NDArray[np.float64]
     latency_wall_ms: NDArray[np.float64]
+    colocation_px: NDArray[np.float64]
+    colocation_m: NDArray[np.float64]
     stages: list[StageStats]
     counts: dict[str, int]
     trace: dict[str, NDArray[np.float64]] | None = None
 
     def __post_init__(self) -> None:
-        for name in ("hand_time_s", "hand_m", "latency_sim_ms", "latency_wall_ms"):
+        for name in (
+            "hand_time_s", "hand_m", "latency_sim_ms", "latency_wall_ms", "colocation_px",
+            "colocation_m",
+        ):  # fmt: skip
             object.__setattr__(self, name, frozen_array(getattr(self, name)))
         if self.trace is not None:
             object.__setattr__(self, "trace", {k: frozen_array(v) for k, v in self.trace.items()})
@@ -210,5 +219,11 @@ class TrialResult:
             "normalized_jerk_xy": jerk,
             "grasp_attempts": self.grasp_attempts,
             "hand_path_length_m": length,
-            "latency_median_ms": float(np.median(latency)) if len(latency) else float("nan"),
+            "latency_median_ms": _median(latency),
+            "colocation_error_px": _median(self.colocation_px),
+            "colocation_error_m": _median(self.colocation_m),
         }
+
+
+def _median(values: NDArray[np.float64]) -> float:
+    return float(np.median(values)) if len(values) else float("nan")

@@ -6,8 +6,20 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from arteleop.ar_features import MODALITIES
 from arteleop.errors import ConfigurationError
-from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig, frame_to_point_cloud
+from arteleop.robot import GRIPPER_FRAME
+from arteleop.scene import (
+    BASE_FRAME,
+    BOWL_FRAME,
+    CAMERA_FRAME,
+    HeadCameraConfig,
+    RemoteSite,
+    SiteConfig,
+    frame_to_point_cloud,
+)
+from arteleop.teleop import TrialConfig, display_frame, run_trial, trial_operator
+from arteleop.transforms import transform_points
 
 
 def test_a_translated_registration_moves_everything_seen_by_that_translation(
@@ -31,6 +43,65 @@ def test_a_translated_registration_moves_everything_seen_by_that_translation(
         state = off.observe()
         np.testing.assert_allclose(state.camera.T_base_camera[:3, 3], truth[:3, 3] + shift)
         np.testing.assert_array_equal(state.T_base_bowl, plain.observe().T_base_bowl)
+
+
+def test_the_display_is_placed_through_the_site_frames(site_config: SiteConfig) -> None:
+    """The eye and the cloud at the graph's calibration edge, the bowl reached through it, the
+    ghost's gripper at the encoders' forward kinematics, the target at its marker."""
+    camera = replace(site_config.camera, registration_offset_deg=(1.0, -2.0, 0.5))
+    with RemoteSite(replace(site_config, camera=camera)) as site:
+        registered = site.camera.registered.T_base_camera
+        graph = site.frames.graph
+        assert graph.edge(BASE_FRAME, CAMERA_FRAME).kind == "calibration"
+        np.testing.assert_array_equal(graph.T(BASE_FRAME, CAMERA_FRAME), registered)
+        state = site.observe()
+        track = site.sight_bowl()
+        assert graph.path(BASE_FRAME, BOWL_FRAME) == [BASE_FRAME, CAMERA_FRAME, BOWL_FRAME]
+        seen_by_camera = transform_points(
+            np.linalg.inv(site.camera.T_base_camera), state.bowl_m[None]
+        )
+        np.testing.assert_allclose(
+            track.position_m, transform_points(registered, seen_by_camera)[0], atol=2e-3
+        )  # the tracker's estimate is within millimetres of the truth
+        frame = display_frame(
+            state, track, site.frames, site.config.workspace, MODALITIES["full"], True
+        )
+        np.testing.assert_array_equal(frame.T_base_camera, registered)
+        np.testing.assert_allclose(frame.T_base_gripper, state.link(GRIPPER_FRAME), atol=1e-6)
+        np.testing.assert_array_equal(frame.target_m, site.config.workspace.target_m)
+
+
+def test_colocation_errors_of_a_translated_registration(site_config: SiteConfig) -> None:
+    """Offset t in the camera's frame: a point at camera coordinates p is drawn at p - t, so
+    the error is |t| in space and the pinhole's f (p - t) / (z - t_z) - f p / z in the image."""
+    t = np.array([0.012, -0.004, 0.009])
+    camera = replace(site_config.camera, registration_offset_mm=tuple(t * 1000))
+    with RemoteSite(replace(site_config, camera=camera)) as site:
+        points = np.array([[0.7, -0.3, -0.1], [0.6, 0.0, 0.1]])
+        px, m = site.colocation_errors(points)
+        p = transform_points(np.linalg.inv(site.camera.T_base_camera), points)
+        K = site.camera.intrinsics
+        f = np.array([K.fx_px, K.fy_px])
+        expected = np.linalg.norm(
+            f * (p[:, :2] - t[:2]) / (p[:, 2:] - t[2]) - f * p[:, :2] / p[:, 2:], axis=1
+        )
+        np.testing.assert_allclose(m, np.linalg.norm(t), rtol=1e-12)
+        np.testing.assert_allclose(px, expected, rtol=1e-9)
+
+
+def test_a_trial_records_the_colocation_error_of_its_registration(
+    site_config: SiteConfig,
+) -> None:
+    offset_mm = (15.0, 0.0, 0.0)
+    camera = replace(site_config.camera, registration_offset_mm=offset_mm)
+    config = TrialConfig(
+        modality="full", seed=3, site=replace(site_config, camera=camera), timeout_s=2.0
+    )
+    with RemoteSite(config.site) as site:
+        row = run_trial(trial_operator(site, config), config, site).to_row()
+    assert row["colocation_error_m"] == pytest.approx(0.015, rel=1e-9)
+    # 15 mm sideways at about 1.3 m from a 57-degree, 640-pixel camera: some 9 px
+    assert 6.0 < row["colocation_error_px"] < 12.0
 
 
 def test_a_rotated_registration_turns_the_view_about_the_camera() -> None:

@@ -30,6 +30,7 @@ def test_full_ar_places_the_bowl_within_5_cm_in_5_of_6_trials(site_config: SiteC
         with RemoteSite(config.site) as site:
             result = run_trial(trial_operator(site, config), config, site)
         outcomes.append(result.outcome.value)
+        assert result.to_row()["colocation_error_px"] == 0.0  # a perfect registration
         errors.append(result.placement_error_true_m if result.placed else np.inf)
     within = sum(e <= 0.05 for e in errors)
     assert within >= 5, f"outcomes {outcomes}, errors (m) {np.round(errors, 3)}"
