@@ -26,7 +26,7 @@ from __future__ import annotations
 import hashlib
 import importlib.metadata
 import xml.etree.ElementTree as ET
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -174,6 +174,28 @@ def load_baxter_description(config: BaxterDescriptionConfig | None = None) -> Ba
     return BaxterDescription(urdf_path=urdf_path, source_urdf_path=source, share_dir=share)
 
 
+def _hide_visuals(root: ET.Element, links: Collection[str]) -> None:
+    for link in root.iter("link"):
+        if link.attrib.get("name") in links:
+            for visual in link.findall("visual"):
+                link.remove(visual)
+            # PyBullet draws a link's collision shape when it has no visual: leave a speck.
+            speck = ET.SubElement(ET.SubElement(link, "visual"), "geometry")
+            ET.SubElement(speck, "sphere", radius="0.0001")
+
+
+def hide_links(urdf_path: Path, links: Collection[str]) -> Path:
+    """A copy of ``urdf_path`` (one :func:`load_baxter_description` wrote) in which the named
+    links are not drawn (a 0.1 mm speck each); cached beside it."""
+    key = hashlib.sha256(f"{urdf_path.name}|{sorted(links)}".encode()).hexdigest()[:16]
+    out = urdf_path.with_name(f"{urdf_path.stem}-hidden-{key}.urdf")
+    if not out.is_file():
+        root = ET.parse(urdf_path).getroot()
+        _hide_visuals(root, links)
+        write_atomic(out, ET.tostring(root, encoding="unicode"))
+    return out
+
+
 def freeze_joints(description: BaxterDescription, positions_rad: Mapping[str, float]) -> Path:
     """A copy of ``description.urdf_path`` in which the named joints are fixed at the given
     positions (rad for revolute joints, m for prismatic ones); cached beside it.
@@ -225,13 +247,7 @@ def freeze_joints(description: BaxterDescription, positions_rad: Mapping[str, fl
 
 def _rewrite_urdf(source: Path, share: Path, config: BaxterDescriptionConfig, out: Path) -> str:
     root = ET.parse(source).getroot()
-    for link in root.iter("link"):
-        if link.attrib.get("name") in config.hidden_links:
-            for visual in link.findall("visual"):
-                link.remove(visual)
-            # PyBullet draws a link's collision shape when it has no visual: leave a speck.
-            speck = ET.SubElement(ET.SubElement(link, "visual"), "geometry")
-            ET.SubElement(speck, "sphere", radius="0.0001")
+    _hide_visuals(root, config.hidden_links)
     for link in root.findall("link"):
         if not link.attrib["name"].endswith(("_gripper_l_finger", "_gripper_r_finger")):
             continue

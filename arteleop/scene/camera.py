@@ -8,6 +8,7 @@ Depth images hold the z coordinate in the camera frame (m), 0 where there is no 
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -105,12 +106,12 @@ class HeadCamera:
 
     def __init__(
         self,
-        client: BulletClient,
+        render: Callable[[RenderRequest], RawImage],
         config: HeadCameraConfig,
         T_base_mount: NDArray[np.float64],
         seed: int,
     ) -> None:
-        self._client = client
+        self._render = render
         self.config = config
         self.intrinsics = config.intrinsics
         self.geometry = CameraGeometry(config, T_base_mount @ config.T_mount_camera())
@@ -134,8 +135,8 @@ class HeadCamera:
         )
 
     def capture(self, timestamp_s: float, with_segmentation: bool = False) -> RGBDFrame:
-        """Render one frame of the client's current state."""
-        return self.frame(render(self._client, self.request(with_segmentation)), timestamp_s)
+        """Render one frame of the scene's current state."""
+        return self.frame(self._render(self.request(with_segmentation)), timestamp_s)
 
     def frame(self, raw: RawImage, timestamp_s: float) -> RGBDFrame:
         """Turn a rendered image into a frame: metric depth, the sensor's noise and range."""

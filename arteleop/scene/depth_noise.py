@@ -52,12 +52,26 @@ def apply_depth_noise(
     rng: np.random.Generator,
 ) -> NDArray[np.float32]:
     """Return a noisy copy of ``depth_m`` (0 marks invalid pixels and stays 0)."""
+    # In place where it can be: a 640x480 frame passes through here 30 times a second, and the
+    # temporaries cost more than the arithmetic. The operations and their order are those of
+    # the plain formulas, so the numbers are the same to the bit (a test compares them).
     z = depth_m.astype(np.float64)
-    valid = z > 0
+    invalid = ~(z > 0)
     if config.enabled:
-        z = np.where(valid, z + rng.standard_normal(z.shape) * config.sigma_m(z), 0.0)
+        noisy = rng.standard_normal(z.shape)
+        noisy *= config.sigma_m(z)
+        noisy += z
+        noisy[invalid] = 0.0
+        z = noisy
     if config.quantize:
         bf = config.baseline_m * focal_px  # disparity (px) times depth (m)
-        disparity = np.round(bf / np.where(valid, z, 1.0) / config.subpixel) * config.subpixel
-        z = np.where(valid & (disparity > 0), bf / np.maximum(disparity, config.subpixel), 0.0)
+        disparity = np.where(invalid, 1.0, z)
+        np.divide(bf, disparity, out=disparity)
+        disparity /= config.subpixel
+        np.round(disparity, out=disparity)
+        disparity *= config.subpixel
+        invalid |= disparity <= 0
+        np.maximum(disparity, config.subpixel, out=disparity)
+        z = np.divide(bf, disparity, out=disparity)
+        z[invalid] = 0.0
     return z.astype(np.float32)

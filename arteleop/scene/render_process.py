@@ -21,7 +21,7 @@ from pathlib import Path
 
 from arteleop.errors import ArteleopError
 from arteleop.lifetime import Closeable
-from arteleop.scene.camera import RawImage, RenderRequest, render
+from arteleop.scene.camera import RawImage, RenderRequest
 from arteleop.scene.render_world import RenderWorld, SceneState
 from arteleop.scene.workspace import Workspace
 
@@ -35,7 +35,13 @@ class RenderProcessError(ArteleopError):
 class RenderProcess(Closeable):
     """A child process holding a :class:`RenderWorld`; one frame in flight at a time."""
 
-    def __init__(self, robot_urdf: Path, ws: Workspace, body_ids: tuple[int, ...]) -> None:
+    def __init__(
+        self,
+        robot_urdf: Path,
+        ws: Workspace,
+        body_ids: tuple[int, ...],
+        moving_joints: tuple[str, ...] = (),
+    ) -> None:
         ours, theirs = socket.socketpair()
         self._process = subprocess.Popen(
             [sys.executable, "-m", "arteleop.scene.render_child", str(theirs.fileno())],
@@ -44,7 +50,7 @@ class RenderProcess(Closeable):
         theirs.close()
         self._conn = Connection(ours.detach())
         self._busy = False
-        self._conn.send((str(robot_urdf), ws, body_ids))
+        self._conn.send((str(robot_urdf), ws, body_ids, moving_joints))
         if not self._conn.poll(START_TIMEOUT_S):
             self.close()
             raise RenderProcessError(
@@ -100,8 +106,8 @@ class RenderProcess(Closeable):
 def serve(conn: Connection) -> None:
     """The child: build the world, then render each request until told to stop."""
     try:
-        robot_urdf, ws, body_ids = conn.recv()
-        world = RenderWorld(Path(robot_urdf), ws, body_ids)
+        robot_urdf, ws, body_ids, moving_joints = conn.recv()
+        world = RenderWorld(Path(robot_urdf), ws, body_ids, moving_joints)
     except Exception as err:  # sent to the parent, which raises it
         conn.send(err)
         return
@@ -111,7 +117,7 @@ def serve(conn: Connection) -> None:
             state, request = message
             try:
                 world.sync(state)
-                conn.send(render(world.client, request))
+                conn.send(world.render(request))
             except Exception as err:  # sent to the parent, which raises it
                 conn.send(err)
     except EOFError:

@@ -5,6 +5,12 @@ cheaper, but PyBullet's merge drops some visual shapes (the white rings of the a
 the colours of others. The camera therefore renders this copy of the scene: Baxter unmerged
 from the same URDF, the same table, markers and bowl, with the moving state (the right arm's
 joints and the bowl's pose) copied over from the physics world before each frame.
+
+Given the joints that move, it also draws in two layers: the head camera never moves, so what
+never moves (the table, the markers, the robot but for the links those joints carry) is drawn
+once per camera pose and kept, and each frame draws only what moves (those links and the bowl)
+and takes each pixel from the nearer layer. TinyRenderer shades each surface by itself (no
+shadows here), so the two layers give the image of a full render (a test compares them).
 """
 
 from __future__ import annotations
@@ -13,12 +19,15 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
 import pybullet as p
 from pybullet_utils.bullet_client import BulletClient
 
 from arteleop.errors import SimulationError
+from arteleop.robot.description import hide_links
 from arteleop.robot.native_output import native_stdout_silenced
 from arteleop.scene.bodies import add_bowl, add_start_cross, add_table, add_target_circle
+from arteleop.scene.camera import RawImage, RenderRequest, render
 from arteleop.scene.workspace import Workspace
 
 
@@ -36,7 +45,13 @@ class RenderWorld:
     """The drawn copy of the site; bodies are added in the physics world's order, so body ids
     (and segmentation masks) mean the same in both."""
 
-    def __init__(self, robot_urdf: Path, ws: Workspace, body_ids: Sequence[int]) -> None:
+    def __init__(
+        self,
+        robot_urdf: Path,
+        ws: Workspace,
+        body_ids: Sequence[int],
+        moving_joints: Sequence[str] = (),
+    ) -> None:
         with native_stdout_silenced():
             self.client = BulletClient(connection_mode=p.DIRECT)
             robot = self.client.loadURDF(str(robot_urdf), useFixedBase=True)
@@ -59,14 +74,109 @@ class RenderWorld:
             for i in range(self.client.getNumJoints(robot))
         }
 
+        self._layers = None
+        if moving_joints:
+            try:
+                self._layers = _Layers(self.client, robot, robot_urdf, ws, moving_joints)
+            except BaseException:
+                self.client.disconnect()
+                raise
+
     def sync(self, state: SceneState) -> None:
         """Copy the moving state over from the physics world."""
-        for name, q in state.joint_positions.items():
-            self.client.resetJointState(self._robot, self._joint_index[name], q)
-        self.client.resetBasePositionAndOrientation(
-            self._bowl, state.bowl_com_position_m, state.bowl_com_quat_xyzw
-        )
+        _sync(self.client, self._robot, self._bowl, self._joint_index, state)
+        if self._layers is not None:
+            self._layers.sync(state, self._joint_index)
+
+    def render(self, request: RenderRequest) -> RawImage:
+        """Render ``request`` of the synced state: in two layers when the world has them and
+        holds only its own bodies (a body another module added, e.g. a calibration marker, is
+        drawn by a full render), and fully when segmentation is asked for."""
+        layered = self._layers is not None and not request.with_segmentation
+        if not layered or self.client.getNumBodies() != len(self.body_ids):
+            return render(self.client, request)
+        return self._layers.render(request)  # type: ignore[union-attr]
 
     def close(self) -> None:
+        if self._layers is not None:
+            self._layers.close()
         if self.client.isConnected():
             self.client.disconnect()
+
+
+class _Layers:
+    """The scene in two worlds: one holds what never moves, drawn once per camera pose and
+    static joint state, the other what moves, drawn every frame."""
+
+    def __init__(
+        self,
+        full: BulletClient,
+        robot: int,
+        robot_urdf: Path,
+        ws: Workspace,
+        moving_joints: Sequence[str],
+    ) -> None:
+        joints = [full.getJointInfo(robot, i) for i in range(full.getNumJoints(robot))]
+        unknown = set(moving_joints) - {j[1].decode() for j in joints}
+        if unknown:
+            raise SimulationError(f"moving joints {sorted(unknown)} are not in {robot_urdf}")
+        # PyBullet lists a link after its parent, so one pass finds every link the joints carry.
+        moving: set[int] = set()
+        for i, info in enumerate(joints):
+            if info[1].decode() in moving_joints or info[16] in moving:
+                moving.add(i)
+        moving_links = {joints[i][12].decode() for i in moving}
+        still_links = {j[12].decode() for j in joints} - moving_links
+        still_links.add(full.getBodyInfo(robot)[0].decode())  # the root link
+        self._still_joints = {joints[i][1].decode() for i in range(len(joints)) if i not in moving}
+        with native_stdout_silenced():
+            self.still = BulletClient(connection_mode=p.DIRECT)
+            self.moving = BulletClient(connection_mode=p.DIRECT)
+            self._still_robot = self.still.loadURDF(
+                str(hide_links(robot_urdf, moving_links)), useFixedBase=True
+            )
+            self._moving_robot = self.moving.loadURDF(
+                str(hide_links(robot_urdf, still_links)), useFixedBase=True
+            )
+        add_table(self.still, ws)
+        add_start_cross(self.still, ws)
+        add_target_circle(self.still, ws)
+        self._moving_bowl = add_bowl(self.moving, ws, ws.start_xy_m)
+        self._still_state: dict[str, float] = {}
+        self._still_images: dict[tuple[object, ...], RawImage] = {}
+
+    def sync(self, state: SceneState, joint_index: dict[str, int]) -> None:
+        _sync(self.moving, self._moving_robot, self._moving_bowl, joint_index, state)
+        still = {n: q for n, q in state.joint_positions.items() if n in self._still_joints}
+        if any(self._still_state.get(n) != q for n, q in still.items()):
+            for name, q in still.items():
+                self.still.resetJointState(self._still_robot, joint_index[name], q)
+            self._still_state.update(still)
+            self._still_images.clear()
+
+    def render(self, request: RenderRequest) -> RawImage:
+        key = (request.width_px, request.height_px, tuple(request.view_gl),
+               tuple(request.projection_gl))  # fmt: skip
+        still = self._still_images.get(key)
+        if still is None:
+            still = self._still_images[key] = render(self.still, request)
+        moving = render(self.moving, request)
+        nearer = moving.zbuf < still.zbuf
+        rgba = still.rgba.copy()
+        rgba[nearer] = moving.rgba[nearer]
+        return RawImage(rgba, np.minimum(moving.zbuf, still.zbuf), None)
+
+    def close(self) -> None:
+        for client in (self.still, self.moving):
+            if client.isConnected():
+                client.disconnect()
+
+
+def _sync(
+    client: BulletClient, robot: int, bowl: int, joint_index: dict[str, int], state: SceneState
+) -> None:
+    for name, q in state.joint_positions.items():
+        client.resetJointState(robot, joint_index[name], q)
+    client.resetBasePositionAndOrientation(
+        bowl, state.bowl_com_position_m, state.bowl_com_quat_xyzw
+    )

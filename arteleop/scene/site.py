@@ -21,6 +21,7 @@ from arteleop.robot import (
     HEAD_PAN_JOINT,
     REST_POSE,
     RIGHT_ARM_JOINTS,
+    RIGHT_FINGER_JOINTS,
     ArmCommand,
     ArmPose,
     Baxter,
@@ -50,6 +51,11 @@ from arteleop.transforms import (
 
 RAY_OVERSHOOT_M = 0.02
 """:meth:`RemoteSite.sight_bowl`'s rays run this far past their surface point (m)."""
+
+
+MOVING_JOINTS = (*RIGHT_ARM_JOINTS, *RIGHT_FINGER_JOINTS)
+"""The joints a trial moves: the camera redraws the links they carry, and the bowl, each frame
+(:class:`RenderWorld`); the rest of the scene it draws once."""
 
 
 @dataclass(frozen=True)
@@ -155,9 +161,11 @@ class RemoteSite(Closeable):
                 "bowl": add_bowl(self._client, ws, ws.start_xy_m),
             }
             self._bowl_id = self._bodies["bowl"]
-            self.render_world = RenderWorld(self.robot.urdf_path, ws, tuple(self._bodies.values()))
+            self.render_world = RenderWorld(
+                self.robot.urdf_path, ws, tuple(self._bodies.values()), MOVING_JOINTS
+            )
             self.camera = HeadCamera(
-                self.render_world.client,
+                self.render_world.render,
                 config.camera,
                 self.robot.link_transform(config.camera.mount_link),
                 config.seed,
@@ -328,8 +336,9 @@ class RemoteSite(Closeable):
         :meth:`request_frame`; returns the running one if it runs already."""
         if self._renderer is None:
             self._renderer = RenderProcess(
-                self.robot.urdf_path, self.config.workspace, self.render_world.body_ids
-            )
+                self.robot.urdf_path, self.config.workspace, self.render_world.body_ids,
+                MOVING_JOINTS,
+            )  # fmt: skip
         return self._renderer
 
     def request_frame(self) -> None:

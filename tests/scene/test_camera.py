@@ -86,6 +86,28 @@ def test_quantisation_lands_on_disparity_steps() -> None:
     assert cfg.quantization_step_m(1.0, 589.0) == pytest.approx(0.125 / (0.075 * 589.0))
 
 
+@pytest.mark.parametrize("enabled", [True, False])
+@pytest.mark.parametrize("quantize", [True, False])
+def test_the_in_place_noise_is_the_plain_formula_to_the_bit(enabled: bool, quantize: bool) -> None:
+    rng = np.random.default_rng(2)
+    z = rng.uniform(0.5, 4.5, (48, 64)).astype(np.float32)
+    z[rng.random(z.shape) < 0.2] = 0.0
+    z[0, :3] = (np.nan, -1.0, 1e-9)
+    config = DepthNoiseConfig(enabled=enabled, quantize=quantize)
+    # The model's formulas written plainly, as in the docstring of DepthNoiseConfig.
+    plain = z.astype(np.float64)
+    valid = plain > 0
+    if enabled:
+        normal = np.random.default_rng(7).standard_normal(plain.shape)
+        plain = np.where(valid, plain + normal * config.sigma_m(plain), 0.0)
+    if quantize:
+        bf = config.baseline_m * 589.0
+        disparity = np.round(bf / np.where(valid, plain, 1.0) / config.subpixel) * config.subpixel
+        plain = np.where(valid & (disparity > 0), bf / np.maximum(disparity, config.subpixel), 0.0)
+    out = apply_depth_noise(z, 589.0, config, np.random.default_rng(7))
+    np.testing.assert_array_equal(out, plain.astype(np.float32))
+
+
 def test_invalid_pixels_stay_invalid() -> None:
     z = np.array([[0.0, 1.0]], dtype=np.float32)
     out = apply_depth_noise(z, 589.0, DepthNoiseConfig(), np.random.default_rng(0))

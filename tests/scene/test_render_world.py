@@ -2,13 +2,16 @@
 
 import xml.etree.ElementTree as ET
 from collections import Counter
+from dataclasses import replace
+from itertools import pairwise
 
 import numpy as np
 from pybullet_utils.bullet_client import BulletClient
 
 from arteleop.robot import RIGHT_ARM_JOINTS
-from arteleop.scene import RemoteSite
-from arteleop.transforms import pose_to_transform, quat_xyzw_to_wxyz
+from arteleop.scene import RemoteSite, SiteConfig
+from arteleop.scene.camera import render
+from arteleop.transforms import make_transform, pose_to_transform, quat_xyzw_to_wxyz
 
 
 def test_capture_copies_the_arm_and_the_bowl_into_the_drawn_world(site: RemoteSite) -> None:
@@ -50,3 +53,58 @@ def test_drawn_robot_has_every_visual_of_every_link(site: RemoteSite) -> None:
 
     drawn = drawn_per_link(site.render_world.client)
     assert all(drawn[name] >= n for name, n in wanted.items() if name != "base")
+
+
+def test_the_layered_render_is_the_full_render(site_config: SiteConfig) -> None:
+    """Drawing what never moves once and what moves every frame gives the full render's
+    pixels exactly, for arm poses, an open or closed gripper and a bowl lifted and tilted; a
+    still joint that does move (the left arm, not frozen here) redraws the still layer."""
+    config = replace(site_config, freeze_idle_joints=False)
+    with RemoteSite(config) as site:
+        world, request = site.render_world, site.camera.request()
+        rng = np.random.default_rng(8)
+        ws = site.config.workspace
+        images = []
+        for k in range(4):
+            # The gripper over the table, pointing down: the arm in view.
+            lo, hi = ws.table_bounds_xy_m()
+            above = ws.on_table(rng.uniform(lo + 0.15, hi - 0.15)) + (0.0, 0.0, 0.2)
+            target = make_transform(np.diag([1.0, -1.0, -1.0]), above)
+            for _ in range(8):  # PyBullet's IK improves from its own answer
+                q = site.robot.pybullet_ik(target)
+                site.robot.set_joint_positions(dict(zip(RIGHT_ARM_JOINTS, q, strict=True)))
+            site.robot.gripper.reset(k / 3)
+            state = site.scene_state()
+            if k == 2:
+                state.joint_positions["left_s0"] = 0.3
+            if k == 3:
+                lifted = np.add(state.bowl_com_position_m, (0.05, 0.1, 0.15))
+                state = replace(state, bowl_com_position_m=tuple(lifted),
+                                bowl_com_quat_xyzw=(0.1, 0.0, 0.0, 0.995))  # fmt: skip
+            world.sync(state)
+            full, layered = render(world.client, request), world.render(request)
+            np.testing.assert_array_equal(layered.rgba, full.rgba)
+            np.testing.assert_array_equal(layered.zbuf, full.zbuf)
+            images.append(full.rgba)
+        changed = [(a != b).any(axis=2).sum() for a, b in pairwise(images)]
+        assert min(changed) > 1000  # each pose moved the arm across many pixels
+
+
+def test_a_body_added_to_the_drawn_world_is_drawn(site: RemoteSite) -> None:
+    """The layers know only the scene's own bodies: with another (a calibration marker), the
+    world renders in full."""
+    from arteleop.scene import ArucoMarker, MarkerBody
+
+    world, request = site.render_world, site.camera.request()
+    world.sync(site.scene_state())
+    before = world.render(request)
+    marker = MarkerBody(world.client, ArucoMarker(marker_id=3, side_m=0.1))
+    T = np.eye(4)
+    T[:3, 3] = site.config.workspace.on_table((0.7, -0.3)) + (0.0, 0.0, 0.001)
+    marker.place(T)
+    try:
+        with_marker = world.render(request)
+    finally:
+        marker.remove()
+    assert (with_marker.rgba != before.rgba).any(axis=2).sum() > 100
+    np.testing.assert_array_equal(world.render(request).rgba, before.rgba)
