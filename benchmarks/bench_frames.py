@@ -83,6 +83,15 @@ def main() -> None:
         ("path searched every time", median_us(uncached, args.repeats)),
         ("with covariances, after the arm moved", after_move(uncertain, np.eye(6) * 1e-8)),
     ]  # fmt: skip
+    tick = itertools.count()
+
+    def camera_tick() -> None:
+        k = next(tick)
+        robot.update(graph, {n: 0.1 * np.sin(k + i) for i, n in enumerate(RIGHT_ARM_JOINTS)})
+        graph.T("base", GRIPPER_FRAME)
+
+    rows.append(("a display frame: the arm's joints set, then the query (SiteFrames)",
+                 median_us(camera_tick, args.repeats)))  # fmt: skip
     rows.append((
         "baseline: pinocchio forward kinematics (BaxterKinematics.frame_transform)",
         median_us(lambda: kinematics.frame_transform(positions, GRIPPER_FRAME), args.repeats),

@@ -40,6 +40,12 @@ class DisplayFrame:
         cloud_points_m: (N, 3) float32 point cloud of the camera frame, or None when this
             instant was not rendered (batch runs render only to track the bowl).
         cloud_colors: (N, 3) uint8 colours of the cloud's points, or None.
+        T_cloud_true: (4, 4) where the point cloud shows a point of the real scene: the
+            camera's registration error, in the base frame (None: a perfect registration).
+            A real system cannot know it; the simulation gives it so that the synthetic
+            operator sees the real gripper and the target marker where the cloud shows them,
+            off the ghost and the target mesh, which stay where the robot and the task put
+            them. The view draws the cloud itself and does not use it.
     """
 
     time_s: float
@@ -56,6 +62,7 @@ class DisplayFrame:
     engaged: bool
     cloud_points_m: NDArray[np.float32] | None = None
     cloud_colors: NDArray[np.uint8] | None = None
+    T_cloud_true: NDArray[np.float64] | None = None
 
     def __post_init__(self) -> None:
         shapes = {
@@ -64,9 +71,10 @@ class DisplayFrame:
             "T_base_gripper": (4, 4),
             "bowl_m": (3,),
             "target_m": (3,),
+            "T_cloud_true": (4, 4),
         }
         for name, shape in shapes.items():
-            if name == "bowl_m" and self.bowl_m is None:
+            if name in ("bowl_m", "T_cloud_true") and getattr(self, name) is None:
                 continue
             value = frozen_array(getattr(self, name))
             if value.shape != shape:
@@ -99,6 +107,12 @@ class DisplayFrame:
     def gripper_m(self) -> NDArray[np.float64]:
         """The gripper's tool-frame position (m)."""
         return self.T_base_gripper[:3, 3]
+
+    def in_cloud(self, point_m: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Where the point cloud shows the real scene's ``point_m`` (base frame, m)."""
+        if self.T_cloud_true is None:
+            return point_m
+        return self.T_cloud_true[:3, :3] @ point_m + self.T_cloud_true[:3, 3]
 
     @property
     def has_cloud(self) -> bool:

@@ -12,7 +12,11 @@ the cues visible (assumptions, each with its reasoning, in :class:`PerceptionPar
 - the target mesh turns placement into a coincidence judgement: of the bowl with the mesh, or,
   while the arm hides the bowl in hand, of the gripper with where it would hold the mesh;
 - the ghost shows the arm when the camera cannot (out of view, or too close for the sensor);
-  without it, an unseen gripper is estimated from the operator's own arm (proprioception).
+  without it, an unseen gripper is estimated from the operator's own arm (proprioception);
+- what the point cloud shows (the real gripper, the bowl, the target marker) is displaced by the
+  camera's registration error (``DisplayFrame.T_cloud_true``), all alike, so judged against each
+  other they agree; the AR layers (the ghost, the beam and the bar from the encoders' gripper,
+  the target mesh) are not, so a misregistration misleads exactly the judgements they serve.
 
 Errors persist from look to look (:class:`PerceptualNoise`): a person who misjudges the depth of
 a point in a scene misjudges it the same way a second later, so corrective movements converge
@@ -119,6 +123,9 @@ def perceive(
     cues = view.cues
     k = noise_scale
     gripper_seen = view.gripper_in_camera or cues.ghost
+    # The ghost draws the gripper where the encoders put it; without it, the operator sees the
+    # real gripper in the cloud.
+    shown_gripper = view.gripper_m if cues.ghost else view.in_cloud(view.gripper_m)
 
     def normal(stream: str, sd: float, size: int) -> NDArray[np.float64]:
         return noise.draw(stream, view.time_s, size) * (sd * k)
@@ -156,11 +163,11 @@ def perceive(
             judged = seen("gripper", view.gripper_m, along_sd, across_sd, axis)
             grasp_sd = _rms(along_sd, across_sd) * k
         else:
-            judged = seen("gripper", view.gripper_m, params.depth_sd_m, params.lateral_sd_m)
+            judged = seen("gripper", shown_gripper, params.depth_sd_m, params.lateral_sd_m)
             grasp_sd = cloud_sd
         gripper = bowl + judged - tracked
     elif gripper_seen:  # against a remembered bowl
-        gripper = seen("gripper", view.gripper_m, params.depth_sd_m, params.lateral_sd_m)
+        gripper = seen("gripper", shown_gripper, params.depth_sd_m, params.lateral_sd_m)
         grasp_sd = np.hypot(cloud_sd, cloud_sd)
     else:
         gripper = view.gripper_m + normal("proprioception", params.proprioception_sd_m, 3)
@@ -181,7 +188,7 @@ def perceive(
         target = (
             gripper
             + view.target_m
-            - view.gripper_m
+            - shown_gripper
             + np.append(normal("coincidence", params.target_mesh_sd_m, 2), 0.0)
         )
         placement_sd = np.sqrt(2) * params.target_mesh_sd_m * k
@@ -190,7 +197,9 @@ def perceive(
         placement_sd = np.hypot(cloud_sd, cloud_sd)
     else:
         # The marker is a point of the cloud like any other, then centred on by eye.
-        marker = seen("target", view.target_m, params.depth_sd_m, params.lateral_sd_m)
+        marker = seen(
+            "target", view.in_cloud(view.target_m), params.depth_sd_m, params.lateral_sd_m
+        )
         target = marker + np.append(normal("centring", params.target_marker_sd_m, 2), 0.0)
         placement_sd = np.sqrt(2 * cloud_sd**2 + 2 * (params.target_marker_sd_m * k) ** 2)
     closure_known = cues.grip_bar or view.gripper_in_camera or cues.ghost

@@ -303,6 +303,16 @@ class RemoteSite(Closeable):
         )
         return replace(track, position_m=self.frames.T(BASE_FRAME, BOWL_FRAME)[:3, 3])
 
+    @property
+    def T_cloud_true(self) -> NDArray[np.float64] | None:
+        """Where the point cloud, placed through :attr:`frames`, shows a point of the real
+        scene (4x4, base frame): the camera's registration error; None when there is none.
+        Simulation only: a real system cannot know it."""
+        registered = self.frames.T_base_camera
+        if np.array_equal(registered, self.camera.T_base_camera):
+            return None
+        return registered @ self._T_camera_base_true
+
     def colocation_errors(
         self, points_base_m: NDArray[np.float64]
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:

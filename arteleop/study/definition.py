@@ -10,9 +10,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 from arteleop.ar_features import MODALITIES
-from arteleop.errors import StudyDefinitionError
+from arteleop.errors import ConfigurationError, StudyDefinitionError
+from arteleop.scene.camera_config import HeadCameraConfig
 
 MODALITY_NAMES: tuple[str, ...] = tuple(MODALITIES)
 """The modalities, in the order of the one modality table (``arteleop.ar_features``)."""
@@ -169,6 +171,11 @@ class StudyConfig:
             rotation vector (deg), in the camera's frame (``HeadCameraConfig``'s
             ``registration_offset_*``), so the point cloud and the tracked bowl sit off the
             ghost and the target by that much. Zero: a perfect registration.
+        camera_pose: The camera's pose as the system has it registered, instead of the
+            offsets: ``T_base_camera``, 4 rows of 4 numbers (m), e.g. a calibration's. In a
+            study file, ``camera_graph = "calibration.json"`` takes it from the graph file that
+            ``arteleop calibrate`` writes (a path relative to the study file). Empty: the true
+            pose moved by the offsets.
         start_xy_m: Where the bowl starts in every experimental trial (base frame, m).
         target_xy_m: Where the bowl must go (base frame, m).
         familiarization: Practice trials.
@@ -186,6 +193,7 @@ class StudyConfig:
     delay_ms: float = 0.0
     camera_offset_mm: tuple[float, float, float] = (0.0, 0.0, 0.0)
     camera_offset_deg: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    camera_pose: tuple[tuple[float, ...], ...] = ()
     start_xy_m: tuple[float, float] = (0.68, -0.45)
     target_xy_m: tuple[float, float] = (0.68, -0.10)
     familiarization: FamiliarizationConfig = field(default_factory=FamiliarizationConfig)
@@ -243,12 +251,30 @@ class StudyConfig:
                     f"{key} = {list(value)}: expected three numbers ({unit}, camera frame) whose "
                     f"length is at most {limit} {unit}."
                 )
+        if self.camera_pose:
+            try:
+                HeadCameraConfig(**self.camera_registration())
+            except ConfigurationError:
+                raise StudyDefinitionError(
+                    f"camera_pose = {[list(row) for row in self.camera_pose]}: expected 4 rows of "
+                    "4 numbers, a rigid transform (m), and no camera_offset_mm or "
+                    "camera_offset_deg beside it."
+                ) from None
         ids = [p.id for p in self.participants]
         twice = sorted({i for i in ids if ids.count(i) > 1})
         if twice:
             raise StudyDefinitionError(
                 f"participants: the id {twice[0]!r} is used more than once; ids must be unique."
             )
+
+    def camera_registration(self) -> dict[str, Any]:
+        """The head camera's registration, as :class:`~arteleop.scene.HeadCameraConfig`'s
+        fields."""
+        return {
+            "registration_offset_mm": self.camera_offset_mm,
+            "registration_offset_deg": self.camera_offset_deg,
+            "registered_pose": self.camera_pose or None,
+        }
 
 
 def _check_timeout(name: str, value: float) -> None:

@@ -67,7 +67,7 @@ def trial_config(study: StudyConfig, site: StudySite, spec: TrialSpec) -> TrialC
         seed=spec.seed,
         timeout_s=spec.timeout_s,
         network=NetworkConfig(delay_s=study.delay_ms / 1000),
-        site=site.site_config(spec, study.camera_offset_mm, study.camera_offset_deg),
+        site=site.site_config(spec, study.camera_registration()),
         record_trace=True,
     )
 

@@ -10,8 +10,9 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -41,8 +42,8 @@ class ReplaySource:
     modality: str
     outcome: str
     trajectory: pd.DataFrame
-    camera_offset_mm: tuple[float, float, float] = (0.0, 0.0, 0.0)
-    camera_offset_deg: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    camera_registration: dict[str, Any] = field(default_factory=dict)
+    """The study's :meth:`~arteleop.study.StudyConfig.camera_registration`."""
 
 
 def load_replay(run_dir: Path, participant: str, trial_index: int) -> ReplaySource:
@@ -81,22 +82,17 @@ def load_replay(run_dir: Path, participant: str, trial_index: int) -> ReplaySour
     if len(trajectory) == 0:
         raise RunFolderError(f"{path} has no rows to replay.")
     return ReplaySource(
-        spec, str(row["modality"]), str(row["outcome"]), trajectory,
-        study.camera_offset_mm, study.camera_offset_deg,
+        spec, str(row["modality"]), str(row["outcome"]), trajectory, study.camera_registration()
     )  # fmt: skip
 
 
 def replay_site(source: ReplaySource, camera: HeadCameraConfig | None = None) -> SiteConfig:
     """The site the trial ran on (its start and target, its camera's registration), with
     ``camera``'s image size and settings if given."""
-    config = StudySite().site_config(source.spec, source.camera_offset_mm, source.camera_offset_deg)
+    config = StudySite().site_config(source.spec, source.camera_registration)
     if camera is None:
         return config
-    registration = {
-        "registration_offset_mm": source.camera_offset_mm,
-        "registration_offset_deg": source.camera_offset_deg,
-    }
-    return replace(config, camera=replace(camera, **registration))
+    return replace(config, camera=replace(camera, **source.camera_registration))
 
 
 def replay(
@@ -131,8 +127,9 @@ def replay(
         site.pose(q[k], closure[k], bowl[k], times[k])
         state = site.observe()
         frame = display_frame(
-            state, site.sight_bowl(), site.frames, site.config.workspace, cues, engaged[k]
-        )
+            state, site.sight_bowl(), site.frames, site.config.workspace, cues, engaged[k],
+            site.T_cloud_true,
+        )  # fmt: skip
         cloud = frame_to_point_cloud(site.capture(), stride=CLOUD_STRIDE)
         if speed > 0:
             time.sleep(max(0.0, start + frame_time / speed - time.perf_counter()))

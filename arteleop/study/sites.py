@@ -3,7 +3,9 @@ without starting a simulator."""
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import replace
+from typing import Any
 
 import numpy as np
 
@@ -64,17 +66,11 @@ class StudySite:
         return reach_problem(ws, self._reach, self.base.reach_margin)
 
     def site_config(
-        self,
-        spec: TrialSpec,
-        camera_offset_mm: tuple[float, float, float] = (0.0, 0.0, 0.0),
-        camera_offset_deg: tuple[float, float, float] = (0.0, 0.0, 0.0),
+        self, spec: TrialSpec, camera_registration: Mapping[str, Any] | None = None
     ) -> SiteConfig:
-        """The site of one planned trial, its camera registered with the given error."""
-        camera = replace(
-            self.base.camera,
-            registration_offset_mm=camera_offset_mm,
-            registration_offset_deg=camera_offset_deg,
-        )
+        """The site of one planned trial, its camera registered as ``camera_registration``
+        says (:meth:`StudyConfig.camera_registration`; by default perfectly)."""
+        camera = replace(self.base.camera, **(camera_registration or {}))
         return replace(
             self.base,
             workspace=self.workspace(spec.start_xy_m, spec.target_xy_m),

@@ -12,7 +12,7 @@ import tomllib
 from pathlib import Path
 from typing import Any, get_type_hints
 
-from arteleop.errors import StudyDefinitionError
+from arteleop.errors import FrameGraphError, StudyDefinitionError
 from arteleop.study.definition import (
     CohortConfig,
     FamiliarizationConfig,
@@ -21,6 +21,8 @@ from arteleop.study.definition import (
 )
 
 _TABLES: dict[str, type] = {"familiarization": FamiliarizationConfig, "cohort": CohortConfig}
+CAMERA_GRAPH_KEY = "camera_graph"
+"""Not a field: a graph file whose camera edge becomes ``camera_pose``."""
 
 
 def load_study_file(path: Path) -> tuple[StudyConfig, str]:
@@ -77,9 +79,31 @@ def parse_study(text: str, source: str = "<study>") -> StudyConfig:
                         f"{where.at('participants', 'id', index)}: participant id {pid!r} is "
                         "used twice; each participant needs an id of their own."
                     )
+        elif key == CAMERA_GRAPH_KEY:
+            if "camera_pose" in data:
+                raise StudyDefinitionError(
+                    f"{where.at('', key)}: camera_graph and camera_pose: give one of them."
+                )
+            top["camera_pose"] = _graph_camera_pose(value, source, where.at("", key))
         else:
             top[key] = value
     return _build(StudyConfig, top, "", where)
+
+
+def _graph_camera_pose(value: Any, source: str, at: str) -> list[list[float]]:
+    """The camera's pose in a transform graph file named by the ``camera_graph`` key."""
+    from arteleop.scene import BASE_FRAME, CAMERA_FRAME, TransformGraph
+
+    if not isinstance(value, str):
+        raise StudyDefinitionError(f"{at}: camera_graph must be a file name, got {value!r}.")
+    path = Path(source).parent / value
+    try:
+        T = TransformGraph.load(path).T(BASE_FRAME, CAMERA_FRAME)
+    except FrameGraphError as err:
+        raise StudyDefinitionError(
+            f"{at}: camera_graph: {err}. 'arteleop calibrate --out {value}' writes such a file."
+        ) from None
+    return T.tolist()  # checked and made a tuple as camera_pose
 
 
 def _build(cls: type, values: Any, table: str, where: _Locator, index: int | None = None) -> Any:
@@ -111,14 +135,16 @@ def _convert(value: Any, hint: Any, at: str, table: str, key: str) -> Any:
     ):
         return value  # a nested table, already built
     if hint_text.startswith("tuple[tuple"):
+        expected = float if "float" in hint_text else str
         if not (
             isinstance(value, list)
-            and all(isinstance(v, list) and all(isinstance(x, str) for x in v) for v in value)
+            and all(isinstance(v, list) and all(_is(x, expected) for x in v) for v in value)
         ):
+            kind = "numbers" if expected is float else "text"
             raise StudyDefinitionError(
-                f"{at}: {name} must be a list of lists of text, got {value!r}."
+                f"{at}: {name} must be a list of lists of {kind}, got {value!r}."
             )
-        return tuple(tuple(v) for v in value)
+        return tuple(tuple(expected(x) for x in v) for v in value)
     if hint_text.startswith("tuple"):
         if not isinstance(value, list):
             raise StudyDefinitionError(f"{at}: {name} must be a list, got {value!r}.")
@@ -214,6 +240,8 @@ _COMMENTS = {
     "delay_ms": "one-way network delay between operator and robot (ms)",
     "camera_offset_mm": "error of the head camera's registration: translation (mm, camera frame)",
     "camera_offset_deg": "and rotation vector (deg, camera frame); zero is a perfect registration",
+    "camera_pose": "or its registered pose, 4 rows of T_base_camera (m); camera_graph = "
+    '"calibration.json" takes it from that file (arteleop calibrate)',
     "start_xy_m": "where the bowl starts, Baxter's base frame (m)",
     "target_xy_m": "where it must go (m)",
     "familiarization.trials": "practice trials per participant, random start and target",

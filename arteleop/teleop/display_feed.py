@@ -17,6 +17,7 @@ from collections import deque
 from dataclasses import replace
 
 import numpy as np
+from numpy.typing import NDArray
 
 from arteleop.ar_features import ArCues, Display, DisplayFrame, ViewAssets
 from arteleop.robot import (
@@ -53,10 +54,12 @@ def display_frame(
     workspace: Workspace,
     cues: ArCues,
     engaged: bool,
+    T_cloud_true: NDArray[np.float64] | None = None,
 ) -> DisplayFrame:
     """The display's content for a site state and the bowl's track at that instant, without a
     cloud. Placed through the site's frames: the eye at the camera's registration, the ghost at
-    the arm's encoder readings, the target mesh at the target marker."""
+    the arm's encoder readings, the target mesh at the target marker; ``T_cloud_true``: the
+    registration's error (:attr:`RemoteSite.T_cloud_true`)."""
     frames.set_joints(dict(zip(RIGHT_ARM_JOINTS, state.arm_q_rad.tolist(), strict=True)))
     grasp = workspace.bowl.grasp_offset_m()
     return DisplayFrame(
@@ -72,6 +75,7 @@ def display_frame(
         target_m=frames.T(BASE_FRAME, TARGET_MARKER_FRAME)[:3, 3],
         cues=cues,
         engaged=engaged,
+        T_cloud_true=T_cloud_true,
     )
 
 
@@ -147,8 +151,9 @@ class DisplayFeed:
                 self._track = self._site.sight_bowl()
         self._ticks += 1
         frame = display_frame(
-            state, self._track, self._site.frames, self._workspace, self._cues, engaged
-        )
+            state, self._track, self._site.frames, self._workspace, self._cues, engaged,
+            self._site.T_cloud_true,
+        )  # fmt: skip
         self._history.append(frame)
         px, m = self._site.colocation_errors(frame.T_base_gripper[None, :3, 3])
         self.colocation_px.append(float(px[0]))
@@ -178,8 +183,9 @@ class DisplayFeed:
             if last is None or state.time_s > last[2].time_s:
                 track = self._track or self._site.sight_bowl()
                 owed = display_frame(
-                    state, track, self._site.frames, self._workspace, self._cues, engaged
-                )
+                    state, track, self._site.frames, self._workspace, self._cues, engaged,
+                    self._site.T_cloud_true,
+                )  # fmt: skip
                 self._request(owed, applied_sample_time_s)
         if rgbd is None or finished is None:
             return

@@ -203,3 +203,27 @@ def test_the_operator_does_not_correct_an_error_it_cannot_see() -> None:
     assert operator._discernible_m(seen) == pytest.approx(0.02)
     operator.phase = Phase.LIFT  # moving the hand, not judging a scene
     assert operator._discernible_m(seen) == 0.0
+
+
+@pytest.mark.parametrize(
+    ("modality", "misled_grasp", "misled_place"),
+    [("none", False, False), ("embodiment", True, False), ("manipulation", True, False),
+     ("task", False, True), ("full", True, True)],
+)  # fmt: skip
+def test_a_misregistered_cloud_misleads_only_the_ar_layers(
+    modality: str, misled_grasp: bool, misled_place: bool
+) -> None:
+    """The cloud, shifted by s, shows the real gripper, the bowl and the marker shifted alike:
+    judged against each other, the shift cancels. The ghost, the beam and the target mesh stay
+    where the robot and the task put them: against the shifted bowl they are off by s. Without
+    perceptual noise the judgements are exact, so the errors are s or 0 to the bit."""
+    s = np.array([0.03, -0.02, 0.0])
+    shift = np.eye(4)
+    shift[:3, 3] = s
+    true_bowl = np.array([0.68, -0.45, -0.2])
+    view = display_frame(cues=MODALITIES[modality], bowl_m=true_bowl + s, T_cloud_true=shift)
+    seen = perceive(view, P, _independent(1), noise_scale=0.0)
+    grasp_error = (seen.gripper_m - seen.bowl_m) - (view.gripper_m - true_bowl)
+    place_error = (seen.target_m - seen.bowl_m) - (view.target_m - true_bowl)
+    np.testing.assert_allclose(grasp_error, -s if misled_grasp else 0.0, atol=1e-15)
+    np.testing.assert_allclose(place_error, -s if misled_place else 0.0, atol=1e-15)

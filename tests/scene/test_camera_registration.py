@@ -19,7 +19,7 @@ from arteleop.scene import (
     frame_to_point_cloud,
 )
 from arteleop.teleop import TrialConfig, display_frame, run_trial, trial_operator
-from arteleop.transforms import transform_points
+from arteleop.transforms import make_transform, transform_points
 
 
 def test_a_translated_registration_moves_everything_seen_by_that_translation(
@@ -43,6 +43,8 @@ def test_a_translated_registration_moves_everything_seen_by_that_translation(
         state = off.observe()
         np.testing.assert_allclose(state.camera.T_base_camera[:3, 3], truth[:3, 3] + shift)
         np.testing.assert_array_equal(state.T_base_bowl, plain.observe().T_base_bowl)
+        assert plain.T_cloud_true is None
+        np.testing.assert_allclose(off.T_cloud_true, make_transform(np.eye(3), shift), atol=1e-12)
 
 
 def test_the_display_is_placed_through_the_site_frames(site_config: SiteConfig) -> None:

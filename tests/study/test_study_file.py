@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from arteleop.cli import main
@@ -48,7 +49,8 @@ def test_study_init_writes_the_commented_default(tmp_path: Path, capsys) -> None
         ('seed = 1\nordr = "williams"\n',
          "s.toml line 2: unknown key 'ordr'. Valid keys: name, seed, modalities, order, "
          "orders, trials_per_modality, timeout_s, delay_ms, camera_offset_mm, "
-         "camera_offset_deg, start_xy_m, target_xy_m, familiarization, cohort, participants."),
+         "camera_offset_deg, camera_pose, start_xy_m, target_xy_m, familiarization, cohort, "
+         "participants."),
         ("camera_offset_mm = [600, 0, 0]\n",
          "s.toml line 1: camera_offset_mm = [600.0, 0.0, 0.0]: expected three numbers (mm, "
          "camera frame) whose length is at most 500 mm."),
@@ -136,3 +138,69 @@ def test_a_mis_registered_camera_reaches_every_trial_of_the_study() -> None:
     (camera,) = cameras
     assert camera.registration_offset_mm == (10.0, 0.0, -5.0)
     assert camera.registration_offset_deg == (0.0, 0.5, 0.0)
+
+
+def test_a_calibrated_camera_pose_comes_from_a_graph_file(tmp_path: Path) -> None:
+    """camera_graph names the file 'arteleop calibrate' writes, relative to the study file; the
+    run folder's copy of the definition holds the pose itself, so it stands alone."""
+    from arteleop.scene import EdgeKind, TransformGraph
+    from arteleop.study.plan import plan_study
+    from arteleop.study.protocol import trial_config
+    from arteleop.study.sites import StudySite
+
+    T = np.eye(4)
+    T[:3, :3] = [[0.0, -1.0, 0.0], [0.0, 0.0, -1.0], [1.0, 0.0, 0.0]]
+    T[:3, 3] = [0.1, -0.2, 0.8]
+    graph = TransformGraph()
+    graph.set("base", "head_camera", T, EdgeKind.CALIBRATION)
+    (tmp_path / "cal").mkdir()
+    graph.save(tmp_path / "cal" / "c.json")
+    path = tmp_path / "s.toml"
+    path.write_text('camera_graph = "cal/c.json"\n[familiarization]\ntrials = 0\n')
+    study, _ = load_study_file(path)
+    np.testing.assert_array_equal(study.camera_pose, T)
+    assert parse_study(study_text(study)) == study
+    camera = trial_config(study, StudySite(), plan_study(study)[0]).site.camera
+    np.testing.assert_array_equal(camera.registered_pose, T)
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        (
+            'camera_graph = "nothing.json"\n',
+            "s.toml line 1: camera_graph: {tmp}/nothing.json: cannot read the graph file (No "
+            "such file or directory). 'arteleop calibrate --out nothing.json' writes such a file.",
+        ),
+        (
+            'camera_graph = "g.json"\n',
+            "s.toml line 1: camera_graph: no frame 'head_camera' in the graph; its frames are "
+            "['base', 'table']. 'arteleop calibrate --out g.json' writes such a file.",
+        ),
+        (
+            'camera_graph = "g.json"\ncamera_pose = []\n',
+            "s.toml line 1: camera_graph and camera_pose: give one of them.",
+        ),
+        (
+            "camera_pose = [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]\n",
+            "s.toml line 1: camera_pose = [[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, "
+            "1.0, 0.0]]: expected 4 rows of 4 numbers, a rigid transform (m), and no "
+            "camera_offset_mm or camera_offset_deg beside it.",
+        ),
+        (
+            'camera_pose = [["a"]]\n',
+            "s.toml line 1: camera_pose must be a list of lists of numbers, got [['a']].",
+        ),
+    ],
+)
+def test_bad_camera_poses_are_refused(tmp_path: Path, text: str, message: str) -> None:
+    from arteleop.scene import EdgeKind, TransformGraph
+
+    graph = TransformGraph()
+    graph.set("base", "table", np.eye(4), EdgeKind.FIXED)
+    graph.save(tmp_path / "g.json")
+    path = tmp_path / "s.toml"
+    path.write_text(text)
+    with pytest.raises(StudyDefinitionError) as err:
+        load_study_file(path)
+    assert str(err.value) == message.format(tmp=tmp_path).replace("s.toml", str(path))
