@@ -1,8 +1,8 @@
 """The head camera's cost per frame on one core: render, depth and noise, point cloud.
 
 Baseline, side by side in this script: the full render, every body drawn every frame (what
-``RenderWorld`` did before it drew in layers). The arm moves between frames, along a path over
-the table, so neither side renders the same state twice.
+``RenderWorld`` did before it drew in layers). The frames are states of a full-AR trial, spread
+evenly over it, so the arm is seen at rest, reaching, carrying and returning.
 
     python benchmarks/bench_camera.py [--frames 40]
 """
@@ -19,30 +19,25 @@ import time
 
 import numpy as np
 
-from arteleop.robot import RIGHT_ARM_JOINTS
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig, frame_to_point_cloud
 from arteleop.scene.camera import render
+from arteleop.scene.render_world import SceneState
+from arteleop.teleop import TrialConfig, run_trial, trial_operator
 from arteleop.teleop.display_feed import CLOUD_STRIDE
-from arteleop.transforms import make_transform
 
 
-def arm_path(site: RemoteSite, frames: int) -> list[dict[str, float]]:
-    """Joint positions with the gripper on a circle 20 cm above the table, pointing down."""
-    ws = site.config.workspace
-    centre = ws.on_table(((ws.start_m + ws.target_m) / 2)[:2]) + (0.0, 0.0, 0.2)
-    path = []
-    for k in range(frames):
-        angle = 2 * np.pi * k / frames
-        above = centre + 0.12 * np.array([np.cos(angle), np.sin(angle), 0.0])
-        target = make_transform(np.diag([1.0, -1.0, -1.0]), above)
-        for _ in range(8):  # PyBullet's IK improves from its own answer
-            q = site.robot.pybullet_ik(target)
-            site.robot.set_joint_positions(dict(zip(RIGHT_ARM_JOINTS, q, strict=True)))
-        path.append(dict(zip(RIGHT_ARM_JOINTS, q.tolist(), strict=True)))
-    return path
+def trial_states(site: RemoteSite, frames: int) -> list[SceneState]:
+    """``frames`` scene states spread evenly over a full-AR trial (seed 0): the arm at rest,
+    reaching, holding the bowl over the table and back, as a real run shows it."""
+    config = TrialConfig(modality="full", seed=0)
+    states: list[tuple[float, SceneState]] = []
+    run_trial(trial_operator(site, config), config, site,
+              progress=lambda status: states.append((status.time_s, site.scene_state())))  # fmt: skip
+    picks = np.linspace(0, len(states) - 1, frames).round().astype(int)
+    return [states[i][1] for i in picks]
 
 
-def measure(site: RemoteSite, path: list[dict[str, float]]) -> dict[str, dict[str, float]]:
+def measure(site: RemoteSite, states: list[SceneState]) -> dict[str, dict[str, float]]:
     """Median ms per stage, for the baseline and the layers, interleaved frame by frame."""
     world, camera = site.render_world, site.camera
     request = camera.request()
@@ -53,9 +48,8 @@ def measure(site: RemoteSite, path: list[dict[str, float]]) -> dict[str, dict[st
     times: dict[str, dict[str, list[float]]] = {
         k: {"render": [], "depth": [], "cloud": [], "total": []} for k in renders
     }
-    for k, positions in enumerate(path):
-        site.robot.set_joint_positions(positions)
-        world.sync(site.scene_state())
+    for k, state in enumerate(states):
+        world.sync(state)
         for name, draw in renders.items():
             t0 = time.perf_counter()
             raw = draw()
@@ -78,15 +72,15 @@ def main() -> None:
     if hasattr(os, "sched_setaffinity"):
         os.sched_setaffinity(0, {min(os.sched_getaffinity(0))})
     print(
-        f"Head camera on one core: median ms per frame over {args.frames} frames of a moving "
-        f"arm; the cloud keeps every {CLOUD_STRIDE}nd row and column, as the display's does.\n"
+        f"Head camera on one core: median ms per frame over {args.frames} frames of a full-AR "
+        f"trial; the cloud keeps every {CLOUD_STRIDE}nd row and column, as the display's does.\n"
     )
     print("| image | stage | baseline: full render (ms) | layers (ms) | baseline / layers |")
     print("| --- | --- | ---: | ---: | ---: |")
     for w, h in ((640, 480), (320, 240)):
         config = SiteConfig(camera=HeadCameraConfig(width_px=w, height_px=h))
         with RemoteSite(config) as site:
-            result = measure(site, arm_path(site, args.frames))
+            result = measure(site, trial_states(site, args.frames))
         base, ours = result["baseline"], result["layers"]
         for stage in ("render", "depth", "cloud", "total"):
             label = "render + depth + cloud" if stage == "total" else stage

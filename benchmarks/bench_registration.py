@@ -5,9 +5,10 @@ Runs one small study three times, the same participants and trial seeds each tim
 - ``offset``: the system's camera pose is off by ``--offset-mm`` and ``--offset-deg``;
 - ``calibrated``: the pose ``arteleop calibrate`` finds (``camera_graph`` in the study file),
   with the same offset given, which the calibration does not see.
-It prints, per condition, the outcomes, the medians of the trials' co-location error, their
-tracked and true placement errors and completion times, and the true placement error's change
-against ``perfect`` trial by trial (Wilcoxon signed-rank test over the pairs that succeeded).
+It prints, per registration, the medians of the trials' co-location error, the outcomes, the
+completion times and the tracked and true placement errors; the same per modality; and the
+true placement error's change against ``perfect`` trial by trial (Wilcoxon signed-rank test over
+the pairs where both succeeded).
 
     python benchmarks/bench_registration.py [--participants 6] [--out arteleop-registration]
         [--offset-mm 20 0 0] [--offset-deg 0 2 0] [--workers 2]
@@ -25,6 +26,7 @@ import numpy as np
 import pandas as pd
 from scipy.stats import wilcoxon
 
+from arteleop.ar_features import MODALITIES
 from arteleop.cli import main as arteleop
 
 CONDITIONS = ("perfect", "offset", "calibrated")
@@ -83,29 +85,39 @@ def main() -> None:
     print(
         f"\nOne study of {args.participants} participants x 5 modalities, three registrations of "
         f"the head camera (offset: {args.offset_mm} mm, {args.offset_deg} deg, camera frame).\n"
-        "Medians over the trials (co-location) or over the successes (the rest).\n"
     )
-    print(
-        "| registration | successes | co-location (px) | co-location (mm) | completion (s) "
-        "| tracked error (mm) | true error (mm) | true error vs perfect, paired (mm) | p |"
-    )
-    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
-    base = trials["perfect"]
+    print("| registration | co-location (px) | co-location (mm) | successes | completion (s) "
+          "| tracked error (mm) | true error (mm) |")  # fmt: skip
+    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: |")
     for condition, t in trials.items():
         ok = t[t.outcome == "success"]
-        both = ok.index.intersection(base[base.outcome == "success"].index)
-        diff = ok.loc[both, "placement_error_true_m"] - base.loc[both, "placement_error_true_m"]
-        if condition == "perfect" or len(both) < 6:
-            paired, p = "", ""
-        else:
-            paired = f"{np.median(diff) * 1000:+.1f} ({len(both)} pairs)"
-            p = f"{wilcoxon(diff).pvalue:.3f}"
         print(
-            f"| {condition} | {len(ok)}/{len(t)} | {t.colocation_error_px.median():.1f} "
-            f"| {t.colocation_error_m.median() * 1000:.1f} | {ok.completion_time_s.median():.1f} "
-            f"| {ok.placement_error_m.median() * 1000:.1f} "
-            f"| {ok.placement_error_true_m.median() * 1000:.1f} | {paired} | {p} |"
+            f"| {condition} | {t.colocation_error_px.median():.1f} "
+            f"| {t.colocation_error_m.median() * 1000:.1f} | {len(ok)}/{len(t)} "
+            f"| {ok.completion_time_s.median():.1f} | {ok.placement_error_m.median() * 1000:.1f} "
+            f"| {ok.placement_error_true_m.median() * 1000:.1f} |"
         )
+    print("\nPer modality: successes, and the median true placement error of the successes (mm).\n")
+    print("| modality | " + " | ".join(CONDITIONS) + " |")
+    print("| --- |" + " ---: |" * len(CONDITIONS))
+    for modality in MODALITIES:
+        cells = []
+        for condition in CONDITIONS:
+            t = trials[condition].xs(modality, level="modality")
+            ok = t[t.outcome == "success"]
+            error = f"{ok.placement_error_true_m.median() * 1000:.0f}" if len(ok) else "-"
+            cells.append(f"{len(ok)}/{len(t)}, {error}")
+        print(f"| {modality} | " + " | ".join(cells) + " |")
+    base = trials["perfect"]
+    print("\nTrue placement error against perfect, trial by trial (pairs where both succeeded):\n")
+    print("| registration | pairs | median change (mm) | Wilcoxon p |")
+    print("| --- | ---: | ---: | ---: |")
+    for condition in CONDITIONS[1:]:
+        t = trials[condition]
+        both = t[t.outcome == "success"].index.intersection(base[base.outcome == "success"].index)
+        diff = t.loc[both, "placement_error_true_m"] - base.loc[both, "placement_error_true_m"]
+        p = f"{wilcoxon(diff).pvalue:.3f}" if len(both) >= 6 else "-"
+        print(f"| {condition} | {len(both)} | {np.median(diff) * 1000:+.1f} | {p} |")
 
 
 if __name__ == "__main__":
