@@ -80,9 +80,12 @@ def parse_study(text: str, source: str = "<study>") -> StudyConfig:
                         "used twice; each participant needs an id of their own."
                     )
         elif key == CAMERA_GRAPH_KEY:
-            if "camera_pose" in data:
+            others = [k for k in ("camera_pose", "camera_offset_mm", "camera_offset_deg")
+                      if k in data]  # fmt: skip
+            if others:
                 raise StudyDefinitionError(
-                    f"{where.at('', key)}: camera_graph and camera_pose: give one of them."
+                    f"{where.at('', key)}: camera_graph and {' and '.join(others)}: the graph's "
+                    "pose replaces them; give one or the other."
                 )
             top["camera_pose"] = _graph_camera_pose(value, source, where.at("", key))
         else:

@@ -178,8 +178,14 @@ def test_a_calibrated_camera_pose_comes_from_a_graph_file(tmp_path: Path) -> Non
             "['base', 'table']. 'arteleop calibrate --out g.json' writes such a file.",
         ),
         (
+            'camera_graph = "g.json"\ncamera_offset_mm = [5, 0, 0]\n',
+            "s.toml line 1: camera_graph and camera_offset_mm: the graph's pose replaces them; "
+            "give one or the other.",
+        ),
+        (
             'camera_graph = "g.json"\ncamera_pose = []\n',
-            "s.toml line 1: camera_graph and camera_pose: give one of them.",
+            "s.toml line 1: camera_graph and camera_pose: the graph's pose replaces them; give "
+            "one or the other.",
         ),
         (
             "camera_pose = [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0]]\n",
