@@ -161,10 +161,13 @@ class _Layers:
         if still is None:
             still = self._still_images[key] = render(self.still, request)
         moving = render(self.moving, request)
-        nearer = moving.zbuf < still.zbuf
-        rgba = still.rgba.copy()
-        rgba[nearer] = moving.rgba[nearer]
-        return RawImage(rgba, np.minimum(moving.zbuf, still.zbuf), None)
+        # A pixel's four bytes as one uint32: one select per pixel instead of four.
+        rgba = np.where(
+            moving.zbuf < still.zbuf,
+            moving.rgba.view(np.uint32)[..., 0],
+            still.rgba.view(np.uint32)[..., 0],
+        )
+        return RawImage(rgba[..., None].view(np.uint8), np.minimum(moving.zbuf, still.zbuf), None)
 
     def close(self) -> None:
         for client in (self.still, self.moving):
