@@ -380,6 +380,11 @@ def _print_trial(result: TrialResult) -> None:
     print(f"placement error      {result.placement_error_m * 1000:.1f} mm (tracked), "
           f"{result.placement_error_true_m * 1000:.1f} mm (ground truth)")  # fmt: skip
     print(f"simulated time       {result.duration_s:.1f} s")
+    row = result.to_row()
+    if row["colocation_error_px"] > 0:  # a registration error was given
+        print(f"co-location          {row['colocation_error_px']:.1f} px, "
+              f"{row['colocation_error_m'] * 1000:.1f} mm (median: the ghost's gripper from the "
+              "real one in the image)")  # fmt: skip
     if len(result.latency_wall_ms):
         lat = result.latency_wall_ms
         print(f"latency to display   {np.median(lat):.1f} ms median, "

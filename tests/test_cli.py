@@ -146,3 +146,15 @@ def test_a_camera_graph_file_sets_the_registration(
         "its frames are []. 'arteleop calibrate' writes such a file, with the edge base -> "
         "head_camera.\n"
     )
+
+
+def test_a_trial_with_a_mis_registered_camera_reports_its_colocation_error(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    """15 mm sideways: the ghost's gripper sits exactly 15 mm from the real one."""
+    args = ["trial", "--timeout-s", "2", "--camera-offset-mm", "15", "0", "0", "--quiet"]
+    assert main(args) == 1  # a 2 s trial times out
+    line = next(x for x in capsys.readouterr().out.splitlines() if x.startswith("co-location"))
+    assert line.endswith(
+        " px, 15.0 mm (median: the ghost's gripper from the real one in the image)"
+    )

@@ -207,6 +207,7 @@ def test_progress_is_shown_unless_quiet() -> None:
     assert "trial" in loud.stderr and "s simulated" in loud.stderr
     assert quiet.stderr == ""
     assert loud.stdout == quiet.stdout and "outcome              timeout" in quiet.stdout
+    assert "co-location" not in quiet.stdout  # a perfect registration: nothing to report
 
 
 def test_the_view_keeps_serving_after_the_trial_until_ctrl_c() -> None:
