@@ -148,37 +148,27 @@ def calibrate(cmd: CalibrateCommand) -> int:
     from arteleop.scene import (
         BASE_FRAME,
         CAMERA_FRAME,
-        HAND_EYE_METHODS,
         CalibrationConfig,
         EdgeKind,
         RemoteSite,
         SiteConfig,
-        calibrate_with_table_marker,
+        calibrate_camera,
         calibration_errors,
-        collect_hand_eye,
-        refine_hand_eye,
-        solve_hand_eye,
     )
 
     _check_seed(cmd.seed)
     config = CalibrationConfig(poses=cmd.poses, seed=cmd.seed)
     with RemoteSite(SiteConfig(camera=cmd.camera_config(), seed=cmd.seed)) as site:
-        helper = calibrate_with_table_marker(site, config)
-        data = collect_hand_eye(site, config)
+        run = calibrate_camera(site, config, cmd.method)
         T_true = site.camera.T_base_camera
         registered = site.camera.registered.T_base_camera
         intrinsics = site.camera.intrinsics
         graph = site.frames.graph  # the robot at rest, the table, the markers, the camera
-    closed_form = [
-        solve_hand_eye(data, method, config.board, intrinsics) for method in HAND_EYE_METHODS
-    ]
-    best = min(closed_form, key=lambda r: r.reprojection_error_px)
-    start = best if cmd.method == "best" else next(r for r in closed_form if r.method == cmd.method)
-    chosen = refine_hand_eye(data, start, config.board, intrinsics)
-    positions = data.T_base_gripper[:, :3, 3]
+    chosen = run.refined
+    positions = run.data.T_base_gripper[:, :3, 3]
     print(
-        f"hand-eye: {len(positions)} usable poses of {data.attempts} tried; helper: "
-        f"{helper.poses} sightings of the table marker\n"
+        f"hand-eye: {len(positions)} usable poses of {run.data.attempts} tried; helper: "
+        f"{run.helper.poses} sightings of the table marker\n"
     )
     print(
         "| method | poses | error (mm) | error (deg) | reprojection (px) "
@@ -191,7 +181,7 @@ def calibrate(cmd: CalibrateCommand) -> int:
             f"| registration given (--camera-offset-*) | - | {e.error_mm:.1f} | {e.error_deg:.2f} "
             f"| - | {e.colocation_px:.1f} | {e.colocation_mm:.1f} |"
         )
-    for r in [helper, *closed_form, chosen]:
+    for r in [run.helper, *run.closed_form, chosen]:
         e = calibration_errors(r.T_base_camera, T_true, intrinsics, positions)
         print(
             f"| {r.method} | {r.poses} | {e.error_mm:.1f} | {e.error_deg:.2f} "

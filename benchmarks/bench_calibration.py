@@ -21,15 +21,11 @@ from collections import defaultdict
 import numpy as np
 
 from arteleop.scene import (
-    HAND_EYE_METHODS,
     CalibrationConfig,
     RemoteSite,
     SiteConfig,
-    calibrate_with_table_marker,
+    calibrate_camera,
     calibration_errors,
-    collect_hand_eye,
-    refine_hand_eye,
-    solve_hand_eye,
 )
 
 
@@ -44,16 +40,14 @@ def main() -> None:
             config = CalibrationConfig(poses=n, seed=seed)
             with RemoteSite(SiteConfig(seed=seed)) as site:
                 truth, K = site.camera.T_base_camera.copy(), site.camera.intrinsics
-                helper = calibrate_with_table_marker(site, config)
-                data = collect_hand_eye(site, config)
-            closed = [solve_hand_eye(data, m, config.board, K) for m in HAND_EYE_METHODS]
+                run = calibrate_camera(site, config)
+            data, closed = run.data, run.closed_form
             best = min(closed, key=lambda r: r.reprojection_error_px)
-            refined = refine_hand_eye(data, best, config.board, K)
             positions = data.T_base_gripper[:, :3, 3]
             named = [
-                ("refined (best closed form + corners)", refined),
+                ("refined (best closed form + corners)", run.refined),
                 ("baseline: best closed form", best),
-                ("helper (table marker)", helper),
+                ("helper (table marker)", run.helper),
             ]
             named += [(r.method, r) for r in closed]  # fmt: skip
             for name, result in named:

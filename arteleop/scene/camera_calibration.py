@@ -357,6 +357,45 @@ def refine_hand_eye(
     )
 
 
+@dataclass(frozen=True)
+class CalibrationRun:
+    """Both calibrations of one site, as ``arteleop calibrate`` runs them.
+
+    Attributes:
+        helper: The table marker's estimate.
+        data: The hand-eye sightings.
+        closed_form: Every OpenCV hand-eye solver's estimate, in :data:`HAND_EYE_METHODS`'
+            order.
+        refined: The chosen closed form refined on the marker's corners.
+    """
+
+    helper: CameraCalibration
+    data: HandEyeData
+    closed_form: tuple[CameraCalibration, ...]
+    refined: CameraCalibration
+
+
+def calibrate_camera(
+    site: RemoteSite, config: CalibrationConfig, method: str = "best"
+) -> CalibrationRun:
+    """The helper-based and the hand-eye calibration of ``site``'s head camera; the refinement
+    starts from the closed form ``method`` names, or with ``"best"`` from the one with the
+    lowest reprojection error (which needs no ground truth)."""
+    if method != "best" and method not in HAND_EYE_METHODS:
+        raise CalibrationError(
+            f"hand-eye method {method!r}: expected best or one of {', '.join(HAND_EYE_METHODS)}"
+        )
+    helper = calibrate_with_table_marker(site, config)
+    data = collect_hand_eye(site, config)
+    K = site.camera.intrinsics
+    closed = tuple(solve_hand_eye(data, m, config.board, K) for m in HAND_EYE_METHODS)
+    if method == "best":
+        start = min(closed, key=lambda r: r.reprojection_error_px)
+    else:
+        start = next(r for r in closed if r.method == method)
+    return CalibrationRun(helper, data, closed, refine_hand_eye(data, start, config.board, K))
+
+
 def calibration_errors(
     T_base_camera: NDArray[np.float64],
     T_base_camera_true: NDArray[np.float64],

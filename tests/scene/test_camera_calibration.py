@@ -160,3 +160,14 @@ def test_a_marker_never_seen_says_so(site: RemoteSite) -> None:
     assert str(error.value).startswith(
         "The table marker was never seen in 2 placements: 0 usable sightings, at least 1 needed."
     )
+
+
+def test_an_unknown_hand_eye_method_is_refused_before_anything_runs() -> None:
+    from arteleop.scene import calibrate_camera
+
+    with pytest.raises(CalibrationError) as err:
+        calibrate_camera(None, CalibrationConfig(), "tsia")  # type: ignore[arg-type]
+    assert str(err.value) == (
+        "hand-eye method 'tsia': expected best or one of tsai, park, horaud, andreff, "
+        "daniilidis, shah, li"
+    )
