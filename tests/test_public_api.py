@@ -34,6 +34,18 @@ def test_the_operator_package_loads_without_the_view_server() -> None:
     assert out.stdout.strip() == "[]"
 
 
+def test_a_trial_loads_without_the_mesh_plotting_and_statistics_libraries() -> None:
+    """What a trial needs starts in about 3 s; open3d (with dash and IPython), trimesh,
+    matplotlib and statsmodels would add 4 s: they load where they are used."""
+    heavy = ("open3d", "trimesh", "matplotlib", "statsmodels", "dash", "IPython")
+    code = (
+        "import sys, arteleop.scene, arteleop.teleop, arteleop.analysis; "
+        f"print(sorted(m for m in {heavy!r} if m in sys.modules))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]"
+
+
 def test_the_analysis_knows_the_same_modalities_as_the_view() -> None:
     """analysis/ imports nothing else from arteleop, so it keeps its own list: the same one."""
     from arteleop.analysis import MODALITIES as ANALYSED

@@ -4,31 +4,59 @@ This package imports nothing else from arteleop: it works on any CSVs of the doc
 (docs/data-format.md), from the simulator or from a real lab.
 """
 
+import importlib
+from typing import TYPE_CHECKING, Any
+
 from arteleop.analysis.data import MEASURES, MODALITIES, StudyData, load_study, load_trajectory
 from arteleop.analysis.errors import AnalysisInputError
-from arteleop.analysis.report import write_report
 from arteleop.analysis.smoothness import (
     log_dimensionless_jerk,
     normalized_jerk,
     path_length,
     spectral_arc_length,
 )
-from arteleop.analysis.statistics import (
-    AnalysisOptions,
-    NormalityResult,
-    TestResult,
-    cohens_d,
-    compare_independent,
-    compare_paired,
-    holm,
-    normality,
-    order_effect,
-    pairwise,
-    rank_biserial,
-    stars,
-    trim_extremes,
-)
-from arteleop.analysis.study_analysis import AnalysisResult, analyse
+
+if TYPE_CHECKING:
+    from arteleop.analysis.report import write_report
+    from arteleop.analysis.statistics import (
+        AnalysisOptions,
+        NormalityResult,
+        TestResult,
+        cohens_d,
+        compare_independent,
+        compare_paired,
+        holm,
+        normality,
+        order_effect,
+        pairwise,
+        rank_biserial,
+        stars,
+        trim_extremes,
+    )
+    from arteleop.analysis.study_analysis import AnalysisResult, analyse
+
+# The statistics (statsmodels) and the report's figures (matplotlib) take about a second to
+# import; a trial needs only the smoothness metrics, so those load on first use.
+_LAZY = {
+    **dict.fromkeys(
+        (
+            "AnalysisOptions", "NormalityResult", "TestResult", "cohens_d",
+            "compare_independent", "compare_paired", "holm", "normality", "order_effect",
+            "pairwise", "rank_biserial", "stars", "trim_extremes",
+        ),
+        "arteleop.analysis.statistics",
+    ),
+    "AnalysisResult": "arteleop.analysis.study_analysis",
+    "analyse": "arteleop.analysis.study_analysis",
+    "write_report": "arteleop.analysis.report",
+}  # fmt: skip
+
+
+def __getattr__(name: str) -> Any:
+    if name in _LAZY:
+        return getattr(importlib.import_module(_LAZY[name]), name)
+    raise AttributeError(f"module 'arteleop.analysis' has no attribute '{name}'")
+
 
 __all__ = [
     "MEASURES",

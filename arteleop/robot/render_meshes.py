@@ -12,8 +12,6 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
-import open3d as o3d
-import trimesh
 
 
 def decimated_mesh(source: Path, target_triangles: int, out_dir: Path) -> Path:
@@ -25,6 +23,10 @@ def decimated_mesh(source: Path, target_triangles: int, out_dir: Path) -> Path:
     out = out_dir / f"{source.stem}-{target_triangles}.obj"
     if out.is_file():
         return out
+    # 3 s to import between them (open3d pulls in dash and IPython): only on a cache miss.
+    import open3d as o3d
+    import trimesh
+
     mesh = trimesh.load(source, force="mesh")
     # COLLADA stores a vertex per face corner; quadric decimation needs shared vertices.
     mesh.merge_vertices()

@@ -10,16 +10,19 @@ from __future__ import annotations
 
 from collections import deque
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import cv2
 import numpy as np
-import open3d as o3d
 from numpy.typing import NDArray
 
 from arteleop.errors import ConfigurationError
 from arteleop.scene.camera import RGBDFrame
 from arteleop.scene.pointcloud import depth_to_camera_points
 from arteleop.transforms import transform_points
+
+if TYPE_CHECKING:
+    import open3d as o3d
 
 
 @dataclass(frozen=True)
@@ -60,6 +63,8 @@ class DepthMesh:
     colors: NDArray[np.uint8]
 
     def to_open3d(self) -> o3d.geometry.TriangleMesh:
+        import open3d as o3d  # 1.7 s to import (dash, IPython): only when asked for
+
         mesh = o3d.geometry.TriangleMesh(
             o3d.utility.Vector3dVector(self.vertices_m), o3d.utility.Vector3iVector(self.triangles)
         )

@@ -3,14 +3,17 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-import open3d as o3d
 from numpy.typing import NDArray
 
 from arteleop.scene.camera import RGBDFrame
 from arteleop.scene.camera_config import CameraIntrinsics
 from arteleop.transforms import transform_points
+
+if TYPE_CHECKING:
+    import open3d as o3d
 
 
 @dataclass(frozen=True)
@@ -25,6 +28,8 @@ class PointCloud:
     pixels: NDArray[np.int64]
 
     def to_open3d(self) -> o3d.geometry.PointCloud:
+        import open3d as o3d  # 1.7 s to import (dash, IPython): only when asked for
+
         cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(self.points_m))
         cloud.colors = o3d.utility.Vector3dVector(self.colors.astype(np.float64) / 255.0)
         return cloud

@@ -7,7 +7,6 @@ from pathlib import Path
 
 import cv2
 import numpy as np
-import open3d as o3d
 from numpy.typing import NDArray
 
 from arteleop.errors import ArteleopError
@@ -59,6 +58,8 @@ def write_snapshot(site: RemoteSite, out_dir: Path) -> SceneSnapshot:
     depth.png is 16-bit in millimetres (0 = no return); depth_vis.png shows it in false colour;
     cloud.ply is in the base frame (m).
     """
+    from open3d.io import write_point_cloud  # 1.7 s to import: only for a snapshot
+
     out_dir.mkdir(parents=True, exist_ok=True)
     site.step(round(SETTLE_S * site.config.physics_rate_hz))
     frame = site.capture()
@@ -68,7 +69,7 @@ def write_snapshot(site: RemoteSite, out_dir: Path) -> SceneSnapshot:
     ok = cv2.imwrite(str(files["rgb.png"]), cv2.cvtColor(frame.rgb, cv2.COLOR_RGB2BGR))
     ok &= cv2.imwrite(str(files["depth.png"]), depth_mm)
     ok &= cv2.imwrite(str(files["depth_vis.png"]), depth_false_colour(frame.depth_m))
-    ok &= o3d.io.write_point_cloud(str(files["cloud.ply"]), frame_to_point_cloud(frame).to_open3d())
+    ok &= write_point_cloud(str(files["cloud.ply"]), frame_to_point_cloud(frame).to_open3d())
     if not ok:
         raise ArteleopError(f"Could not write the snapshot files into {out_dir}: is it writable?")
     track = BowlTracker(site.config.workspace.bowl).track(
