@@ -74,6 +74,9 @@ class Baxter:
     ) -> None:
         self._client = client
         self.control = control or ArmControlConfig()
+        self._motor_groups: dict[
+            Sequence[str], tuple[list[int], list[float], list[float], list[float]]
+        ] = {}
         self.left_arm_rad = tuple(float(v) for v in left_arm_rad)
         self.left_arm_limits = BaxterKinematics(description.urdf_path).limits(LEFT_ARM_JOINTS)
         self.left_arm_limits.check(np.asarray(self.left_arm_rad), "left arm pose")
@@ -211,14 +214,25 @@ class Baxter:
             self._client.resetJointState(self.body_id, self.joint_index[name], value)
 
     def _command(self, names: Sequence[str], q: ArrayLike, limits: JointLimits) -> None:
+        # Runs on every physics step: the lists that never change are built once per group.
+        group = self._motor_groups.get(names)
+        if group is None:
+            n = len(names)
+            group = self._motor_groups[names] = (
+                [self.joint_index[name] for name in names],
+                limits.effort.tolist(),
+                [self.control.position_gain] * n,
+                [self.control.velocity_gain] * n,
+            )
+        joints, forces, kp, kd = group
         self._client.setJointMotorControlArray(
             self.body_id,
-            [self.joint_index[n] for n in names],
+            joints,
             p.POSITION_CONTROL,
-            targetPositions=list(np.asarray(q, dtype=np.float64)),
-            forces=list(limits.effort),
-            positionGains=[self.control.position_gain] * len(names),
-            velocityGains=[self.control.velocity_gain] * len(names),
+            targetPositions=np.asarray(q, dtype=np.float64).tolist(),
+            forces=forces,
+            positionGains=kp,
+            velocityGains=kd,
         )
 
 

@@ -194,6 +194,9 @@ class TeleopController:
         """One trajectory step: the arm's joint targets for the next physics step, once engaged."""
         if self.state is not ControllerState.ENGAGED:
             return None
-        # Tracking a moving target, the trajectory can overshoot a limit by a hair.
+        # Tracking a moving target, the trajectory can overshoot a limit by a hair. (np.clip's
+        # dispatch costs more than the two ufuncs it amounts to, at 240 Hz.)
         lim = self._limits
-        return ArmCommand(q_rad=np.clip(self.trajectory.step(), lim.lower, lim.upper))
+        return ArmCommand(
+            q_rad=np.minimum(np.maximum(self.trajectory.step(), lim.lower), lim.upper)
+        )
