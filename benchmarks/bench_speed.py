@@ -5,10 +5,17 @@ Runs the same trials (``--seeds`` per modality) in this checkout and in a git wo
 per modality the median batch speed (simulated seconds per wall second) of each and their
 ratio, and whether the trials' outcomes agree.
 
+The second baseline is PyBullet alone: each of this checkout's trials is replayed on a fresh
+site from the arm and gripper commands it sent, step for step, with nothing else running (no
+operator, IK, camera or tracker). That is the physics' own speed, the ceiling of the loop's;
+the replay must end with the bowl where the trial left it, to the bit. The last table is where
+a simulated second goes in this checkout, by stage of the loop.
+
     python benchmarks/bench_speed.py --baseline 88190a3 [--seeds 5] [--modalities none,full]
 
 The trials' numbers are not expected to equal the baseline's where the change alters the random
-streams; the outcome column says how many trials end the same way.
+streams; the outcome column says how many trials end the same way, the identical column how
+many end with the same outcome, time and placement error to the bit.
 """
 
 from __future__ import annotations
@@ -24,9 +31,11 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).resolve().parent.parent
+IDENTITY = ("outcome", "duration_s", "placement_error_m")
+NESTED = ("ik", "mapping")
 
 
-def worker(modalities: list[str], seeds: int) -> None:
+def worker(modalities: list[str], seeds: int, replay: bool) -> None:
     """Run the trials with whichever ``arteleop`` is on the path; one JSON line per trial."""
     import arteleop
     from arteleop.scene import RemoteSite
@@ -38,15 +47,54 @@ def worker(modalities: list[str], seeds: int) -> None:
             config = TrialConfig(modality=modality, seed=seed)
             with RemoteSite(config.site) as site:
                 source = trial_operator(site, config)
+                commands = record_commands(site) if replay else None
                 t0 = time.perf_counter()
                 result = run_trial(source, config, site)
                 wall = time.perf_counter() - t0
+                bowl = site.observe(links=()).T_base_bowl
             row = result.to_row()
-            print(json.dumps({
+            line = {
                 "modality": modality, "seed": seed, "outcome": row["outcome"],
                 "placement_error_m": row["placement_error_m"],
                 "duration_s": result.duration_s, "wall_s": wall,
-            }), flush=True)  # fmt: skip
+                "stages_ms": {s.stage: s.latency_total_ms for s in result.stages},
+            }  # fmt: skip
+            if commands is not None:
+                with RemoteSite(config.site) as fresh:
+                    line["replay_wall_s"] = replay_commands(fresh, commands)
+                    line["replay_same"] = bool(
+                        np.array_equal(fresh.observe(links=()).T_base_bowl, bowl)
+                    )
+            print(json.dumps(line), flush=True)
+
+
+def record_commands(site: object) -> list[object]:
+    """Every command and physics step the trial gives ``site``, in order (None: one step)."""
+    events: list[object] = []
+    apply, step = site.apply, site.step
+
+    def recorded_apply(command: object) -> None:
+        events.append(command)
+        apply(command)
+
+    def recorded_step(n: int = 1) -> None:
+        events.extend([None] * n)
+        step(n)
+
+    site.apply, site.step = recorded_apply, recorded_step
+    return events
+
+
+def replay_commands(site: object, events: list[object]) -> float:
+    """Give a fresh site the same commands and steps; the wall time it takes (s)."""
+    apply, step = site.apply, site.step
+    t0 = time.perf_counter()
+    for event in events:
+        if event is None:
+            step()
+        else:
+            apply(event)
+    return time.perf_counter() - t0
 
 
 def baseline_tree(ref: str) -> Path:
@@ -64,10 +112,12 @@ def baseline_tree(ref: str) -> Path:
     return tree
 
 
-def launch(tree: Path, core: int, args: argparse.Namespace) -> subprocess.Popen[str]:
+def launch(tree: Path, core: int, args: argparse.Namespace, replay: bool) -> subprocess.Popen[str]:
     env = {**os.environ, "PYTHONPATH": str(tree), "OMP_NUM_THREADS": "1"}
     command = [sys.executable, str(Path(__file__).resolve()), "--worker",
                "--seeds", str(args.seeds), "--modalities", args.modalities]  # fmt: skip
+    if replay:
+        command.append("--replay")
     return subprocess.Popen(
         command, cwd=tree, env=env, stdout=subprocess.PIPE, text=True,
         preexec_fn=lambda: os.sched_setaffinity(0, {core}),
@@ -80,16 +130,17 @@ def main() -> None:
     parser.add_argument("--seeds", type=int, default=5)
     parser.add_argument("--modalities", default="none,manipulation,embodiment,task,full")
     parser.add_argument("--worker", action="store_true", help=argparse.SUPPRESS)
+    parser.add_argument("--replay", action="store_true", help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.worker:
-        worker(args.modalities.split(","), args.seeds)
+        worker(args.modalities.split(","), args.seeds, args.replay)
         return
     if not args.baseline:
         parser.error("--baseline: give the commit to compare with, e.g. --baseline 88190a3")
     cores = sorted(os.sched_getaffinity(0))
     trees = {"this checkout": ROOT, f"baseline {args.baseline}": baseline_tree(args.baseline)}
-    runs = {name: launch(tree, cores[i % len(cores)], args) for i, (name, tree) in
-            enumerate(trees.items())}  # fmt: skip
+    runs = {name: launch(tree, cores[i % len(cores)], args, replay=i == 0) for i, (name, tree)
+            in enumerate(trees.items())}  # fmt: skip
     rows: dict[str, list[dict]] = {}
     for name, process in runs.items():
         out, _ = process.communicate()
@@ -100,16 +151,22 @@ def main() -> None:
         rows[name] = lines[1:]
     new, old = rows.values()
     print(f"\n## Batch speed, one core each, {args.seeds} seeds per modality (x real time)\n")
-    print(f"| modality | this checkout | baseline {args.baseline} | ratio | same outcome |")
-    print("| --- | ---: | ---: | ---: | ---: |")
+    print(f"| modality | this checkout | baseline {args.baseline} | ratio | PyBullet alone "
+          "| same outcome | identical |")  # fmt: skip
+    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: |")
     for modality in args.modalities.split(","):
         a = [r for r in new if r["modality"] == modality]
         b = [r for r in old if r["modality"] == modality]
         speed_a = np.median([r["duration_s"] / r["wall_s"] for r in a])
         speed_b = np.median([r["duration_s"] / r["wall_s"] for r in b])
+        physics = np.median([r["duration_s"] / r["replay_wall_s"] for r in a])
         same = sum(x["outcome"] == y["outcome"] for x, y in zip(a, b, strict=True))
+        identical = sum(
+            all(x[k] == y[k] or (x[k] != x[k] and y[k] != y[k]) for k in IDENTITY)
+            for x, y in zip(a, b, strict=True)
+        )
         print(f"| {modality} | {speed_a:.2f} | {speed_b:.2f} | {speed_a / speed_b:.2f} "
-              f"| {same}/{len(a)} |")  # fmt: skip
+              f"| {physics:.1f} | {same}/{len(a)} | {identical}/{len(a)} |")  # fmt: skip
     total = {k: sum(r["duration_s"] for r in v) / sum(r["wall_s"] for r in v)
              for k, v in (("new", new), ("old", old))}  # fmt: skip
     print(f"\nAll trials: {total['new']:.2f}x against {total['old']:.2f}x real time "
@@ -118,6 +175,28 @@ def main() -> None:
               for k, v in (("new", new), ("old", old))}  # fmt: skip
     print(f"Median placement error of the successes: {errors['new'] * 1000:.1f} mm against "
           f"{errors['old'] * 1000:.1f} mm.")  # fmt: skip
+    replayed = sum(r["replay_same"] for r in new)
+    print(f"Replays that end with the bowl where the trial left it: {replayed}/{len(new)}.")
+    print_budget(new)
+
+
+def print_budget(rows: list[dict]) -> None:
+    """Where a simulated second goes in this checkout: wall ms per simulated second by stage,
+    medians over the trials; the rest is the loop's own (clock, snapshots, monitor)."""
+    per_s = [{k: v / r["duration_s"] for k, v in r["stages_ms"].items()} for r in rows]
+    for r, d in zip(rows, per_s, strict=True):
+        d["physics alone (replay)"] = 1000.0 * r["replay_wall_s"] / r["duration_s"]
+        # "ik" and "mapping" are parts of "control_tick"; the rest is outside every stage.
+        timed = sum(v for k, v in r["stages_ms"].items() if k not in NESTED)
+        d["untimed"] = (1000.0 * r["wall_s"] - timed) / r["duration_s"]
+        d["whole loop"] = 1000.0 * r["wall_s"] / r["duration_s"]
+    print("\n## Where a simulated second goes (this checkout, wall ms per simulated second)\n")
+    print("| stage | median | share of the loop |")
+    print("| --- | ---: | ---: |")
+    whole = np.median([d["whole loop"] for d in per_s])
+    for stage in sorted(per_s[0], key=lambda k: -np.median([d.get(k, 0.0) for d in per_s])):
+        ms = np.median([d.get(stage, 0.0) for d in per_s])
+        print(f"| {stage} | {ms:.1f} | {ms / whole:.0%} |")
 
 
 if __name__ == "__main__":
