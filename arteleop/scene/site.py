@@ -66,6 +66,10 @@ class SiteConfig:
         workspace: Table, bowl and markers.
         camera: The head RGB-D camera.
         physics_rate_hz: Physics steps per simulated second (>= 240).
+        solver_iterations: Iterations of PyBullet's constraint solver per step (its default,
+            50). Fewer make a step cheaper, most of all while the pads hold the bowl, and change
+            the grasp's dynamics: benchmarks/bench_physics.py compares outcomes and placement
+            errors over the study's trials.
         reach_margin: Fraction of the arm's maximum reach kept free at start and target.
         robot: How the robot's URDF is prepared.
         gripper: Electric gripper settings.
@@ -80,6 +84,7 @@ class SiteConfig:
     workspace: Workspace = field(default_factory=Workspace)
     camera: HeadCameraConfig = field(default_factory=HeadCameraConfig)
     physics_rate_hz: float = 240.0
+    solver_iterations: int = 50
     reach_margin: float = 0.05
     robot: BaxterDescriptionConfig = field(default_factory=BaxterDescriptionConfig)
     gripper: GripperConfig = field(default_factory=GripperConfig)
@@ -92,6 +97,13 @@ class SiteConfig:
         if self.physics_rate_hz < 240:
             raise ConfigurationError(
                 f"physics_rate_hz={self.physics_rate_hz}: use at least 240 Hz for stable grasps"
+            )
+        if isinstance(self.solver_iterations, bool) or not (
+            isinstance(self.solver_iterations, int) and self.solver_iterations >= 1
+        ):
+            raise ConfigurationError(
+                f"solver_iterations={self.solver_iterations!r}: use a whole number >= 1 "
+                "(PyBullet's default is 50)"
             )
         if not 0 <= self.reach_margin < 0.5:
             raise ConfigurationError(f"reach_margin={self.reach_margin} must be in [0, 0.5)")
@@ -141,6 +153,7 @@ class RemoteSite(Closeable):
         try:
             self._client.setGravity(0.0, 0.0, -9.81)
             self._client.setTimeStep(1.0 / config.physics_rate_hz)
+            self._client.setPhysicsEngineParameter(numSolverIterations=config.solver_iterations)
             with native_stdout_silenced():
                 self.robot = Baxter(
                     self._client,

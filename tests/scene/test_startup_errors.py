@@ -4,7 +4,7 @@ from dataclasses import replace
 
 import pytest
 
-from arteleop.errors import CameraConfigError, WorkspaceError
+from arteleop.errors import CameraConfigError, ConfigurationError, WorkspaceError
 from arteleop.scene import BowlSpec, HeadCameraConfig, RemoteSite, SiteConfig, Workspace
 
 
@@ -70,3 +70,18 @@ def test_failed_start_up_releases_the_physics_client(site_config: SiteConfig) ->
     with pytest.raises(CameraConfigError):
         RemoteSite(replace(site_config, camera=HeadCameraConfig(pitch_down_deg=-10.0)))
     assert sum(p.isConnected(i) for i in range(16)) == before
+
+
+@pytest.mark.parametrize("iterations", [0, -3, 2.5, True])
+def test_bad_solver_iterations(iterations: object) -> None:
+    with pytest.raises(
+        ConfigurationError, match=rf"solver_iterations={iterations!r}: use a whole number >= 1"
+    ):
+        SiteConfig(solver_iterations=iterations)  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize("iterations", [50, 12])
+def test_the_solver_runs_the_iterations_asked_for(site_config: SiteConfig, iterations: int) -> None:
+    with RemoteSite(replace(site_config, solver_iterations=iterations)) as site:
+        engine = site._client.getPhysicsEngineParameters()
+    assert engine["numSolverIterations"] == iterations
