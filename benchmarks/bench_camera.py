@@ -1,7 +1,8 @@
 """The head camera's cost per frame on one core: render, depth and noise, point cloud.
 
 Baseline, side by side in this script: the full render, every body drawn every frame (what
-``RenderWorld`` did before it drew in layers). The frames are states of a full-AR trial, spread
+``RenderWorld`` did before it drew in layers). The floor row is TinyRenderer drawing an empty
+world at the same size and camera, what any frame costs before anything is drawn. The frames are states of a full-AR trial, spread
 evenly over it, so the arm is seen at rest, reaching, carrying and returning.
 
     python benchmarks/bench_camera.py [--frames 40]
@@ -18,7 +19,10 @@ import statistics
 import time
 
 import numpy as np
+import pybullet as p
+from pybullet_utils.bullet_client import BulletClient
 
+from arteleop.robot.native_output import native_stdout_silenced
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig, frame_to_point_cloud
 from arteleop.scene.camera import render
 from arteleop.scene.render_world import SceneState
@@ -37,13 +41,17 @@ def trial_states(site: RemoteSite, frames: int) -> list[SceneState]:
     return [states[i][1] for i in picks]
 
 
-def measure(site: RemoteSite, states: list[SceneState]) -> dict[str, dict[str, float]]:
-    """Median ms per stage, for the baseline and the layers, interleaved frame by frame."""
+def measure(
+    site: RemoteSite, states: list[SceneState], empty: BulletClient
+) -> dict[str, dict[str, float]]:
+    """Median ms per stage, for the baseline, the layers and an empty world (the floor),
+    interleaved frame by frame."""
     world, camera = site.render_world, site.camera
     request = camera.request()
     renders = {
         "baseline": lambda: render(world.client, request),
         "layers": lambda: world.render(request),
+        "floor": lambda: render(empty, request),
     }
     times: dict[str, dict[str, list[float]]] = {
         k: {"render": [], "depth": [], "cloud": [], "total": []} for k in renders
@@ -79,8 +87,11 @@ def main() -> None:
     print("| --- | --- | ---: | ---: | ---: |")
     for w, h in ((640, 480), (320, 240)):
         config = SiteConfig(camera=HeadCameraConfig(width_px=w, height_px=h))
+        with native_stdout_silenced():  # PyBullet prints its argv on connecting
+            empty = BulletClient(connection_mode=p.DIRECT)
         with RemoteSite(config) as site:
-            result = measure(site, trial_states(site, args.frames))
+            result = measure(site, trial_states(site, args.frames), empty)
+        empty.disconnect()
         base, ours = result["baseline"], result["layers"]
         for stage in ("render", "depth", "cloud", "total"):
             label = "render + depth + cloud" if stage == "total" else stage
@@ -91,6 +102,9 @@ def main() -> None:
         print(
             f"| {w}x{h} | frames per second | {1000 / base['total']:.1f} "
             f"| {1000 / ours['total']:.1f} | {base['total'] / ours['total']:.2f} |"
+        )
+        print(
+            f"| {w}x{h} | floor: render of an empty world | | {result['floor']['render']:.1f} | |"
         )
 
 

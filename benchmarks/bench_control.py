@@ -21,10 +21,11 @@ import argparse
 import time
 
 import numpy as np
+from bench_speed import record_commands, replay_commands  # benchmarks/, the script's folder
 from scipy.spatial.transform import Rotation
 
 from arteleop.ar_features import DisplayFrame, OperatorView, ViewConfig, ViewProbe
-from arteleop.robot import GRIPPER_FRAME, RIGHT_ARM_JOINTS, WORK_POSTURE, ArmCommand
+from arteleop.robot import GRIPPER_FRAME, RIGHT_ARM_JOINTS, WORK_POSTURE
 from arteleop.robot.ik import ArmIK
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
 from arteleop.teleop import TrialConfig, TrialResult, run_trial, trial_operator
@@ -126,28 +127,11 @@ def trial_timing(seconds: float, seeds: int) -> None:
 def physics_replay(seconds: float) -> float:
     """Batch speed of the physics alone: record a trial's commands, replay them on a new site."""
     config = TrialConfig(modality="full", seed=0, timeout_s=seconds)
-    commands: list[tuple[int, ArmCommand]] = []
     with RemoteSite(config.site) as site:
-        rate = site.config.physics_rate_hz
-        apply = site.apply
-
-        def recorded(command: ArmCommand) -> None:
-            commands.append((round(site.time_s * rate), command))
-            apply(command)
-
-        site.apply = recorded  # type: ignore[method-assign]
-        steps = round(run_trial(trial_operator(site, config), config, site).duration_s * rate)
+        events = record_commands(site)
+        duration_s = run_trial(trial_operator(site, config), config, site).duration_s
     with RemoteSite(config.site) as site:
-        by_step: dict[int, list[ArmCommand]] = {}
-        for k, command in commands:
-            by_step.setdefault(k, []).append(command)
-        t0 = time.perf_counter()
-        for k in range(steps):
-            for command in by_step.get(k, ()):
-                site.apply(command)
-            site.step()
-        wall = time.perf_counter() - t0
-    return steps / site.config.physics_rate_hz / wall
+        return duration_s / replay_commands(site, events)
 
 
 class _TimedDisplay:
