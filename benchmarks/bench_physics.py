@@ -80,7 +80,12 @@ def main() -> None:
     if args.worker is not None:
         worker(args.worker, args.seeds)
         return
-    setups = [BASELINE, *(int(v) for v in args.iterations.split(","))]
+    try:
+        setups = [BASELINE, *(int(v) for v in args.iterations.split(","))]
+    except ValueError:
+        parser.error(f"--iterations {args.iterations!r}: give whole numbers, e.g. 20,10")
+    if min(setups) < 1 or args.seeds < 1:
+        parser.error("--iterations and --seeds must be at least 1")
     cores = sorted(os.sched_getaffinity(0))
     with ThreadPoolExecutor(min(2, len(cores))) as pool:
         futures = [pool.submit(run, n, args.seeds, cores[i % len(cores)])
