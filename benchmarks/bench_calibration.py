@@ -20,13 +20,8 @@ from collections import defaultdict
 
 import numpy as np
 
-from arteleop.scene import (
-    CalibrationConfig,
-    RemoteSite,
-    SiteConfig,
-    calibrate_camera,
-    calibration_errors,
-)
+from arteleop.calibration import CalibrationConfig, calibrate_camera, calibration_errors
+from arteleop.scene import RemoteSite, SiteConfig
 
 
 def main() -> None:

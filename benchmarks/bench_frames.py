@@ -19,13 +19,13 @@ from collections.abc import Callable
 
 import numpy as np
 
+from arteleop.frames import EdgeKind, RobotFrames, TransformGraph
 from arteleop.robot import (
     GRIPPER_FRAME,
     RIGHT_ARM_JOINTS,
     BaxterKinematics,
     load_baxter_description,
 )
-from arteleop.scene import EdgeKind, RobotFrames, TransformGraph
 
 
 def median_us(fn: Callable[[], object], repeats: int) -> float:

@@ -75,7 +75,7 @@ def test_operator_check_fails_on_an_invalid_recording(
 def test_calibrate_prints_every_method_and_writes_the_graph(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    from arteleop.scene import EdgeKind, TransformGraph
+    from arteleop.frames import EdgeKind, TransformGraph
 
     out = tmp_path / "frames" / "calibration.json"
     assert main(["calibrate", "--poses", "6", "--out", str(out)]) == 0
@@ -126,7 +126,7 @@ def test_a_camera_graph_file_sets_the_registration(
 ) -> None:
     """A graph whose camera sits 25 mm off the true pose (along base x) moves the tracked bowl
     by that much; a graph without the camera's edge is refused, naming the file."""
-    from arteleop.scene import EdgeKind, TransformGraph
+    from arteleop.frames import EdgeKind, TransformGraph
 
     T = site.camera.T_base_camera.copy()
     T[0, 3] += 0.025

@@ -7,6 +7,8 @@ import pytest
 PACKAGES = [
     "arteleop.analysis",
     "arteleop.ar_features",
+    "arteleop.calibration",
+    "arteleop.frames",
     "arteleop.operator",
     "arteleop.robot",
     "arteleop.scene",
@@ -52,3 +54,25 @@ def test_the_analysis_knows_the_same_modalities_as_the_view() -> None:
     from arteleop.ar_features import MODALITIES
 
     assert ANALYSED == tuple(MODALITIES)
+
+
+@pytest.mark.parametrize(
+    ("name", "home"),
+    [("TransformGraph", "arteleop.frames"), ("calibrate_camera", "arteleop.calibration")],
+)
+def test_a_name_that_moved_out_of_the_scene_is_found_there_with_a_warning(
+    name: str, home: str
+) -> None:
+    """Scripts written for 0.1 keep working through 0.2, told where the name went."""
+    import arteleop.scene
+
+    message = (
+        f"arteleop.scene.{name} has moved: import it from {home} (arteleop.scene re-exports it "
+        "through 0.2 only)"
+    )
+    with pytest.warns(DeprecationWarning) as caught:
+        moved = getattr(arteleop.scene, name)
+    assert [str(w.message) for w in caught] == [message]
+    assert moved is getattr(importlib.import_module(home), name)
+    with pytest.raises(AttributeError, match="has no attribute 'NoSuchName'"):
+        arteleop.scene.NoSuchName  # noqa: B018

@@ -1,10 +1,19 @@
-"""The remote site: workspace, bowl, head RGB-D camera, point clouds, depth meshes, tracking."""
+"""The remote site: workspace, bowl, head RGB-D camera, point clouds, depth meshes, tracking,
+and the site's frames.
+
+The transform graph and its transforms are in :mod:`arteleop.frames`, the camera's calibration
+and the ArUco markers in :mod:`arteleop.calibration`. Their names are still found here, with a
+``DeprecationWarning``, through 0.2 (they moved in 0.2).
+"""
+
+import importlib
+import warnings
+from typing import Any
 
 # First: it loads PyBullet without the banner PyBullet prints on import.
 from arteleop.robot import native_output  # noqa: F401
 
 # isort: split
-from arteleop.scene.aruco import ArucoMarker, MarkerBody, MarkerObservation, detect_marker
 from arteleop.scene.bowl import (
     GRASP_DEPTH_M,
     BowlSpec,
@@ -15,27 +24,12 @@ from arteleop.scene.bowl import (
 from arteleop.scene.bowl_sight import BowlSight, BowlSightConfig
 from arteleop.scene.bowl_tracking import BowlTrack, BowlTracker, BowlTrackerConfig
 from arteleop.scene.camera import HeadCamera, RGBDFrame
-from arteleop.scene.camera_calibration import (
-    HAND_EYE_METHODS,
-    CalibrationConfig,
-    CalibrationErrors,
-    CalibrationRun,
-    CameraCalibration,
-    HandEyeData,
-    calibrate_camera,
-    calibrate_with_table_marker,
-    calibration_errors,
-    check_hand_eye_data,
-    collect_hand_eye,
-    refine_hand_eye,
-    solve_hand_eye,
-)
 from arteleop.scene.camera_config import CameraIntrinsics, HeadCameraConfig
 from arteleop.scene.camera_geometry import CameraGeometry
 from arteleop.scene.depth_mesh import DepthMesh, MeshReconstructor, MeshReconstructorConfig
 from arteleop.scene.depth_noise import DepthNoiseConfig, apply_depth_noise
+from arteleop.scene.marker_body import MarkerBody, PrintedSquare
 from arteleop.scene.pointcloud import PointCloud, depth_to_camera_points, frame_to_point_cloud
-from arteleop.scene.robot_frames import RobotFrames
 from arteleop.scene.site import RemoteSite, SiteConfig, reach_problem
 from arteleop.scene.site_frames import (
     BASE_FRAME,
@@ -48,13 +42,6 @@ from arteleop.scene.site_frames import (
 )
 from arteleop.scene.site_state import SiteState
 from arteleop.scene.snapshot import SceneSnapshot, write_snapshot
-from arteleop.scene.transform_graph import Edge, EdgeKind, TransformGraph
-from arteleop.scene.uncertain_transform import (
-    UncertainTransform,
-    fuse,
-    left_error,
-    mean_transform,
-)
 from arteleop.scene.workspace import Box, Workspace
 
 __all__ = [
@@ -62,11 +49,9 @@ __all__ = [
     "BOWL_FRAME",
     "CAMERA_FRAME",
     "GRASP_DEPTH_M",
-    "HAND_EYE_METHODS",
     "START_MARKER_FRAME",
     "TABLE_FRAME",
     "TARGET_MARKER_FRAME",
-    "ArucoMarker",
     "BowlSight",
     "BowlSightConfig",
     "BowlSpec",
@@ -74,51 +59,61 @@ __all__ = [
     "BowlTracker",
     "BowlTrackerConfig",
     "Box",
-    "CalibrationConfig",
-    "CalibrationErrors",
-    "CalibrationRun",
-    "CameraCalibration",
     "CameraGeometry",
     "CameraIntrinsics",
     "CollisionBox",
     "DepthMesh",
     "DepthNoiseConfig",
-    "Edge",
-    "EdgeKind",
-    "HandEyeData",
     "HeadCamera",
     "HeadCameraConfig",
     "MarkerBody",
-    "MarkerObservation",
     "MeshReconstructor",
     "MeshReconstructorConfig",
     "PointCloud",
+    "PrintedSquare",
     "RGBDFrame",
     "RemoteSite",
-    "RobotFrames",
     "SceneSnapshot",
     "SiteConfig",
     "SiteFrames",
     "SiteState",
-    "TransformGraph",
-    "UncertainTransform",
     "Workspace",
     "apply_depth_noise",
     "bowl_collision_boxes",
     "bowl_mesh",
-    "calibrate_camera",
-    "calibrate_with_table_marker",
-    "calibration_errors",
-    "check_hand_eye_data",
-    "collect_hand_eye",
     "depth_to_camera_points",
-    "detect_marker",
     "frame_to_point_cloud",
-    "fuse",
-    "left_error",
-    "mean_transform",
     "reach_problem",
-    "refine_hand_eye",
-    "solve_hand_eye",
     "write_snapshot",
 ]
+
+_MOVED = {
+    **dict.fromkeys(
+        ("Edge", "EdgeKind", "RobotFrames", "TransformGraph", "UncertainTransform", "fuse",
+         "left_error", "mean_transform"),
+        "arteleop.frames",
+    ),
+    **dict.fromkeys(
+        ("HAND_EYE_METHODS", "ArucoMarker", "CalibrationConfig", "CalibrationErrors",
+         "CalibrationRun", "CameraCalibration", "HandEyeData", "MarkerObservation",
+         "calibrate_camera", "calibrate_with_table_marker", "calibration_errors",
+         "check_hand_eye_data", "collect_hand_eye", "detect_marker", "refine_hand_eye",
+         "solve_hand_eye"),
+        "arteleop.calibration",
+    ),
+}  # fmt: skip
+"""Names that moved out of this package in 0.2, and where they are now."""
+
+
+def __getattr__(name: str) -> Any:
+    """The moved names, for one release, with a warning that says where they are now."""
+    if name not in _MOVED:
+        raise AttributeError(f"module 'arteleop.scene' has no attribute {name!r}")
+    home = _MOVED[name]
+    warnings.warn(
+        f"arteleop.scene.{name} has moved: import it from {home} (arteleop.scene re-exports it "
+        "through 0.2 only)",
+        DeprecationWarning,
+        stacklevel=2,
+    )
+    return getattr(importlib.import_module(home), name)

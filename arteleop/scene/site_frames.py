@@ -19,10 +19,10 @@ from collections.abc import Mapping
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from arteleop.frames.robot_frames import RobotFrames
+from arteleop.frames.transform_graph import EdgeKind, TransformGraph
+from arteleop.frames.uncertain_transform import UncertainTransform
 from arteleop.robot import BaxterKinematics
-from arteleop.scene.robot_frames import RobotFrames
-from arteleop.scene.transform_graph import EdgeKind, TransformGraph
-from arteleop.scene.uncertain_transform import UncertainTransform
 from arteleop.scene.workspace import Workspace
 from arteleop.transforms import make_transform
 

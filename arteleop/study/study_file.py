@@ -95,7 +95,8 @@ def parse_study(text: str, source: str = "<study>") -> StudyConfig:
 
 def _graph_camera_pose(value: Any, source: str, at: str) -> list[list[float]]:
     """The camera's pose in a transform graph file named by the ``camera_graph`` key."""
-    from arteleop.scene import BASE_FRAME, CAMERA_FRAME, TransformGraph
+    from arteleop.frames import TransformGraph
+    from arteleop.scene import BASE_FRAME, CAMERA_FRAME
 
     if not isinstance(value, str):
         raise StudyDefinitionError(f"{at}: camera_graph must be a file name, got {value!r}.")

@@ -93,7 +93,8 @@ def test_the_layered_render_is_the_full_render(site_config: SiteConfig) -> None:
 def test_a_body_added_to_the_drawn_world_is_drawn(site: RemoteSite) -> None:
     """The layers know only the scene's own bodies: with another (a calibration marker), the
     world renders in full."""
-    from arteleop.scene import ArucoMarker, MarkerBody
+    from arteleop.calibration import ArucoMarker
+    from arteleop.scene import MarkerBody
 
     world, request = site.render_world, site.camera.request()
     world.sync(site.scene_state())

@@ -143,7 +143,7 @@ def test_a_mis_registered_camera_reaches_every_trial_of_the_study() -> None:
 def test_a_calibrated_camera_pose_comes_from_a_graph_file(tmp_path: Path) -> None:
     """camera_graph names the file 'arteleop calibrate' writes, relative to the study file; the
     run folder's copy of the definition holds the pose itself, so it stands alone."""
-    from arteleop.scene import EdgeKind, TransformGraph
+    from arteleop.frames import EdgeKind, TransformGraph
     from arteleop.study.plan import plan_study
     from arteleop.study.protocol import trial_config
     from arteleop.study.sites import StudySite
@@ -200,7 +200,7 @@ def test_a_calibrated_camera_pose_comes_from_a_graph_file(tmp_path: Path) -> Non
     ],
 )
 def test_bad_camera_poses_are_refused(tmp_path: Path, text: str, message: str) -> None:
-    from arteleop.scene import EdgeKind, TransformGraph
+    from arteleop.frames import EdgeKind, TransformGraph
 
     graph = TransformGraph()
     graph.set("base", "table", np.eye(4), EdgeKind.FIXED)

@@ -1,5 +1,5 @@
-"""ArUco markers: the printed square, its drawn copy in the camera's scene, and finding its pose
-in a camera image with OpenCV.
+"""ArUco markers: the printed square and finding its pose in a camera image with OpenCV (its
+drawn copy in the camera's scene is :class:`arteleop.scene.MarkerBody`).
 
 Marker frame (OpenCV's): origin at the centre of the black square, x to the right and y up as
 the marker is printed, z out of the printed face (towards a camera that sees it).
@@ -7,19 +7,15 @@ the marker is printed, z out of the printed face (towards a camera that sees it)
 
 from __future__ import annotations
 
-import tempfile
 from dataclasses import dataclass
-from pathlib import Path
 
 import cv2
 import numpy as np
-import pybullet as p
-from numpy.typing import ArrayLike, NDArray
-from pybullet_utils.bullet_client import BulletClient
+from numpy.typing import NDArray
 
 from arteleop.errors import ConfigurationError
 from arteleop.scene.camera_config import CameraIntrinsics
-from arteleop.transforms import make_transform, quat_wxyz_to_xyzw, transform_to_pose
+from arteleop.transforms import make_transform
 
 _TEXTURE_PX = 64
 """Texture pixels per marker cell: enough that the drawn edges are the renderer's, not the
@@ -80,38 +76,6 @@ class ArucoMarker:
         square = cv2.aruco.generateImageMarker(dictionary, self.marker_id, side_px)
         border = round(self.margin_m / self.side_m * side_px)
         return cv2.copyMakeBorder(square, *[border] * 4, cv2.BORDER_CONSTANT, value=255)
-
-
-class MarkerBody:
-    """A marker drawn in a PyBullet world (visual only: it has no mass and no collision)."""
-
-    def __init__(self, client: BulletClient, marker: ArucoMarker) -> None:
-        self._client = client
-        with tempfile.TemporaryDirectory() as tmp:
-            path = Path(tmp) / "marker.png"
-            cv2.imwrite(str(path), cv2.cvtColor(marker.image(), cv2.COLOR_GRAY2RGB))
-            texture = client.loadTexture(str(path))
-        h = marker.side_m / 2 + marker.margin_m
-        # TinyRenderer reads texture rows bottom-up: (u, v) = (0, 1) is the image's top left.
-        shape = client.createVisualShape(
-            p.GEOM_MESH,
-            vertices=[[-h, h, 0.0], [h, h, 0.0], [h, -h, 0.0], [-h, -h, 0.0]],
-            indices=[0, 2, 1, 0, 3, 2],
-            uvs=[[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]],
-            normals=[[0.0, 0.0, 1.0]] * 4,
-        )
-        self.body_id = client.createMultiBody(0.0, -1, shape)
-        client.changeVisualShape(self.body_id, -1, textureUniqueId=texture, rgbaColor=[1, 1, 1, 1])
-
-    def place(self, T_base_marker: ArrayLike) -> None:
-        """Put the marker's frame at ``T_base_marker`` (4x4, base frame, m)."""
-        position, quat_wxyz = transform_to_pose(T_base_marker)
-        self._client.resetBasePositionAndOrientation(
-            self.body_id, position.tolist(), quat_wxyz_to_xyzw(quat_wxyz).tolist()
-        )
-
-    def remove(self) -> None:
-        self._client.removeBody(self.body_id)
 
 
 @dataclass(frozen=True)

@@ -24,13 +24,14 @@ from numpy.typing import NDArray
 from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation
 
+from arteleop.calibration.aruco import ArucoMarker, detect_marker
 from arteleop.errors import CalibrationError, ConfigurationError
+from arteleop.frames.uncertain_transform import UncertainTransform, mean_transform
 from arteleop.robot import GRIPPER_FRAME, RIGHT_ARM_JOINTS
-from arteleop.scene.aruco import ArucoMarker, MarkerBody, detect_marker
 from arteleop.scene.camera_config import CameraIntrinsics
 from arteleop.scene.camera_geometry import colocation_errors
+from arteleop.scene.marker_body import MarkerBody
 from arteleop.scene.site import RemoteSite
-from arteleop.scene.uncertain_transform import UncertainTransform, mean_transform
 from arteleop.transforms import invert_transform, make_transform, transform_points
 
 HAND_EYE_METHODS: dict[str, tuple[str, int]] = {

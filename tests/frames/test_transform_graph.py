@@ -8,10 +8,8 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from arteleop.errors import ConfigurationError, FrameGraphError
-from arteleop.robot import GRIPPER_FRAME, RIGHT_ARM_JOINTS
-from arteleop.scene import (
+from arteleop.frames import (
     EdgeKind,
-    RemoteSite,
     RobotFrames,
     TransformGraph,
     UncertainTransform,
@@ -19,6 +17,8 @@ from arteleop.scene import (
     left_error,
     mean_transform,
 )
+from arteleop.robot import GRIPPER_FRAME, RIGHT_ARM_JOINTS
+from arteleop.scene import RemoteSite
 from arteleop.transforms import make_transform
 
 

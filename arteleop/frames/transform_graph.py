@@ -26,7 +26,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from arteleop.errors import FrameGraphError
 from arteleop.files import write_atomic
-from arteleop.scene.uncertain_transform import UncertainTransform
+from arteleop.frames.uncertain_transform import UncertainTransform
 
 GRAPH_FORMAT_VERSION = 1
 

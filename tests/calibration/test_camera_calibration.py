@@ -7,15 +7,11 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from arteleop.errors import CalibrationError, ConfigurationError
-from arteleop.scene import (
+from arteleop.calibration import (
     HAND_EYE_METHODS,
     ArucoMarker,
     CalibrationConfig,
     HandEyeData,
-    HeadCameraConfig,
-    MarkerBody,
-    RemoteSite,
     calibrate_with_table_marker,
     calibration_errors,
     collect_hand_eye,
@@ -23,6 +19,8 @@ from arteleop.scene import (
     refine_hand_eye,
     solve_hand_eye,
 )
+from arteleop.errors import CalibrationError, ConfigurationError
+from arteleop.scene import HeadCameraConfig, MarkerBody, RemoteSite
 from arteleop.transforms import invert_transform, make_transform, transform_points
 
 BOARD = ArucoMarker(marker_id=3, side_m=0.12, margin_m=0.015)
@@ -163,7 +161,7 @@ def test_a_marker_never_seen_says_so(site: RemoteSite) -> None:
 
 
 def test_an_unknown_hand_eye_method_is_refused_before_anything_runs() -> None:
-    from arteleop.scene import calibrate_camera
+    from arteleop.calibration import calibrate_camera
 
     with pytest.raises(CalibrationError) as err:
         calibrate_camera(None, CalibrationConfig(), "tsia")  # type: ignore[arg-type]

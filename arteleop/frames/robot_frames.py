@@ -6,9 +6,9 @@ from collections.abc import Mapping
 
 import pinocchio as pin
 
+from arteleop.frames.transform_graph import EdgeKind, TransformGraph
+from arteleop.frames.uncertain_transform import UncertainTransform
 from arteleop.robot import BaxterKinematics
-from arteleop.scene.transform_graph import EdgeKind, TransformGraph
-from arteleop.scene.uncertain_transform import UncertainTransform
 
 
 class RobotFrames:

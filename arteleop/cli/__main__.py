@@ -1,0 +1,7 @@
+"""``python -m arteleop.cli``: the `arteleop` command."""
+
+import sys
+
+from arteleop.cli.main import main
+
+sys.exit(main())
