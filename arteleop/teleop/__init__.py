@@ -17,6 +17,7 @@ from arteleop.teleop.controller import (
     TeleopController,
 )
 from arteleop.teleop.display_feed import DisplayFeed, display_frame, view_assets
+from arteleop.teleop.hand_filter import HandFilter, HandFilterConfig, filter_hand_path
 from arteleop.teleop.hand_speed import HandSpeed
 from arteleop.teleop.latency import LatencyAccount
 from arteleop.teleop.loop import display_frame_at, run_trial, trial_operator
@@ -40,6 +41,8 @@ __all__ = [
     "ControllerConfig",
     "ControllerState",
     "DisplayFeed",
+    "HandFilter",
+    "HandFilterConfig",
     "HandSpeed",
     "LatencyAccount",
     "LoopClock",
@@ -62,6 +65,7 @@ __all__ = [
     "TrialTrace",
     "display_frame",
     "display_frame_at",
+    "filter_hand_path",
     "run_trial",
     "trial_operator",
     "view_assets",

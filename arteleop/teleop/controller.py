@@ -7,7 +7,7 @@ makes the arm jump) and ENGAGED (mapping -> IK -> trajectory -> position control
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from enum import Enum
 from pathlib import Path
 from typing import Protocol
@@ -30,6 +30,7 @@ from arteleop.robot.mapping import HandToGripper, MappingConfig
 from arteleop.robot.trajectory import JointTrajectory, TrajectoryLimits
 from arteleop.scene import Box, SiteState
 from arteleop.teleop.clock import LoopRates
+from arteleop.teleop.hand_filter import HandFilter, HandFilterConfig
 from arteleop.teleop.hand_speed import HandSpeed
 from arteleop.teleop.timing import StageTimer
 
@@ -60,6 +61,8 @@ class ControllerConfig:
         engage_speed_m_s: ...and the hand moves slower than this.
         speed_window_s: Window of the hand-speed estimate (see :class:`HandSpeed`).
         max_gap_s: Missing samples repeat the last pose up to this long; then the arm holds.
+        hand_filter: The 1€ filter between the reconstructed hand and the mapping (the hand
+            that is recorded and whose speed is measured is the reconstructed one, unfiltered).
     """
 
     mapping: MappingConfig = field(default_factory=MappingConfig)
@@ -69,6 +72,7 @@ class ControllerConfig:
     engage_speed_m_s: float = 0.05
     speed_window_s: float = 0.3
     max_gap_s: float = 0.1
+    hand_filter: HandFilterConfig = field(default_factory=HandFilterConfig)
 
 
 class TeleopController:
@@ -120,6 +124,10 @@ class TeleopController:
         self._t0: float | None = None
         self.reconstructor: StreamingReconstructor | None = None
         self.last_hand: HandSample | None = None
+        """The newest reconstructed hand, as the wearable measured it."""
+        self.command_hand: HandSample | None = None
+        """The newest hand as the mapping takes it: :attr:`last_hand` through the filter."""
+        self._filter = HandFilter(c.hand_filter, rates.control_hz)
         self._speed = HandSpeed(c.speed_window_s)
         self.last_ik: IKResult | None = None
         self.last_target_m: NDArray[np.float64] | None = None
@@ -148,6 +156,8 @@ class TeleopController:
             return
         if self.last_hand is None or hand.time_s > self.last_hand.time_s:
             self._speed.update(hand.time_s, hand.hand_m)
+            position, quat = self._filter(hand.time_s, hand.hand_m, hand.hand_quat_wxyz)
+            self.command_hand = replace(hand, hand_m=position, hand_quat_wxyz=quat)
         self.last_hand = hand
 
     @property
@@ -167,7 +177,7 @@ class TeleopController:
         ``state`` gives the arm's encoders and the gripper's pose (``GRIPPER_FRAME`` observed),
         which engagement compares with the hand's mapped position.
         """
-        hand = self.last_hand
+        hand = self.command_hand
         if hand is None or self.state is ControllerState.CALIBRATING:
             return None
         with self.timer.stage("mapping"):
