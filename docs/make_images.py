@@ -22,7 +22,7 @@ from arteleop.ar_features.browser import browser_page
 from arteleop.scene import RemoteSite, write_snapshot
 from arteleop.teleop import TrialConfig, display_frame_at, trial_operator, view_assets
 
-MOMENT_S = 8.0
+MOMENT_S = 5.0
 WIDTH_PX = 800
 """The pictures are scaled down to this width for the README."""
 

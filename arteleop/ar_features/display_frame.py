@@ -40,6 +40,7 @@ class DisplayFrame:
         cloud_points_m: (N, 3) float32 point cloud of the camera frame, or None when this
             instant was not rendered (batch runs render only to track the bowl).
         cloud_colors: (N, 3) uint8 colours of the cloud's points, or None.
+        target_radius_m: Radius of the target circle drawn on the table (m).
         T_cloud_true: (4, 4) where the point cloud shows a point of the real scene: the
             camera's registration error, in the base frame (None: a perfect registration).
             A real system cannot know it; the simulation gives it so that the synthetic
@@ -63,6 +64,7 @@ class DisplayFrame:
     cloud_points_m: NDArray[np.float32] | None = None
     cloud_colors: NDArray[np.uint8] | None = None
     T_cloud_true: NDArray[np.float64] | None = None
+    target_radius_m: float = 0.06
 
     def __post_init__(self) -> None:
         shapes = {

@@ -10,6 +10,7 @@ from arteleop.operator.arm_model import (
     segment_rotations,
     segments_for_hand_pose,
 )
+from arteleop.operator.belief import probability_within
 from arteleop.operator.calibration import SensorMounting, calibrate
 from arteleop.operator.live import HandTarget, LiveOperator
 from arteleop.operator.minimum_jerk import minimum_jerk, minimum_jerk_profile
@@ -17,7 +18,7 @@ from arteleop.operator.perception import (
     BowlMemory,
     Perceived,
     PerceptionParams,
-    PerceptualNoise,
+    PerceptualErrors,
     perceive,
 )
 from arteleop.operator.reconstruction import (
@@ -49,14 +50,15 @@ from arteleop.operator.sources import (
     live_source,
     synthetic_source,
 )
+from arteleop.operator.submovements import expected_time_s, submovement_duration_s
 from arteleop.operator.synthesis import SynthesizedRecording, record_hand_motion
 from arteleop.operator.synthetic import (
-    Expertise,
     OperatorParams,
     Phase,
     SyntheticOperator,
     TaskGeometry,
 )
+from arteleop.operator.traits import Expertise, OperatorTraits, TraitDistribution
 from arteleop.operator.wearable import (
     ImuErrorConfig,
     WearableConfig,
@@ -82,9 +84,10 @@ __all__ = [
     "LoaderConfig",
     "OperatorParams",
     "OperatorSource",
+    "OperatorTraits",
     "Perceived",
     "PerceptionParams",
-    "PerceptualNoise",
+    "PerceptualErrors",
     "Phase",
     "Recording",
     "RecordingInfo",
@@ -96,12 +99,14 @@ __all__ = [
     "SyntheticOperator",
     "SyntheticSource",
     "TaskGeometry",
+    "TraitDistribution",
     "WearableConfig",
     "WearableSample",
     "WearableSignals",
     "WornSource",
     "calibrate",
     "check_operator",
+    "expected_time_s",
     "hand_pose",
     "joint_positions",
     "live_source",
@@ -109,12 +114,14 @@ __all__ = [
     "minimum_jerk",
     "minimum_jerk_profile",
     "perceive",
+    "probability_within",
     "reconstruct",
     "record_hand_motion",
     "segment_rotations",
     "segments_for_hand_pose",
     "sidecar_path",
     "simulate_wearable",
+    "submovement_duration_s",
     "synthetic_source",
     "write_recording",
 ]

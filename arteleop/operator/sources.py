@@ -16,13 +16,13 @@ from arteleop.operator.arm_model import ArmModel, segment_rotations, segments_fo
 from arteleop.operator.live import HandTarget, LiveOperator
 from arteleop.operator.recording import CalibrationPosture, Recording, RecordingInfo
 from arteleop.operator.synthetic import (
-    Expertise,
     OperatorOutput,
     OperatorParams,
     Phase,
     SyntheticOperator,
     TaskGeometry,
 )
+from arteleop.operator.traits import OperatorTraits
 from arteleop.operator.wearable import WearableConfig, WearableSimulator
 
 if TYPE_CHECKING:
@@ -115,13 +115,11 @@ class SyntheticSource(WornSource):
         calibration: CalibrationPosture | None = None,
         wearable: WearableConfig | None = None,
         params: OperatorParams | None = None,
-        expertise: Expertise | None = None,
+        traits: OperatorTraits | None = None,
     ) -> None:
         arm = arm or ArmModel()
         calibration = calibration or CalibrationPosture()
-        operator = SyntheticOperator(
-            task, hand_for_gripper, arm, calibration, rng, params, expertise
-        )
+        operator = SyntheticOperator(task, hand_for_gripper, arm, calibration, rng, params, traits)
         super().__init__(operator, rng, arm, calibration, wearable)
 
 
@@ -168,8 +166,9 @@ def synthetic_source(
     mapping: MappingConfig,
     seed: int,
     params: OperatorParams | None = None,
-    expertise: Expertise | None = None,
+    traits: OperatorTraits | None = None,
     wearable: WearableConfig | None = None,
+    grasp_clearance_m: float = 0.019,
 ) -> SyntheticSource:
     """A synthetic operator who knows the task from instructions and familiarisation.
 
@@ -180,12 +179,18 @@ def synthetic_source(
             before engaging.
         mapping: The hand-to-gripper mapping the operator was taught.
         seed: Seeds the operator and its wearable (a stream apart from the network's).
+        params: The operator's constants; the defaults are docs/operator-model.md's.
+        traits: The person's lasting traits; the default is the median novice.
+        grasp_clearance_m: How far off the grasp point the open fingers still straddle the
+            bowl's wall (m): the task's tolerance for the grasp.
     """
     # Imported here: the robot package loads open3d and pinocchio, which `arteleop.operator`
     # alone (recordings, reconstruction) has no need of.
     from arteleop.robot.mapping import HandToGripper
 
-    task = TaskGeometry(bowl.grasp_offset_m(), np.asarray(rest_gripper_m, dtype=np.float64))
+    task = TaskGeometry(
+        bowl.grasp_offset_m(), np.asarray(rest_gripper_m, dtype=np.float64), grasp_clearance_m
+    )
     rng = np.random.default_rng([seed, 1])
     return SyntheticSource(
         task,
@@ -193,7 +198,7 @@ def synthetic_source(
         rng,
         wearable=wearable,
         params=params,
-        expertise=expertise,
+        traits=traits,
     )
 
 

@@ -16,7 +16,7 @@ from arteleop.study.definition import (
     StudyConfig,
 )
 from arteleop.study.plan import PracticePoints, TrialSpec, plan_study, trial_seed
-from arteleop.study.protocol import TrialRecord, operator_params, run_planned_trial
+from arteleop.study.protocol import TrialRecord, operator_traits, run_planned_trial
 from arteleop.study.questionnaire import simulated_answers
 from arteleop.study.run_folder import FORMAT_VERSION, TRIAL_COLUMNS, RunFolder
 from arteleop.study.runner import RunComplete, StudyRun, resume_study, run_study
@@ -47,7 +47,7 @@ __all__ = [
     "cyclic_sequences",
     "first_difference",
     "load_study_file",
-    "operator_params",
+    "operator_traits",
     "parse_study",
     "participant_orders",
     "participants",

@@ -33,11 +33,12 @@ class ParticipantSpec:
         games_experience: Video-game experience, Likert 1-7.
         age: Age (years).
         gender: As the participant gives it.
-        movement_time_factor: The participant's own speed/accuracy trade-off, for a simulated
-            participant: a factor on the synthetic operator's Fitts slope (below 1: faster
-            movements) and, by its inverse square root, on its endpoint noise (faster is less
-            accurate: endpoint scatter grows with movement speed, Schmidt et al., Psychol. Rev.
-            1979). See :class:`CohortConfig` for how a cohort draws it.
+        movement_time_factor: The participant's own speed, for a simulated participant: a
+            factor on every submovement's duration (below 1: faster), and so, through the
+            endpoint scatter's growth with speed (Schmidt et al., Psychol. Rev. 1979), on its
+            accuracy. See :class:`CohortConfig` for how a cohort draws it; the simulated
+            participant's other traits come from the study's seed and the id
+            (docs/operator-model.md).
     """
 
     id: str

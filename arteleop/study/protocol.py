@@ -9,13 +9,13 @@ outcome with its reason and is kept like any other trial.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
 from arteleop.errors import SimulationError
-from arteleop.operator import Expertise, OperatorParams
+from arteleop.operator import Expertise, OperatorTraits, TraitDistribution
 from arteleop.scene import RemoteSite
 from arteleop.study.definition import ParticipantSpec, StudyConfig
 from arteleop.study.plan import TrialSpec
@@ -48,16 +48,11 @@ def trajectory_file(spec: TrialSpec) -> str:
     return f"trajectories/{spec.participant}/{spec.trial_index}.csv"
 
 
-def operator_params(person: ParticipantSpec) -> OperatorParams:
-    """The synthetic operator's parameters for a simulated participant: the movement-time
-    factor scales the Fitts slope, and its inverse square root the endpoint noise."""
-    base = OperatorParams()
-    factor = person.movement_time_factor
-    return replace(
-        base,
-        fitts_b_s_per_bit=base.fitts_b_s_per_bit * factor,
-        endpoint_noise_ratio=base.endpoint_noise_ratio / np.sqrt(factor),
-    )
+def operator_traits(study: StudyConfig, person: ParticipantSpec) -> OperatorTraits:
+    """The participant's lasting traits, drawn from the study's seed and the participant's id
+    (the same in each of their trials), with their expertise and movement-time factor."""
+    expertise = Expertise(avr_hours=person.avr_hours, games_hours=person.games_hours)
+    return TraitDistribution().draw(study.seed, person.id, expertise, person.movement_time_factor)
 
 
 def trial_config(study: StudyConfig, site: StudySite, spec: TrialSpec) -> TrialConfig:
@@ -82,8 +77,7 @@ def run_planned_trial(
         source = trial_operator(
             remote,
             config,
-            params=operator_params(person),
-            expertise=Expertise(avr_hours=person.avr_hours, games_hours=person.games_hours),
+            traits=operator_traits(study, person),
         )
         result = run_trial(source, config, remote)
     row = {

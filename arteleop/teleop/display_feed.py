@@ -73,6 +73,7 @@ def display_frame(
         grasp_radius_m=float(np.hypot(grasp[0], grasp[1])),
         grasp_height_m=float(grasp[2]),
         target_m=frames.T(BASE_FRAME, TARGET_MARKER_FRAME)[:3, 3],
+        target_radius_m=workspace.target_circle_radius_m,
         cues=cues,
         engaged=engaged,
         T_cloud_true=T_cloud_true,

@@ -68,11 +68,16 @@ def run_trial(
 
 def trial_operator(site: RemoteSite, config: TrialConfig, **kwargs: Any) -> SyntheticSource:
     """The synthetic operator of a trial on ``site``, seeded from the trial's seed; it aligns its
-    hand on the gripper where it rests now. ``kwargs`` go to
-    :func:`~arteleop.operator.synthetic_source` (``params``, ``expertise``, ``wearable``)."""
+    hand on the gripper where it rests now, and knows how far off the rim the open fingers still
+    straddle the wall. ``kwargs`` go to :func:`~arteleop.operator.synthetic_source`
+    (``params``, ``traits``, ``wearable``)."""
     bowl = site.config.workspace.bowl
     rest_gripper_m = site.observe().gripper_m
-    return synthetic_source(bowl, rest_gripper_m, config.controller.mapping, config.seed, **kwargs)
+    clearance_m = (site.gripper_gap_range_m[1] - bowl.wall_thickness_m) / 2
+    return synthetic_source(
+        bowl, rest_gripper_m, config.controller.mapping, config.seed,
+        grasp_clearance_m=clearance_m, **kwargs,
+    )  # fmt: skip
 
 
 def display_frame_at(

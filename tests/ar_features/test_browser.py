@@ -26,9 +26,9 @@ from arteleop.ar_features.layers.beam import BEAM_WIDTH_PX
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig, Workspace
 from arteleop.teleop import TrialConfig, display_frame_at, trial_operator, view_assets
 
-MOMENT_S = 8.0
-"""Seed 0 reaches over the bowl at the start then, 10 cm above it: bowl, gripper, beam and target
-all in view."""
+MOMENT_S = 5.0
+"""Seed 0 has reached over the bowl at the start then, 13 cm above the grasp point: bowl,
+gripper, beam and target all in view."""
 PANEL_X_PX = 940
 """The project's panel covers the page right of this column."""
 

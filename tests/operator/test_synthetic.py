@@ -1,28 +1,51 @@
-"""The synthetic operator's perception and expertise, checked statistically."""
+"""The synthetic operator's perception, checked statistically, and its decision mechanism,
+checked on a small scene (tests/operator/small_scene.py)."""
 
+import re
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
 
+import arteleop.operator
 from arteleop.ar_features import MODALITIES, ArCues, DisplayFrame
-from arteleop.operator import ArmModel, CalibrationPosture
+from arteleop.errors import ConfigurationError
+from arteleop.operator import (
+    Expertise,
+    OperatorParams,
+    OperatorTraits,
+    TraitDistribution,
+    expected_time_s,
+    probability_within,
+    submovement_duration_s,
+)
 from arteleop.operator.perception import (
     BowlMemory,
     Perceived,
     PerceptionParams,
-    PerceptualNoise,
+    PerceptualErrors,
     perceive,
 )
-from arteleop.operator.synthetic import Expertise, Phase, SyntheticOperator, TaskGeometry
 from tests.ar_features.frames import display_frame
+from tests.operator.small_scene import descend
 
 P = PerceptionParams()
 
 
-def _independent(seed: int) -> PerceptualNoise:
-    """Every look independent of the last (no persistence), to sample the errors' spread."""
-    return PerceptualNoise(np.random.default_rng(seed), persistence_s=0.0)
+class _Independent(PerceptualErrors):
+    """Every glance a look of its own and no bias, to sample one glance's spread."""
+
+    def __init__(self, seed: int) -> None:
+        super().__init__(np.random.default_rng(seed), bias_seed=0, bias_share=0.0)
+
+    def draw(self, stream: str, size: int) -> np.ndarray:
+        self.new_look()
+        return super().draw(stream, size)
+
+
+def _independent(seed: int) -> PerceptualErrors:
+    return _Independent(seed)
 
 
 def _view(cues: ArCues, gripper_in_camera: bool = True) -> DisplayFrame:
@@ -77,23 +100,6 @@ def test_ghost_shows_a_gripper_the_camera_cannot() -> None:
     assert not hidden[0].closure_known and ghost[0].closure_known
 
 
-def test_expertise_speeds_up_and_steadies_the_operator() -> None:
-    task = TaskGeometry(np.zeros(3), np.array([0.3, -0.56, 0.0]))
-
-    def make(e: Expertise) -> SyntheticOperator:
-        rng = np.random.default_rng(0)
-        return SyntheticOperator(
-            task, lambda p: p, ArmModel(), CalibrationPosture(), rng, expertise=e
-        )
-
-    novice, expert = make(Expertise(1, 1)), make(Expertise(avr_hours=2))
-    assert expert._fitts_s(0.3, 0.01) < novice._fitts_s(0.3, 0.01)
-    assert novice._fitts_s(0.3, 0.01) == pytest.approx(
-        0.3 + 0.3 * np.log2(31)
-    )  # Fitts, Shannon form
-    assert expert._noise < novice._noise
-
-
 def test_a_bowl_the_display_does_not_show_is_not_perceived() -> None:
     noise = _independent(2)
     view = display_frame(cues=MODALITIES["full"], bowl_m=None)
@@ -114,8 +120,9 @@ def test_the_operator_remembers_a_hidden_bowl_and_carries_it_with_the_hand() -> 
             np.zeros(3),
             True,
             True,
-            0.01,
-            0.01,
+            np.eye(3) * 1e-4,
+            np.eye(3) * 1e-4,
+            False,
         )
 
     memory = BowlMemory()
@@ -144,29 +151,25 @@ def test_the_bar_and_beam_are_read_along_the_drawn_beam() -> None:
     assert np.sqrt((across**2).sum(axis=1).mean() / 2) == pytest.approx(P.beam_sd_m, rel=0.05)
 
 
-def test_perceptual_errors_persist_with_the_stated_correlation_time() -> None:
-    noise = PerceptualNoise(np.random.default_rng(3), persistence_s=10.0)
+def test_a_judgement_keeps_its_bias_and_a_longer_look_averages_the_rest() -> None:
+    """Each stream is bias + fresh noise, variance split by ``bias_share``; n glances keep the
+    bias and divide the fresh variance by n, and a new trial of the same person errs with the
+    same bias."""
     streams = [f"s{i}" for i in range(6000)]
-    first = np.array([noise.draw(s, 0.0, 1)[0] for s in streams])
-    again = np.array([noise.draw(s, 0.0, 1)[0] for s in streams])
-    later = np.array([noise.draw(s, 5.0, 1)[0] for s in streams])
-    np.testing.assert_array_equal(again, first)  # the same frame, the same judgement
-    assert later.std() == pytest.approx(1.0, abs=0.03)  # each look keeps the stated SD
-    assert np.corrcoef(first, later)[0, 1] == pytest.approx(np.exp(-0.5), abs=0.03)
-
-
-def test_persistent_errors_do_not_average_out_over_looks() -> None:
-    """Looking again a second later gives nearly the same misjudgement: the mean of ten looks
-    errs almost as much as one look (independent looks would err sqrt(10) times less)."""
-    view = _view(MODALITIES["none"])
-    means = []
-    for seed in range(400):
-        noise = PerceptualNoise(np.random.default_rng(seed), P.persistence_s)
-        looks = [perceive(replace(view, time_s=t), P, noise).bowl_m for t in range(10)]
-        means.append(np.mean(looks, axis=0) - view.bowl_m)
-    rms = np.sqrt(np.mean(np.sum(np.array(means) ** 2, axis=1)))
-    one_look = np.sqrt(P.depth_sd_m**2 + 2 * P.lateral_sd_m**2)
-    assert 0.8 * one_look < rms < one_look
+    person = PerceptualErrors(np.random.default_rng(3), bias_seed=11, bias_share=0.5)
+    one = np.array([person.draw(s, 1)[0] for s in streams])  # one glance each
+    assert one.std() == pytest.approx(1.0, abs=0.03)
+    for _ in range(8):
+        nine = np.array([person.draw(s, 1)[0] for s in streams])  # up to nine glances
+    assert nine.var() == pytest.approx(0.5 + 0.5 / 9, abs=0.03)
+    assert P.belief_scale(9) == pytest.approx(0.5 + 0.5 / 9)
+    next_trial = PerceptualErrors(np.random.default_rng(99), bias_seed=11, bias_share=1.0)
+    bias = np.array([next_trial.draw(s, 1)[0] for s in streams])
+    other = PerceptualErrors(np.random.default_rng(99), bias_seed=12, bias_share=1.0)
+    other_bias = np.array([other.draw(s, 1)[0] for s in streams])
+    # The same person's bias in any trial: what the averaged looks converge on.
+    assert np.corrcoef(nine, bias)[0, 1] == pytest.approx(np.sqrt(0.5 / (0.5 + 0.5 / 9)), abs=0.03)
+    assert abs(np.corrcoef(bias, other_bias)[0, 1]) < 0.05
 
 
 def test_the_mesh_guides_the_gripper_while_the_arm_hides_the_bowl() -> None:
@@ -185,24 +188,11 @@ def test_the_mesh_guides_the_gripper_while_the_arm_hides_the_bowl() -> None:
         )
         if sd is not None:
             np.testing.assert_allclose(relative.std(axis=0), sd, rtol=0.06)
-            assert seen[0].placement_sd_m == pytest.approx(np.sqrt(2) * sd)
+            np.testing.assert_allclose(np.diag(seen[0].placement_cov)[:2], sd**2)
         else:
             assert np.all(relative.std(axis=0) > 3 * P.target_mesh_sd_m)
-            assert seen[0].placement_sd_m > 5 * np.sqrt(2) * P.target_mesh_sd_m
-
-
-def test_the_operator_does_not_correct_an_error_it_cannot_see() -> None:
-    task = TaskGeometry(np.zeros(3), np.array([0.3, -0.56, 0.0]))
-    operator = SyntheticOperator(
-        task, lambda p: p, ArmModel(), CalibrationPosture(), np.random.default_rng(0)
-    )
-    seen = Perceived(np.zeros(3), np.zeros(3), np.zeros(3), True, True, 0.004, 0.02)
-    operator.phase = Phase.DESCEND
-    assert operator._discernible_m(seen) == pytest.approx(0.004)
-    operator.phase = Phase.LOWER
-    assert operator._discernible_m(seen) == pytest.approx(0.02)
-    operator.phase = Phase.LIFT  # moving the hand, not judging a scene
-    assert operator._discernible_m(seen) == 0.0
+            assert np.all(np.diag(seen[0].placement_cov)[:2] > 9 * P.target_mesh_sd_m**2)
+        assert seen[0].placed_by_gripper  # the bowl's place in the hand adds its uncertainty
 
 
 @pytest.mark.parametrize(
@@ -222,8 +212,137 @@ def test_a_misregistered_cloud_misleads_only_the_ar_layers(
     shift[:3, 3] = s
     true_bowl = np.array([0.68, -0.45, -0.2])
     view = display_frame(cues=MODALITIES[modality], bowl_m=true_bowl + s, T_cloud_true=shift)
-    seen = perceive(view, P, _independent(1), noise_scale=0.0)
+    exact = replace(P, depth_sd_m=0.0, lateral_sd_m=0.0, bar_sd_m=0.0, beam_sd_m=0.0,
+                    centring_fraction=0.0, target_mesh_sd_m=0.0)  # fmt: skip
+    seen = perceive(view, exact, _independent(1))
     grasp_error = (seen.gripper_m - seen.bowl_m) - (view.gripper_m - true_bowl)
     place_error = (seen.target_m - seen.bowl_m) - (view.target_m - true_bowl)
     np.testing.assert_allclose(grasp_error, -s if misled_grasp else 0.0, atol=1e-15)
     np.testing.assert_allclose(place_error, -s if misled_place else 0.0, atol=1e-15)
+
+
+# -- the decision mechanism ----------------------------------------------------------------------
+SEEDS = range(16)
+
+
+def _mean(cues: ArCues, **kw) -> dict[str, float]:
+    runs = [descend(cues, seed, **kw) for seed in SEEDS]
+    return {k: float(np.mean([getattr(r, k) for r in runs]))
+            for k in ("duration_s", "looks", "corrections", "error_m", "overshoot_m")}  # fmt: skip
+
+
+def test_a_more_precise_cue_reaches_the_criterion_sooner_and_no_less_accurately() -> None:
+    """The bar and the beam sharpen the grasp judgement: no more looks, less time, and a smaller
+    error than from the cloud alone (measured: 2.0 against 2.2 looks, 0.67 against 1.09 s,
+    8.6 against 15.1 mm)."""
+    plain, cued = _mean(MODALITIES["none"]), _mean(MODALITIES["manipulation"])
+    assert cued["looks"] <= plain["looks"]
+    assert cued["duration_s"] < 0.8 * plain["duration_s"]
+    assert cued["error_m"] < 0.8 * plain["error_m"]
+
+
+def test_a_stricter_criterion_costs_time_with_the_same_cue() -> None:
+    strict = _mean(MODALITIES["none"], traits=OperatorTraits(grasp_criterion_scale=0.5))
+    loose = _mean(MODALITIES["none"], traits=OperatorTraits(grasp_criterion_scale=1.5))
+    assert strict["duration_s"] > 1.3 * loose["duration_s"]
+    assert strict["error_m"] < loose["error_m"]
+
+
+def test_a_lag_the_operator_has_not_practised_makes_it_overshoot_and_slows_it() -> None:
+    """It acts on a view a lag old: a correction planned in flight on it overshoots. A lag it
+    knows costs only the waiting (measured: 12 cm against 3 mm of overshoot)."""
+    cues = MODALITIES["manipulation"]
+    none = _mean(cues)
+    known = _mean(cues, lag_s=0.3)  # the operator's familiar lag is the scene's
+    unknown = _mean(cues, lag_s=0.3, params=OperatorParams(familiar_lag_s=0.0))
+    assert unknown["overshoot_m"] > 0.05 > 3 * max(none["overshoot_m"], known["overshoot_m"])
+    assert unknown["duration_s"] > known["duration_s"] > none["duration_s"]
+
+
+def test_a_lag_beyond_the_move_and_wait_threshold_ends_the_corrections_in_flight() -> None:
+    cues = MODALITIES["manipulation"]
+    params = OperatorParams(familiar_lag_s=0.8)  # above move_and_wait_lag_s: it moves and waits
+    waiting = _mean(cues, lag_s=0.8, params=params)
+    assert waiting["overshoot_m"] < 0.01
+    assert (
+        waiting["duration_s"]
+        > _mean(cues, lag_s=0.8, params=replace(params, move_and_wait_lag_s=2.0))["duration_s"] - 10
+    )  # bounded: never runs away
+
+
+def test_a_participants_traits_last_across_their_trials_and_differ_between_people() -> None:
+    from arteleop.study import StudyConfig
+    from arteleop.study.cohort import participants
+    from arteleop.study.protocol import operator_traits
+
+    study = StudyConfig()
+    people = participants(study)
+    first = [operator_traits(study, person) for person in people]
+    assert first == [operator_traits(study, person) for person in people]  # every trial alike
+    assert len({t.confidence for t in first}) == len(people)
+    assert len({t.bias_seed for t in first}) == len(people)
+    other_study = [operator_traits(replace(study, seed=1), person) for person in people]
+    assert first != other_study
+    d = TraitDistribution()
+    expert = d.draw(0, "P01", Expertise(avr_hours=2, games_hours=3))
+    novice = d.draw(0, "P01", Expertise())
+    assert expert.depth_factor == d.avr_depth_factor and novice.depth_factor == 1.0
+    assert expert.movement_time_factor == pytest.approx(d.games_speed_factor)
+    assert expert.confidence == novice.confidence  # expertise does not touch the criterion
+
+
+def test_no_modality_name_appears_in_the_operators_decision_code() -> None:
+    """Cues differ only in what the display frame shows: the operator reads its layers' flags,
+    never which modality a trial runs under."""
+    folder = Path(arteleop.operator.__file__).parent
+    names = "|".join(MODALITIES)
+    for module in ("synthetic", "perception", "belief", "submovements", "traits"):
+        code = (folder / f"{module}.py").read_text()
+        assert not re.search(rf"[\"']({names})[\"']", code), module
+        assert not re.search(r"modalit|MODALITIES|modality_cues", code, re.IGNORECASE), module
+
+
+def test_the_belief_is_a_gaussian_against_the_criterion() -> None:
+    """Isotropic errors: the chi distribution with 3 (or, in the plane, 2) degrees of freedom."""
+    from scipy.stats import chi
+
+    sd = 0.01
+    for c in (0.005, 0.01, 0.02, 0.03):
+        p3 = probability_within(np.zeros(3), np.eye(3) * sd**2, c)
+        p2 = probability_within(np.array([0, 0, 0.5]), np.eye(3) * sd**2, c, "xy")
+        assert p3 == pytest.approx(chi.cdf(c / sd, 3), abs=0.01)
+        assert p2 == pytest.approx(chi.cdf(c / sd, 2), abs=0.01)
+    assert probability_within(np.array([0.02, 0, 0]), np.zeros((3, 3)), 0.019) == 0.0
+
+
+def test_fitts_law_comes_out_of_the_planner_and_a_costly_look_slows_the_movement() -> None:
+    rows = []
+    for a in (0.1, 0.2, 0.4):
+        for w in (0.01, 0.02, 0.04):
+            rows.append((np.log2(a / w + 1), expected_time_s(a, w / 2, 0.6, 0.012)))
+    ids, times = np.array(rows).T
+    slope, _ = np.polyfit(ids, times, 1)
+    assert slope > 0.1 and np.corrcoef(ids, times)[0, 1] ** 2 > 0.9
+    cheap = submovement_duration_s(0.2, 0.01, 0.3, 0.012)
+    costly = submovement_duration_s(0.2, 0.01, 1.5, 0.012)
+    assert costly > cheap
+
+
+@pytest.mark.parametrize(
+    ("build", "message"),
+    [
+        (lambda: OperatorTraits(confidence=1.2),
+         "OperatorTraits.confidence = 1.2: expected 0.5-0.999 (a probability)."),
+        (lambda: OperatorTraits(placement_criterion_m=0.0),
+         "OperatorTraits.placement_criterion_m = 0.0: expected 0.001-0.1 (m)."),
+        (lambda: OperatorParams(noise_k_s=-1.0), "OperatorParams.noise_k_s = -1.0: expected > 0."),
+        (lambda: OperatorParams(familiar_lag_s=float("nan")),
+         "OperatorParams.familiar_lag_s = nan: expected >= 0."),
+        (lambda: PerceptionParams(bias_share=2.0),
+         "PerceptionParams.bias_share = 2.0: expected 0-1."),
+    ],
+)  # fmt: skip
+def test_an_operator_constant_out_of_range_is_refused_by_name(build, message: str) -> None:
+    with pytest.raises(ConfigurationError) as err:
+        build()
+    assert str(err.value) == message

@@ -98,7 +98,7 @@ def test_reach_smoothness_does_not_depend_on_the_camera_rate(site_config: SiteCo
 
     Before the fix its normalised jerk was 4-5 times higher at 15 Hz than at 30 Hz (the hand
     stepped at the camera rate); now the camera rate only shifts what the operator perceived,
-    within 10 % on these seeds.
+    and so when it corrects in flight: within 25 % on these seeds.
     """
     for seed in (0, 1, 3):
         jerks = []
@@ -108,4 +108,4 @@ def test_reach_smoothness_does_not_depend_on_the_camera_rate(site_config: SiteCo
             reach = [(s.time_s, s.true_hand_m) for s, _, start in log if start == first]
             t, hand = (np.array(v) for v in zip(*reach, strict=True))
             jerks.append(normalized_jerk(t, hand, "xyz"))
-        assert jerks[1] == pytest.approx(jerks[0], rel=0.10), (seed, jerks)
+        assert jerks[1] == pytest.approx(jerks[0], rel=0.25), (seed, jerks)

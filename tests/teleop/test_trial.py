@@ -153,10 +153,13 @@ def test_the_trace_records_every_control_tick_as_the_site_saw_it(site_config: Si
     assert np.isnan(trace["hand_x_m"][0]) and np.isnan(trace["gripper_target_x_m"][0])
     quats = np.column_stack([trace[f"hand_q{c}"] for c in "wxyz"])
     np.testing.assert_allclose(np.linalg.norm(quats[~np.isnan(quats[:, 0])], axis=1), 1.0)
-    # The mapped target leads the gripper that tracks it: within a few cm once engaged.
+    # The mapped target leads the gripper that tracks it: the arm follows it about 0.2 s late
+    # (docs/operator-model.md, familiar_lag_s), within a few cm of where it was then.
     target = np.column_stack([trace[f"gripper_target_{a}_m"] for a in "xyz"])
     actual = np.column_stack([trace[f"gripper_{a}_m"] for a in "xyz"])
-    assert np.nanmedian(np.linalg.norm(target - actual, axis=1)[engaged]) < 0.03
+    late = 20  # control ticks: 0.2 s
+    gap = np.linalg.norm(target[:-late] - actual[late:], axis=1)[engaged[late:]]
+    assert np.nanmedian(gap) < 0.03
 
 
 def test_failures_are_named_by_what_had_happened() -> None:

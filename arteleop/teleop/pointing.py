@@ -1,0 +1,80 @@
+"""One Fitts pointing trial through the whole loop: the simulated participant's calibration task
+(docs/operator-model.md, ``benchmarks/bench_fitts.py``).
+
+Targets are circles drawn on the table, ``distance_m`` along +y from a start point, their
+diameter ``width_m``; the bowl waits out of the way. The trial ends when the operator has
+selected (closed the gripper).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from arteleop.operator import ArmModel, CalibrationPosture, OperatorTraits
+from arteleop.operator.pointing import PointingOperator, PointingSource, PointingTask
+from arteleop.robot.mapping import HandToGripper
+from arteleop.scene import RemoteSite, SiteConfig, Workspace
+from arteleop.teleop.loop import run_trial
+from arteleop.teleop.network import NetworkConfig
+from arteleop.teleop.trial import TrialConfig
+
+POINTING_START_XY_M = (0.68, -0.55)
+"""Where each pointing movement starts (over the table, m); targets lie along +y from it."""
+BOWL_AWAY_XY_M = (0.45, -0.65)
+"""The bowl, out of the pointing path and in the arm's reach (the site checks both)."""
+
+
+@dataclass(frozen=True)
+class PointingResult:
+    """How one pointing trial went; NaN where the operator never selected.
+
+    Attributes:
+        movement_time_s: From the start of the pointing movement to the selection (s).
+        along_m: The gripper's end past the target's centre along the task axis (m).
+        hit: The gripper ended within the circle.
+    """
+
+    movement_time_s: float
+    along_m: float
+    hit: bool
+
+    @property
+    def selected(self) -> bool:
+        return bool(np.isfinite(self.movement_time_s))
+
+
+def run_pointing_trial(
+    distance_m: float,
+    width_m: float,
+    traits: OperatorTraits,
+    seed: int,
+    round_trip_lag_s: float = 0.0,
+    timeout_s: float = 40.0,
+) -> PointingResult:
+    """A pointing trial at a target ``distance_m`` away and ``width_m`` wide (m), by a person
+    with ``traits``, with ``round_trip_lag_s`` (s) of network delay, half each way."""
+    target_xy = (POINTING_START_XY_M[0], POINTING_START_XY_M[1] + distance_m)
+    ws = Workspace(start_xy_m=BOWL_AWAY_XY_M, target_xy_m=target_xy,
+                   target_circle_radius_m=width_m / 2, marker_line_width_m=width_m / 4)  # fmt: skip
+    config = TrialConfig(modality="none", seed=seed, timeout_s=timeout_s,
+                         network=NetworkConfig(delay_s=round_trip_lag_s / 2),
+                         site=SiteConfig(workspace=ws))  # fmt: skip
+    with RemoteSite(config.site) as site:
+        task = PointingTask(ws.on_table(POINTING_START_XY_M), ws.target_m, width_m)
+        arm, calibration = ArmModel(), CalibrationPosture()
+        rng = np.random.default_rng([seed, 1])
+        to_hand = HandToGripper(config.controller.mapping).hand_position_for
+        operator = PointingOperator(task, site.observe().gripper_m, to_hand, arm, calibration,
+                                    rng, traits=traits)  # fmt: skip
+        run_trial(PointingSource(operator, rng, arm, calibration), config, site)
+        end = site.observe().gripper_m
+    if operator.selected_s is None or operator.pointing_start_s is None:
+        return PointingResult(float("nan"), float("nan"), False)
+    off = end[:2] - ws.target_m[:2]
+    return PointingResult(
+        operator.selected_s - operator.pointing_start_s,
+        float(off[1]),
+        bool(np.linalg.norm(off) <= width_m / 2),
+    )

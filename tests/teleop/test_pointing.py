@@ -1,0 +1,32 @@
+"""The Fitts pointing task through the whole loop, small: a few cells, two people."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from arteleop.operator import Expertise, TraitDistribution
+from arteleop.teleop.pointing import run_pointing_trial
+
+PEOPLE = [TraitDistribution().draw(0, f"F{k:02d}", Expertise()) for k in range(2)]
+
+
+@pytest.fixture(scope="module")
+def times() -> dict[tuple[float, float, float], list[float]]:
+    cells = [(0.1, 0.04, 0.0), (0.4, 0.01, 0.0), (0.1, 0.04, 0.6)]
+    out: dict[tuple[float, float, float], list[float]] = {}
+    for d, w, lag in cells:
+        results = [run_pointing_trial(d, w, person, seed=k, round_trip_lag_s=lag)
+                   for k, person in enumerate(PEOPLE)]  # fmt: skip
+        assert all(r.selected for r in results), (d, w, lag)
+        out[d, w, lag] = [r.movement_time_s for r in results]
+    return out
+
+
+def test_a_harder_target_takes_longer(times: dict) -> None:
+    """Fitts: 0.1 m to a 40 mm circle (1.6 bits) against 0.4 m to a 10 mm one (5.4 bits)."""
+    assert np.mean(times[0.4, 0.01, 0.0]) > 1.5 * np.mean(times[0.1, 0.04, 0.0])
+
+
+def test_lag_raises_the_movement_time(times: dict) -> None:
+    assert np.mean(times[0.1, 0.04, 0.6]) > np.mean(times[0.1, 0.04, 0.0])
