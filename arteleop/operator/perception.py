@@ -177,31 +177,33 @@ def perceive(
         """``point`` judged with ``along_sd`` along ``axis`` and ``across_sd`` across it: the
         judgement and its believed covariance.
 
-        Without an axis it is a point of the cloud, judged along the line of sight. Its depth's
-        lasting error is then the scene's, shared by every point of the cloud (a viewer
-        compresses a rendered scene's depth as a whole), so it cancels between two points
-        compared with each other: the covariance returned is the one of such a comparison,
-        fresh noise only in depth (:func:`absolute` adds the scene's part back)."""
+        Without an axis it is a point of the cloud, judged along the line of sight. Its
+        lasting error is then the view's, shared by every point of the cloud (a viewer
+        compresses a rendered scene's depth as a whole, and misplaces what a view shows
+        together), so it cancels between two points compared with each other: the covariance
+        returned is the one of such a comparison, fresh noise only (:func:`absolute` adds the
+        view's part back)."""
         d = point - view.viewpoint_m if axis is None else axis
         d = d / np.linalg.norm(d)
         bias, fresh = errors.draw_parts(stream, 4)
         bias_sd, fresh_sd = errors.shares
-        z = bias_sd * bias + fresh_sd * fresh
         scale = params.belief_scale(errors.glances(stream))
-        along_var = along_sd**2 * scale
         if axis is None:
-            z[0] = bias_sd * errors.bias("scene_depth", 1)[0] + fresh_sd * fresh[0]
-            along_var = along_sd**2 * (1.0 - params.bias_share) / errors.glances(stream)
+            bias = errors.bias("scene", 4)
+            scale = (1.0 - params.bias_share) / errors.glances(stream)
+        z = bias_sd * bias + fresh_sd * fresh
         across = z[1:] * across_sd
         across -= d * (across @ d)
         along = np.outer(d, d)
-        cov = along_var * along + across_sd**2 * scale * (np.eye(3) - along)
+        cov = scale * (along_sd**2 * along + across_sd**2 * (np.eye(3) - along))
         return point + d * (z[0] * along_sd) + across, cov
 
     def absolute(point: NDArray[np.float64], cov: NDArray[np.float64]) -> NDArray[np.float64]:
-        """A cloud point's covariance judged on its own: the scene's depth error added."""
+        """A cloud point's covariance judged on its own: the view's lasting error added."""
         d = (point - view.viewpoint_m) / np.linalg.norm(point - view.viewpoint_m)
-        return cov + params.bias_share * depth_sd**2 * np.outer(d, d)
+        along = np.outer(d, d)
+        view_part = depth_sd**2 * along + lateral_sd**2 * (np.eye(3) - along)
+        return cov + params.bias_share * view_part
 
     def planar(stream: str, sd: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """An error in the table's plane with ``sd`` per axis, and its covariance."""

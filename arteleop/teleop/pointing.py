@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from arteleop.errors import SimulationError
 from arteleop.operator import ArmModel, CalibrationPosture, OperatorTraits
 from arteleop.operator.pointing import PointingOperator, PointingSource, PointingTask
 from arteleop.robot.mapping import HandToGripper
@@ -24,6 +25,8 @@ POINTING_START_XY_M = (0.68, -0.55)
 """Where each pointing movement starts (over the table, m); targets lie along +y from it."""
 BOWL_AWAY_XY_M = (0.45, -0.65)
 """The bowl, out of the pointing path and in the arm's reach (the site checks both)."""
+SELECTED_CLOSURE = 0.05
+"""The gripper has begun to close: the selection's moment and place."""
 
 
 @dataclass(frozen=True)
@@ -32,8 +35,8 @@ class PointingResult:
 
     Attributes:
         movement_time_s: From the start of the pointing movement to the selection (s).
-        along_m: The gripper's end past the target's centre along the task axis (m).
-        hit: The gripper ended within the circle.
+        along_m: The gripper at the selection past the target's centre along the task axis (m).
+        hit: The gripper was within the circle at the selection (when it began to close).
     """
 
     movement_time_s: float
@@ -60,7 +63,7 @@ def run_pointing_trial(
                    target_circle_radius_m=width_m / 2, marker_line_width_m=width_m / 4)  # fmt: skip
     config = TrialConfig(modality="none", seed=seed, timeout_s=timeout_s,
                          network=NetworkConfig(delay_s=round_trip_lag_s / 2),
-                         site=SiteConfig(workspace=ws))  # fmt: skip
+                         site=SiteConfig(workspace=ws), record_trace=True)  # fmt: skip
     with RemoteSite(config.site) as site:
         task = PointingTask(ws.on_table(POINTING_START_XY_M), ws.target_m, width_m)
         arm, calibration = ArmModel(), CalibrationPosture()
@@ -68,11 +71,17 @@ def run_pointing_trial(
         to_hand = HandToGripper(config.controller.mapping).hand_position_for
         operator = PointingOperator(task, site.observe().gripper_m, to_hand, arm, calibration,
                                     rng, traits=traits)  # fmt: skip
-        run_trial(PointingSource(operator, rng, arm, calibration), config, site)
-        end = site.observe().gripper_m
+        result = run_trial(PointingSource(operator, rng, arm, calibration), config, site)
     if operator.selected_s is None or operator.pointing_start_s is None:
         return PointingResult(float("nan"), float("nan"), False)
-    off = end[:2] - ws.target_m[:2]
+    # The selection is where the gripper starts to close: the click.
+    trace = result.trace
+    if trace is None:
+        raise SimulationError("The pointing trial recorded no trace although its config asked.")
+    closing = np.flatnonzero(trace["gripper_closure"] > SELECTED_CLOSURE)
+    k = closing[0] if len(closing) else len(trace["time_s"]) - 1
+    end = np.array([trace["gripper_x_m"][k], trace["gripper_y_m"][k]])
+    off = end - ws.target_m[:2]
     return PointingResult(
         operator.selected_s - operator.pointing_start_s,
         float(off[1]),
