@@ -7,13 +7,21 @@ This package imports nothing else from arteleop: it works on any CSVs of the doc
 import importlib
 from typing import TYPE_CHECKING, Any
 
-from arteleop.analysis.data import MEASURES, MODALITIES, StudyData, load_study, load_trajectory
+from arteleop.analysis.data import (
+    MEASURES,
+    MODALITIES,
+    SMOOTHNESS,
+    StudyData,
+    load_study,
+    load_trajectory,
+)
 from arteleop.analysis.errors import AnalysisInputError
 from arteleop.analysis.smoothness import (
     log_dimensionless_jerk,
     normalized_jerk,
     path_length,
     spectral_arc_length,
+    submovement_count,
 )
 
 if TYPE_CHECKING:
@@ -61,6 +69,7 @@ def __getattr__(name: str) -> Any:
 __all__ = [
     "MEASURES",
     "MODALITIES",
+    "SMOOTHNESS",
     "AnalysisInputError",
     "AnalysisOptions",
     "AnalysisResult",
@@ -83,6 +92,7 @@ __all__ = [
     "rank_biserial",
     "spectral_arc_length",
     "stars",
+    "submovement_count",
     "trim_extremes",
     "write_report",
 ]

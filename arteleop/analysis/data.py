@@ -13,7 +13,12 @@ import pandas as pd
 from arteleop.analysis.errors import AnalysisInputError
 
 MODALITIES: tuple[str, ...] = ("none", "manipulation", "embodiment", "task", "full")
-MEASURES: tuple[str, ...] = ("completion_time_s", "placement_error_m", "normalized_jerk_xy")
+MEASURES: tuple[str, ...] = (
+    "completion_time_s", "placement_error_m", "normalized_jerk_xy", "ldlj_xy", "sparc_xy",
+    "submovements_xy",
+)  # fmt: skip
+SMOOTHNESS: tuple[str, ...] = ("normalized_jerk_xy", "ldlj_xy", "sparc_xy", "submovements_xy")
+"""The smoothness measures, each of the hand in the x-y plane from motion onset to the end."""
 PHASES = ("familiarization", "experimental")
 AR_CLASSES = ("embodiment", "manipulation", "task")
 QUESTIONNAIRE_ITEMS = ("presence", "embodiment", "ease")
@@ -21,8 +26,8 @@ QUESTIONNAIRE_ITEMS = ("presence", "embodiment", "ease")
 TRIAL_COLUMNS = (
     "participant", "phase", "trial_index", "modality", "position", "seed", "outcome",
     "completion_time_s", "placement_error_m", "placement_error_true_m", "normalized_jerk_xy",
-    "grasp_attempts", "hand_path_length_m", "latency_median_ms", "colocation_error_px",
-    "colocation_error_m", "trajectory_file",
+    "ldlj_xy", "sparc_xy", "submovements_xy", "grasp_attempts", "hand_path_length_m",
+    "latency_median_ms", "colocation_error_px", "colocation_error_m", "trajectory_file",
 )  # fmt: skip
 TRIAL_REQUIRED = (
     "participant", "phase", "modality", "position", "outcome", "completion_time_s",
@@ -32,8 +37,9 @@ SUCCESS_ONLY = ("completion_time_s", "placement_error_m")
 """Required columns that a failed trial leaves empty: it has no completion time or placement."""
 TRIAL_NUMERIC = (
     "trial_index", "position", "seed", "completion_time_s", "placement_error_m",
-    "placement_error_true_m", "normalized_jerk_xy", "grasp_attempts", "hand_path_length_m",
-    "latency_median_ms", "colocation_error_px", "colocation_error_m",
+    "placement_error_true_m", "normalized_jerk_xy", "ldlj_xy", "sparc_xy", "submovements_xy",
+    "grasp_attempts", "hand_path_length_m", "latency_median_ms", "colocation_error_px",
+    "colocation_error_m",
 )  # fmt: skip
 PARTICIPANT_COLUMNS = (
     "participant", "age", "gender", "handedness", "avr_experience", "avr_hours",

@@ -17,6 +17,9 @@ LABELS = {
     "completion_time_s": "completion time (s)",
     "placement_error_m": "placement error (m)",
     "normalized_jerk_xy": "normalised jerk, x-y (-)",
+    "ldlj_xy": "LDLJ, x-y (-)",
+    "sparc_xy": "SPARC, x-y (-)",
+    "submovements_xy": "submovements, x-y",
 }
 
 

@@ -1,6 +1,6 @@
-"""Smoothness of hand trajectories: normalised jerk, LDLJ and SPARC.
+"""Smoothness of hand trajectories: normalised jerk, LDLJ, SPARC and the number of submovements.
 
-Preprocessing (all three metrics): the trajectory is resampled onto a uniform time grid at its
+Preprocessing (all four metrics): the trajectory is resampled onto a uniform time grid at its
 median rate, then low-pass filtered with a zero-phase 4th-order Butterworth filter (scipy's
 ``filtfilt``, 6 Hz cutoff by default, the usual choice for reaching kinematics; odd extension over
 three periods of the cutoff at both ends), then
@@ -13,6 +13,13 @@ References:
 - LDLJ and SPARC: Balasubramanian, Melendez-Calderon, Roby-Brami & Burdet, "On the analysis of
   movement smoothness", J. NeuroEng. Rehabil. 12:112 (2015); SPARC first in Balasubramanian et
   al., IEEE TBME 59(8), 2012.
+- Submovements as peaks of the speed profile: Rohrer et al., "Movement smoothness changes during
+  stroke recovery", J. Neurosci. 22(18), 2002.
+
+Normalised jerk grows with a movement's duration (``D^5`` against ``L^2``: for a hand that pauses
+and corrects, longer trials are "less smooth" whatever the hand did between pauses); LDLJ and
+SPARC are dimensionless in duration and amplitude, and the number of submovements counts the
+corrections themselves.
 """
 
 from __future__ import annotations
@@ -21,7 +28,7 @@ from collections.abc import Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.signal import butter, filtfilt, savgol_filter
+from scipy.signal import butter, filtfilt, find_peaks, savgol_filter
 
 from arteleop.analysis.errors import AnalysisInputError
 
@@ -164,3 +171,24 @@ def spectral_arc_length(
     freq, mag = freq[: above[-1] + 1], mag[: above[-1] + 1]
     df = np.diff(freq) / (freq[-1] - freq[0])
     return float(-np.sum(np.sqrt(df**2 + np.diff(mag) ** 2)))
+
+
+def submovement_count(
+    time_s: ArrayLike,
+    positions_m: ArrayLike,
+    plane: str | Sequence[int] = "xy",
+    cutoff_hz: float | None = 6.0,
+    min_prominence: float = 0.1,
+) -> int:
+    """Submovements (a whole number, 1 or more for a movement): peaks of the filtered speed
+    that stand out by at least ``min_prominence`` of the peak speed (Rohrer et al. 2002); a
+    single minimum-jerk movement has one."""
+    _, p, dt = _prepare(time_s, positions_m, plane, cutoff_hz)
+    speed = np.linalg.norm(_derivative(p, dt, 1), axis=1)
+    top = float(speed.max())
+    if top <= 0:
+        raise AnalysisInputError("the trajectory does not move: its peak speed is 0")
+    # Zero speed on either side, so that a peak at an end is still a peak.
+    padded = np.concatenate([[0.0], speed, [0.0]])
+    peaks, _ = find_peaks(padded, prominence=min_prominence * top)
+    return len(peaks)

@@ -17,7 +17,12 @@ from arteleop.analysis.data import (
     load_trajectory,
 )
 from arteleop.analysis.errors import AnalysisInputError
-from arteleop.analysis.smoothness import normalized_jerk
+from arteleop.analysis.smoothness import (
+    log_dimensionless_jerk,
+    normalized_jerk,
+    spectral_arc_length,
+    submovement_count,
+)
 from arteleop.analysis.statistics import (
     MIN_TEST_N,
     AnalysisOptions,
@@ -67,7 +72,7 @@ def analyse(study: StudyData, options: AnalysisOptions | None = None) -> Analysi
         if outcome != "success":
             counts[f"excluded_{outcome}"] = int(n)
     trajectories = _load_trajectories(study, trials, notes)
-    trials = _fill_jerk(trials, trajectories, notes)
+    trials = _fill_smoothness(trials, trajectories, notes)
     measures = [m for m in MEASURES if trials[m].notna().any()]
     if "normalized_jerk_xy" not in measures:
         notes.append("Smoothness skipped: no normalized_jerk_xy values and no trajectory files.")
@@ -206,25 +211,33 @@ def _load_trajectories(
     return out
 
 
-def _fill_jerk(trials: pd.DataFrame, trajectories: dict, notes: list[str]) -> pd.DataFrame:
+def _fill_smoothness(trials: pd.DataFrame, trajectories: dict, notes: list[str]) -> pd.DataFrame:
+    """Each empty smoothness measure computed from the trial's trajectory file, where it has
+    one (files of other labs, or of format versions before a measure's column)."""
+    measures = {
+        "normalized_jerk_xy": normalized_jerk, "ldlj_xy": log_dimensionless_jerk,
+        "sparc_xy": spectral_arc_length, "submovements_xy": submovement_count,
+    }  # fmt: skip
     trials = trials.copy()
-    computed = 0
+    computed = dict.fromkeys(measures, 0)
     for i, row in trials.iterrows():
         traj = trajectories.get((row["participant"], row["trial_index"]))
-        if not np.isnan(row["normalized_jerk_xy"]) or traj is None:
+        empty = [m for m in measures if np.isnan(row[m])]
+        if not empty or traj is None:
             continue
+        t, p = traj["time_s"].to_numpy(), traj[["hand_x_m", "hand_y_m", "hand_z_m"]].to_numpy()
         try:
-            trials.loc[i, "normalized_jerk_xy"] = normalized_jerk(
-                traj["time_s"].to_numpy(), traj[["hand_x_m", "hand_y_m", "hand_z_m"]].to_numpy()
-            )
-            computed += 1
+            for m in empty:
+                trials.loc[i, m] = float(measures[m](t, p, "xy"))
+                computed[m] += 1
         except AnalysisInputError as err:
             notes.append(
-                f"Jerk of participant {row['participant']} trial {row['trial_index']:g} "
+                f"Smoothness of participant {row['participant']} trial {row['trial_index']:g} "
                 f"not computed: {err}"
             )
-    if computed:
-        notes.append(f"normalized_jerk_xy computed from trajectory files for {computed} trial(s).")
+    for m, n in computed.items():
+        if n:
+            notes.append(f"{m} computed from trajectory files for {n} trial(s).")
     return trials
 
 

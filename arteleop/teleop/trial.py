@@ -13,7 +13,14 @@ from enum import Enum
 import numpy as np
 from numpy.typing import NDArray
 
-from arteleop.analysis import AnalysisInputError, normalized_jerk, path_length
+from arteleop.analysis import (
+    AnalysisInputError,
+    log_dimensionless_jerk,
+    normalized_jerk,
+    path_length,
+    spectral_arc_length,
+    submovement_count,
+)
 from arteleop.ar_features import modality_cues
 from arteleop.arrays import frozen_array
 from arteleop.errors import ConfigurationError
@@ -206,8 +213,10 @@ class TrialResult:
         t, hand = self.movement()
         try:
             jerk, length = normalized_jerk(t, hand, "xy"), path_length(t, hand)
+            ldlj, sparc = log_dimensionless_jerk(t, hand, "xy"), spectral_arc_length(t, hand, "xy")
+            peaks = float(submovement_count(t, hand, "xy"))
         except AnalysisInputError:  # fewer than 8 samples, or no movement
-            jerk = length = float("nan")
+            jerk = length = ldlj = sparc = peaks = float("nan")
         latency = self.latency_wall_ms if len(self.latency_wall_ms) else self.latency_sim_ms
         return {
             "modality": self.modality,
@@ -217,6 +226,9 @@ class TrialResult:
             "placement_error_m": self.placement_error_m,
             "placement_error_true_m": self.placement_error_true_m,
             "normalized_jerk_xy": jerk,
+            "ldlj_xy": ldlj,
+            "sparc_xy": sparc,
+            "submovements_xy": peaks,
             "grasp_attempts": self.grasp_attempts,
             "hand_path_length_m": length,
             "latency_median_ms": _median(latency),
