@@ -59,11 +59,31 @@ def test_modality_is_offered_as_its_five_choices(capsys: pytest.CaptureFixture[s
         assert "(default" in line or line.strip() != option  # each has its description
 
 
-@pytest.mark.parametrize("command", [["trial"], ["teleop"], ["scene"], ["operator", "synth"]])
+@pytest.mark.parametrize(
+    "command", [["trial"], ["teleop"], ["scene"], ["operator", "synth"], ["study", "run"]]
+)
 def test_negative_seed_is_refused(capsys: pytest.CaptureFixture[str], command: list[str]) -> None:
     assert _error(capsys, [*command, "--seed", "-1"]) == (
         "--seed -1: a seed is a whole number, 0 or more."
     )
+
+
+def test_study_run_seed_replaces_the_definitions(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path
+) -> None:
+    """--seed N runs the definition with seed N (the run folder records what it ran)."""
+    import arteleop.study
+    from arteleop.errors import ConfigurationError
+
+    ran = []
+
+    def fake_run(study, out, workers, progress=None):
+        ran.append(study)
+        raise ConfigurationError("stopped here")
+
+    monkeypatch.setattr(arteleop.study, "run_study", fake_run)
+    assert main(["study", "run", "--seed", "3", "--out", str(tmp_path / "run")]) == 2
+    assert ran[0].seed == 3 and ran[0].cohort == arteleop.study.StudyConfig().cohort
 
 
 @pytest.mark.parametrize(

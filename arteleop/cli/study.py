@@ -6,7 +6,7 @@ import contextlib
 import sys
 import time
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -14,7 +14,7 @@ import tyro
 
 from arteleop.cli.analyze import AnalyzeCommand, analyze
 from arteleop.cli.interrupt import check_ctrl_c
-from arteleop.cli.options import CameraSize
+from arteleop.cli.options import CameraSize, check_seed
 from arteleop.errors import ConfigurationError
 
 
@@ -48,6 +48,9 @@ class StudyRunCommand:
     """the study definition ('arteleop study init FILE' writes one); none: the default"""
     out: Path = Path("arteleop-study")
     """the run folder to create (must be new or empty)"""
+    seed: int | None = None
+    """the study's seed (0 or more) instead of the definition's: another cohort, other orders
+    and trials (the run folder's study.toml records it)"""
     workers: int = 0
     """processes running trials; 0: one per core"""
     quiet: bool = False
@@ -71,6 +74,9 @@ def study_run(cmd: StudyRunCommand) -> int:
 
     _check_workers(cmd.workers)
     study = StudyConfig() if cmd.file is None else load_study_file(cmd.file)[0]
+    if cmd.seed is not None:
+        check_seed(cmd.seed)
+        study = replace(study, seed=cmd.seed)
     with _study_progress(cmd.out, cmd.quiet) as progress:
         run = run_study(study, cmd.out, cmd.workers or None, progress=progress)
     return _study_done(run)
