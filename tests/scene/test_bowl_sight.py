@@ -7,16 +7,21 @@ from arteleop.scene import BowlTracker, HeadCameraConfig, RemoteSite, SiteConfig
 from arteleop.teleop import TrialConfig, TrialProgress, run_trial, trial_operator
 
 UNTIL_S = 60.0
-"""Seed 0 under ``none`` reaches, grasps, lifts, carries and lowers the bowl by then: the arm
-hides it from about 34 s."""
+"""Seeds 0 and 1 under ``none`` reach, grasp, lift, carry and lower the bowl by then; the arm
+hides it from the grasp on."""
+SEEDS = (0, 1)
 EVERY_S = 0.5
 
 
 @pytest.fixture(scope="module")
 def looks(site_config: SiteConfig) -> np.ndarray:
     """(time, model found, tracker found, tracker's error to the truth (m)) every 0.5 s."""
+    return np.array([row for seed in SEEDS for row in _looks(site_config, seed)], dtype=float)
+
+
+def _looks(site_config: SiteConfig, seed: int) -> list[tuple[float, bool, bool, float]]:
     small = HeadCameraConfig(width_px=320, height_px=240)
-    config = TrialConfig(modality="none", seed=0, timeout_s=UNTIL_S, site=site_config)
+    config = TrialConfig(modality="none", seed=seed, timeout_s=UNTIL_S, site=site_config)
     rows: list[tuple[float, bool, bool, float]] = []
     with RemoteSite(SiteConfig(robot=site_config.robot, camera=small)) as site:
         tracker = BowlTracker(site.config.workspace.bowl)
@@ -33,7 +38,7 @@ def looks(site_config: SiteConfig) -> np.ndarray:
             rows.append((t, model.found, track.found, error))
 
         run_trial(trial_operator(site, config), config, site, progress=look)
-    return np.array(rows, dtype=float)
+    return rows
 
 
 def test_the_trial_hides_and_shows_the_bowl(looks: np.ndarray) -> None:
@@ -47,8 +52,9 @@ def test_the_model_finds_the_bowl_when_the_tracker_does(looks: np.ndarray) -> No
     # trial), 89 % over two whole trials: the model also finds a partly hidden bowl, which the
     # tracker refuses (bowl_sight.py).
     assert (model == tracker).mean() >= 0.75
-    # It seldom hides a bowl the tracker finds: 3 and 6 of some 60 finds so far, while the
-    # gripper hovers over the bowl.
+    # It seldom hides a bowl the tracker finds: 3 and 6 of some 60 finds in earlier versions of
+    # one trial, while the gripper hovers over the bowl (the trials are shorter since 0.2: two
+    # of them give as many finds).
     assert (tracker & ~model).sum() <= tracker.sum() / 8
 
 
