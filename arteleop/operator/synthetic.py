@@ -421,11 +421,13 @@ class SyntheticOperator:
         saturated = self.p.perception.belief_scale(round(looked / self.traits.glance_s) + 1) <= (
             share * 1.1
         )
-        if sure >= confidence:
-            self._look_s = 0.5 * self._look_s + 0.5 * (looked + self.traits.glance_s)
+        accept = sure >= confidence
+        if not (accept or sure <= 1.0 - confidence or saturated or looked >= self.p.max_look_s):
+            return  # not sure either way: look again
+        self._look_s = 0.5 * self._look_s + 0.5 * (looked + self.traits.glance_s)
+        if accept:
             self._advance(t)
-        elif sure <= 1.0 - confidence or saturated or looked >= self.p.max_look_s:
-            self._look_s = 0.5 * self._look_s + 0.5 * (looked + self.traits.glance_s)
+        else:
             self._correct(t, seen, error)
 
     def _correct(self, t: float, seen: Perceived, error: NDArray[np.float64]) -> None:
