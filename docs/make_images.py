@@ -1,7 +1,7 @@
 """Make the README's pictures: the head camera's image and depth at rest, and the operator's
 view under each modality at the same moment.
 
-Seed 0's synthetic operator under full AR, 8 s into the trial (reaching over the bowl), at the
+Seed 0's synthetic operator under full AR, 5 s into the trial (13 cm over the grasp point), at the
 Kinect's 640x480; headless Chromium takes each picture of the view (needs ``apt-get install
 chromium``).
 
