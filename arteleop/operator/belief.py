@@ -35,3 +35,22 @@ def probability_within(
     root = v * np.sqrt(np.clip(w, 0.0, None))
     samples = error_m[keep] + _Z[:, : len(keep)] @ root.T
     return float(np.mean(np.einsum("ij,ij->i", samples, samples) <= criterion_m**2))
+
+
+def averaging_saturated(
+    first_variance_m2: float, variance_m2: float, glances: int, ratio: float = 0.1
+) -> bool:
+    """Whether one more glance of a look would gain nothing: the look's averaged fresh variance
+    is within ``ratio`` of the variance that lasts.
+
+    A look's believed variance after ``glances`` glances is ``L + F / glances`` (``L`` lasting:
+    the person's bias where the judgement has one, a remembered offset; ``F`` one glance's fresh
+    noise). The first glance's variance and the current one give both parts; a comparison of
+    two points of the cloud, whose lasting error cancels, never saturates (its look ends when it
+    is sure either way, or at the longest look).
+    """
+    if glances < 2:
+        return False
+    fresh = (first_variance_m2 - variance_m2) * glances / (glances - 1)
+    lasting = first_variance_m2 - fresh
+    return fresh / glances <= ratio * lasting

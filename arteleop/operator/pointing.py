@@ -80,8 +80,7 @@ class PointingOperator(SyntheticOperator):
 
     def criterion_m(self, t: float) -> float:
         if self.phase is Phase.TRANSPORT:
-            c0 = self.pointing.width_m / 2
-            return c0 * (1.0 + (t - self._phase_start_s) / self.traits.urgency_s)
+            return self.pointing.width_m / 2 * self._loosening(t)
         return super().criterion_m(t)
 
     def _glance(self, view: DisplayFrame) -> tuple[Perceived, NDArray[np.float64] | None]:

@@ -36,7 +36,7 @@ from scipy.spatial.transform import Rotation, Slerp
 from arteleop.ar_features import DisplayFrame
 from arteleop.errors import ConfigurationError
 from arteleop.operator.arm_model import ArmModel, hand_pose, segment_rotations
-from arteleop.operator.belief import probability_within
+from arteleop.operator.belief import averaging_saturated, probability_within
 from arteleop.operator.minimum_jerk import minimum_jerk_profile
 from arteleop.operator.perception import (
     BowlMemory,
@@ -229,7 +229,7 @@ class SyntheticOperator:
         self._moves: list[_Submovement] = []
         self._hand = calib_pos.copy()
         self._grip = 0.0
-        self._phase_start_s = 0.0
+        self._correcting_from_s: float | None = None  # the primary's arrival in this phase
         self._tremor_phase = rng.uniform(0, 2 * np.pi, (2, 3))
         self._grasped_at: NDArray[np.float64] | None = None
         self._released_at: NDArray[np.float64] | None = None
@@ -240,6 +240,7 @@ class SyntheticOperator:
         self._hand_stop_s = 0.0
         self._shown_at_start: NDArray[np.float64] | None = None
         self._look_start_s = 0.0
+        self._look_first_var_m2 = 0.0  # the believed variance at the look's first glance
         self._next_glance_s = 0.0
         self._last_amend_s = -np.inf
         self._homing_from_s = 0.0  # in-flight corrections start half-way through the primary
@@ -267,7 +268,14 @@ class SyntheticOperator:
             c0 = self.traits.placement_criterion_m
         else:
             c0 = self.p.gross_criterion_m
-        return c0 * (1.0 + (t - self._phase_start_s) / self.traits.urgency_s)
+        return c0 * self._loosening(t)
+
+    def _loosening(self, t: float) -> float:
+        """How much the criterion has grown with the effort spent correcting in this phase:
+        from the arrival of its primary movement, which was planned to meet the criterion."""
+        if self._correcting_from_s is None:
+            return 1.0
+        return 1.0 + (t - self._correcting_from_s) / self.traits.urgency_s
 
     def _goal_gripper(self, seen: Perceived, bowl_m: NDArray[np.float64]) -> NDArray[np.float64]:
         grasp = bowl_m + self.task.grasp_offset_m
@@ -416,11 +424,11 @@ class SyntheticOperator:
         sure = self._sure_within(t, error, seen)
         confidence = self.traits.confidence
         looked = t - self._look_start_s
-        share = self.p.perception.bias_share
-        # Looking longer gains nothing once the averaged noise is small beside the bias.
-        saturated = self.p.perception.belief_scale(round(looked / self.traits.glance_s) + 1) <= (
-            share * 1.1
-        )
+        glances = round(looked / self.traits.glance_s) + 1
+        variance = float(np.trace(self._judgement(seen)[0]))
+        if glances == 1:
+            self._look_first_var_m2 = variance
+        saturated = averaging_saturated(self._look_first_var_m2, variance, glances)
         accept = sure >= confidence
         if not (accept or sure <= 1.0 - confidence or saturated or looked >= self.p.max_look_s):
             return  # not sure either way: look again
@@ -486,7 +494,7 @@ class SyntheticOperator:
 
     def _enter(self, phase: Phase, t: float) -> None:
         self.phase = phase
-        self._phase_start_s = t
+        self._correcting_from_s = None
         self._moved_in_phase = False
 
     def _advance(self, t: float) -> None:
@@ -522,6 +530,8 @@ class SyntheticOperator:
             elif self._arrived(t, float(np.linalg.norm(self._hand - self._hand_at_start))):
                 lag = t - self._hand_stop_s - self.p.arrival_window_s
                 self.lag_s = 0.5 * self.lag_s + 0.5 * max(lag, 0.0)
+                if self._correcting_from_s is None:
+                    self._correcting_from_s = t
                 self._start_look(t)
         elif self._mode is _Mode.LOOK:
             if t >= self._next_glance_s:

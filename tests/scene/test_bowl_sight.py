@@ -9,20 +9,21 @@ from arteleop.teleop import TrialConfig, TrialProgress, run_trial, trial_operato
 UNTIL_S = 60.0
 """Seeds 0 and 1 under ``none`` reach, grasp, lift, carry and lower the bowl by then; the arm
 hides it from the grasp on."""
-SEEDS = (0, 1)
+SEEDS = (0, 1, 2)
 EVERY_S = 0.5
 
 
 @pytest.fixture(scope="module")
 def looks(site_config: SiteConfig) -> np.ndarray:
-    """(time, model found, tracker found, tracker's error to the truth (m)) every 0.5 s."""
+    """(time, model found, tracker found, tracker's error to the truth (m), gripper's distance
+    from the bowl's rim in the table's plane (m)) every 0.5 s."""
     return np.array([row for seed in SEEDS for row in _looks(site_config, seed)], dtype=float)
 
 
-def _looks(site_config: SiteConfig, seed: int) -> list[tuple[float, bool, bool, float]]:
+def _looks(site_config: SiteConfig, seed: int) -> list[tuple[float, bool, bool, float, float]]:
     small = HeadCameraConfig(width_px=320, height_px=240)
     config = TrialConfig(modality="none", seed=seed, timeout_s=UNTIL_S, site=site_config)
-    rows: list[tuple[float, bool, bool, float]] = []
+    rows: list[tuple[float, bool, bool, float, float]] = []
     with RemoteSite(SiteConfig(robot=site_config.robot, camera=small)) as site:
         tracker = BowlTracker(site.config.workspace.bowl)
         z = site.config.workspace.table_top_z_m
@@ -33,9 +34,11 @@ def _looks(site_config: SiteConfig, seed: int) -> list[tuple[float, bool, bool, 
                 return
             model = site.sight_bowl()
             track = tracker.track(site.capture(), z)
-            truth = site.observe(links=()).bowl_m
-            error = np.linalg.norm(track.position_m - truth) if track.found else np.nan
-            rows.append((t, model.found, track.found, error))
+            state = site.observe()
+            error = np.linalg.norm(track.position_m - state.bowl_m) if track.found else np.nan
+            axis = np.hypot(*(state.gripper_m - state.bowl_m)[:2])
+            rim = site.config.workspace.bowl.rim_radius_m
+            rows.append((t, model.found, track.found, error, axis - rim))
 
         run_trial(trial_operator(site, config), config, site, progress=look)
     return rows
@@ -52,10 +55,14 @@ def test_the_model_finds_the_bowl_when_the_tracker_does(looks: np.ndarray) -> No
     # trial), 89 % over two whole trials: the model also finds a partly hidden bowl, which the
     # tracker refuses (bowl_sight.py).
     assert (model == tracker).mean() >= 0.75
-    # It seldom hides a bowl the tracker finds: 3 and 6 of some 60 finds in earlier versions of
-    # one trial, while the gripper hovers over the bowl (the trials are shorter since 0.2: two
-    # of them give as many finds).
-    assert (tracker & ~model).sum() <= tracker.sum() / 8
+    # It hides a bowl the tracker finds only while the gripper hovers over the rim before the
+    # grasp, the bowl partly behind it (the tracker still fits the arc it sees): 3 and 6 of
+    # some 60 finds in one trial of 0.1, 11 of 82 in three trials of 0.2's operator, which
+    # looks there glance by glance. Nowhere else.
+    hidden = tracker & ~model
+    over_rim = np.abs(looks[:, 4]) < 0.05
+    assert not (hidden & ~over_rim).any()
+    assert hidden.sum() <= tracker.sum() / 6
 
 
 def test_the_models_position_is_within_the_trackers_error(looks: np.ndarray) -> None:

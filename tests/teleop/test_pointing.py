@@ -1,4 +1,4 @@
-"""The Fitts pointing task through the whole loop, small: a few cells, two people."""
+"""The Fitts pointing task through the whole loop, small: a few cells, a few people."""
 
 from __future__ import annotations
 
@@ -8,16 +8,18 @@ import pytest
 from arteleop.operator import Expertise, TraitDistribution
 from arteleop.teleop.pointing import run_pointing_trial
 
-PEOPLE = [TraitDistribution().draw(0, f"F{k:02d}", Expertise()) for k in range(2)]
+PEOPLE = [TraitDistribution().draw(0, f"F{k:02d}", Expertise()) for k in range(6)]
 
 
 @pytest.fixture(scope="module")
 def times() -> dict[tuple[float, float, float], list[float]]:
-    cells = [(0.1, 0.04, 0.0), (0.4, 0.01, 0.0), (0.1, 0.04, 0.6)]
+    """Movement times (s) per cell (distance m, width m, round-trip lag s): two people at the
+    hard target, six under lag (a trial's time varies by a factor of two between people)."""
+    cells = {(0.1, 0.04, 0.0): 6, (0.4, 0.01, 0.0): 2, (0.1, 0.04, 0.6): 6}
     out: dict[tuple[float, float, float], list[float]] = {}
-    for d, w, lag in cells:
+    for (d, w, lag), n in cells.items():
         results = [run_pointing_trial(d, w, person, seed=k, round_trip_lag_s=lag)
-                   for k, person in enumerate(PEOPLE)]  # fmt: skip
+                   for k, person in enumerate(PEOPLE[:n])]  # fmt: skip
         assert all(r.selected for r in results), (d, w, lag)
         out[d, w, lag] = [r.movement_time_s for r in results]
     return out
@@ -25,8 +27,10 @@ def times() -> dict[tuple[float, float, float], list[float]]:
 
 def test_a_harder_target_takes_longer(times: dict) -> None:
     """Fitts: 0.1 m to a 40 mm circle (1.6 bits) against 0.4 m to a 10 mm one (5.4 bits)."""
-    assert np.mean(times[0.4, 0.01, 0.0]) > 1.5 * np.mean(times[0.1, 0.04, 0.0])
+    assert np.mean(times[0.4, 0.01, 0.0]) > 1.5 * np.mean(times[0.1, 0.04, 0.0][:2])
 
 
 def test_lag_raises_the_movement_time(times: dict) -> None:
-    assert np.mean(times[0.1, 0.04, 0.6]) > np.mean(times[0.1, 0.04, 0.0])
+    """Medians over six people (measured: 1.4 s without lag, 2.0 s with 0.6 s; two people
+    alone, once, gave the opposite)."""
+    assert np.median(times[0.1, 0.04, 0.6]) > np.median(times[0.1, 0.04, 0.0])
