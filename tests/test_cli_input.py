@@ -102,6 +102,19 @@ def test_study_run_seed_replaces_the_definitions(
             "--operator synthetc: no such file. Give 'synthetic' (a simulated participant) or "
             "the path of a wearable recording's CSV.",
         ),
+        (["--confidence", "1"], "--confidence 1.0: expected 0.5-0.999 (a probability)."),
+        (
+            ["--placement-criterion-m", "0.5"],
+            "--placement-criterion-m 0.5: expected 0.001-0.1 (m).",
+        ),
+        (
+            ["--filter-min-cutoff-hz", "0"],
+            "--filter-min-cutoff-hz 0.0: expected a cutoff of 0.01-100 Hz.",
+        ),
+        (
+            ["--filter-beta", "-1"],
+            "--filter-beta -1.0: expected 0-1000 (Hz per m/s; 0 is a plain low-pass filter).",
+        ),
     ],
 )
 def test_bad_trial_options_name_the_option(
@@ -249,3 +262,17 @@ def test_the_view_keeps_serving_after_the_trial_until_ctrl_c() -> None:
     assert proc.returncode == 1  # the trial's outcome: a timeout
     assert "Traceback" not in err
     assert any(line.startswith("outcome              timeout") for line in lines)
+
+
+def test_trial_options_reach_the_operator_and_the_filter() -> None:
+    from arteleop.cli.trial import TrialCommand, _operator_options
+    from arteleop.operator import OperatorTraits
+    from arteleop.teleop import HandFilterConfig
+
+    traits, hand_filter = _operator_options(
+        TrialCommand(confidence=0.9, placement_criterion_m=0.02, filter_beta=2.0, no_filter=True)
+    )
+    assert (traits.confidence, traits.placement_criterion_m) == (0.9, 0.02)
+    assert (hand_filter.enabled, hand_filter.beta_per_m) == (False, 2.0)
+    # The defaults are the model's median novice and the study's filter.
+    assert _operator_options(TrialCommand()) == (OperatorTraits(), HandFilterConfig())

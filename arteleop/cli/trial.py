@@ -16,7 +16,8 @@ from arteleop.cli.progress import trial_progress
 from arteleop.errors import ConfigurationError
 
 if TYPE_CHECKING:
-    from arteleop.teleop import TrialResult
+    from arteleop.operator import OperatorTraits
+    from arteleop.teleop import HandFilterConfig, TrialResult
 
 
 @dataclass(frozen=True)
@@ -33,6 +34,17 @@ class TrialCommand(CameraSize):
     """one-way network delay between operator and robot (ms)"""
     timeout_s: float = 120.0
     """simulated time after which the trial ends as a timeout (s)"""
+    confidence: float = 0.95
+    """synthetic operator: how sure it must be that the error is within its criterion to stop
+    correcting (0.5-0.999; docs/operator-model.md)"""
+    placement_criterion_m: float = 0.010
+    """synthetic operator: how close to the target it holds good enough (0.001-0.1 m)"""
+    filter_min_cutoff_hz: float = 1.0
+    """the 1-euro filter on the operator's hand: cutoff at rest (0.01-100 Hz)"""
+    filter_beta: float = 5.0
+    """the 1-euro filter: how fast its cutoff rises with the hand's speed (0-1000 Hz per m/s)"""
+    no_filter: bool = False
+    """send the reconstructed hand to the robot unfiltered"""
     realtime: bool = False
     """pace the loop with the wall clock"""
     view: bool = False
@@ -66,24 +78,61 @@ def _check_trial(cmd: TrialCommand | TeleopCommand) -> None:
     check_operator(cmd.operator, live=isinstance(cmd, TeleopCommand))
 
 
+def _operator_options(cmd: TrialCommand) -> tuple[OperatorTraits, HandFilterConfig]:
+    """The synthetic operator's traits and the hand filter from the options; one out of range
+    is refused naming the option and its range."""
+    from arteleop.operator import OperatorTraits
+    from arteleop.teleop import HandFilterConfig
+
+    options = {
+        "confidence": "--confidence",
+        "placement_criterion_m": "--placement-criterion-m",
+        "min_cutoff_hz": "--filter-min-cutoff-hz",
+        "beta_per_m": "--filter-beta",
+    }
+    try:
+        traits = OperatorTraits(
+            confidence=cmd.confidence, placement_criterion_m=cmd.placement_criterion_m
+        )
+        hand_filter = HandFilterConfig(
+            enabled=not cmd.no_filter, min_cutoff_hz=cmd.filter_min_cutoff_hz,
+            beta_per_m=cmd.filter_beta,
+        )  # fmt: skip
+    except ConfigurationError as err:
+        name_value, expected = str(err).split(": expected ", 1)
+        name, value = name_value.split(" = ", 1)
+        option = options[name.rsplit(".", 1)[-1]]
+        raise ConfigurationError(f"{option} {value}: expected {expected}") from None
+    return traits, hand_filter
+
+
 def trial(cmd: TrialCommand) -> int:
 
     from arteleop.ar_features import OperatorView, ViewConfig
     from arteleop.operator import RecordingSource, load_recording
     from arteleop.scene import RemoteSite, SiteConfig
-    from arteleop.teleop import NetworkConfig, TrialConfig, run_trial, trial_operator, view_assets
+    from arteleop.teleop import (
+        ControllerConfig,
+        NetworkConfig,
+        TrialConfig,
+        run_trial,
+        trial_operator,
+        view_assets,
+    )
 
     _check_trial(cmd)
+    traits, hand_filter = _operator_options(cmd)
     config = TrialConfig(
         modality=cmd.modality, seed=cmd.seed, timeout_s=cmd.timeout_s,
         realtime=cmd.realtime or cmd.view, render_camera=cmd.view,
         network=NetworkConfig(delay_s=cmd.delay_ms / 1000),
+        controller=ControllerConfig(hand_filter=hand_filter),
         site=SiteConfig(camera=cmd.camera_config()),
     )  # fmt: skip
     with contextlib.ExitStack() as stack:
         site = stack.enter_context(RemoteSite(config.site))
         if cmd.operator == "synthetic":
-            source = trial_operator(site, config)
+            source = trial_operator(site, config, traits=traits)
         else:
             source = RecordingSource(load_recording(Path(cmd.operator)))
         display = None

@@ -114,6 +114,25 @@ class TraitDistribution:
     avr_depth_factor: float = 0.8
     games_speed_factor: float = 0.88
 
+    def __post_init__(self) -> None:
+        checks = {
+            "miss_rate": (0.005, 0.2, "a probability: 1 - the confidence"),
+            "placement_criterion_m": (0.002, 0.05, "m"),
+            "urgency_s": (1.0, 60.0, "s"),
+            "glance_s": (0.05, 0.3, "s"),
+            "avr_depth_factor": (0.1, 3.0, "a factor"),
+            "games_speed_factor": (0.25, 4.0, "a factor"),
+        }
+        for sd in ("miss_rate_sd", "grasp_criterion_sd", "placement_criterion_sd", "urgency_sd",
+                   "glance_sd"):  # fmt: skip
+            checks[sd] = (0.0, 1.0, "the SD of a log")
+        for name, (low, high, what) in checks.items():
+            value = getattr(self, name)
+            if not (math.isfinite(value) and low <= value <= high):
+                raise ConfigurationError(
+                    f"TraitDistribution.{name} = {value!r}: expected {low}-{high} ({what})."
+                )
+
     def draw(
         self, seed: int, person: str, expertise: Expertise, movement_time_factor: float = 1.0
     ) -> OperatorTraits:

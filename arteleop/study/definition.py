@@ -2,8 +2,11 @@
 
 Each TOML table maps one-to-one onto a frozen dataclass here: the top level onto
 :class:`StudyConfig`, ``[familiarization]`` onto :class:`FamiliarizationConfig`, ``[cohort]``
-onto :class:`CohortConfig` and each ``[[participants]]`` onto :class:`ParticipantSpec`. The
-defaults mirror the original study (docs/study.md §4).
+onto :class:`CohortConfig`, each ``[[participants]]`` onto :class:`ParticipantSpec`,
+``[operator]`` onto the simulated participants' :class:`~arteleop.operator.TraitDistribution` and
+``[hand_filter]`` onto the robot side's :class:`~arteleop.teleop.HandFilterConfig`. The defaults
+mirror the original study (docs/study.md §4) and the operator model's frozen constants
+(docs/operator-model.md).
 """
 
 from __future__ import annotations
@@ -14,7 +17,9 @@ from typing import Any
 
 from arteleop.ar_features import MODALITIES
 from arteleop.errors import ConfigurationError, StudyDefinitionError
+from arteleop.operator.traits import TraitDistribution
 from arteleop.scene.camera_config import HeadCameraConfig
+from arteleop.teleop.hand_filter import HandFilterConfig
 
 MODALITY_NAMES: tuple[str, ...] = tuple(MODALITIES)
 """The modalities, in the order of the one modality table (``arteleop.ar_features``)."""
@@ -182,6 +187,10 @@ class StudyConfig:
         familiarization: Practice trials.
         cohort: The simulated cohort, used when ``participants`` is empty.
         participants: Named participants; empty draws the cohort.
+        operator: Where the simulated participants' lasting traits come from (their accuracy
+            criterion, confidence, urgency, glance, expertise's effects); each participant's are
+            drawn from it, the study's seed and their id.
+        hand_filter: The 1€ filter on the operator's reconstructed hand, in every trial.
     """
 
     name: str = "arteleop default study"
@@ -200,6 +209,8 @@ class StudyConfig:
     familiarization: FamiliarizationConfig = field(default_factory=FamiliarizationConfig)
     cohort: CohortConfig = field(default_factory=CohortConfig)
     participants: tuple[ParticipantSpec, ...] = ()
+    operator: TraitDistribution = field(default_factory=TraitDistribution)
+    hand_filter: HandFilterConfig = field(default_factory=HandFilterConfig)
 
     def __post_init__(self) -> None:
         if self.seed < 0:

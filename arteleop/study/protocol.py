@@ -15,12 +15,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from arteleop.errors import SimulationError
-from arteleop.operator import Expertise, OperatorTraits, TraitDistribution
+from arteleop.operator import Expertise, OperatorTraits
 from arteleop.scene import RemoteSite
 from arteleop.study.definition import ParticipantSpec, StudyConfig
 from arteleop.study.plan import TrialSpec
 from arteleop.study.sites import StudySite
-from arteleop.teleop import NetworkConfig, TrialConfig, run_trial, trial_operator
+from arteleop.teleop import ControllerConfig, NetworkConfig, TrialConfig, run_trial, trial_operator
 
 
 @dataclass(frozen=True)
@@ -52,7 +52,7 @@ def operator_traits(study: StudyConfig, person: ParticipantSpec) -> OperatorTrai
     """The participant's lasting traits, drawn from the study's seed and the participant's id
     (the same in each of their trials), with their expertise and movement-time factor."""
     expertise = Expertise(avr_hours=person.avr_hours, games_hours=person.games_hours)
-    return TraitDistribution().draw(study.seed, person.id, expertise, person.movement_time_factor)
+    return study.operator.draw(study.seed, person.id, expertise, person.movement_time_factor)
 
 
 def trial_config(study: StudyConfig, site: StudySite, spec: TrialSpec) -> TrialConfig:
@@ -62,6 +62,7 @@ def trial_config(study: StudyConfig, site: StudySite, spec: TrialSpec) -> TrialC
         seed=spec.seed,
         timeout_s=spec.timeout_s,
         network=NetworkConfig(delay_s=study.delay_ms / 1000),
+        controller=ControllerConfig(hand_filter=study.hand_filter),
         site=site.site_config(spec, study.camera_registration()),
         record_trace=True,
     )

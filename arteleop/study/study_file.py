@@ -12,15 +12,22 @@ import tomllib
 from pathlib import Path
 from typing import Any, get_type_hints
 
-from arteleop.errors import FrameGraphError, StudyDefinitionError
+from arteleop.errors import ConfigurationError, FrameGraphError, StudyDefinitionError
+from arteleop.operator.traits import TraitDistribution
 from arteleop.study.definition import (
     CohortConfig,
     FamiliarizationConfig,
     ParticipantSpec,
     StudyConfig,
 )
+from arteleop.teleop.hand_filter import HandFilterConfig
 
-_TABLES: dict[str, type] = {"familiarization": FamiliarizationConfig, "cohort": CohortConfig}
+_TABLES: dict[str, type] = {
+    "familiarization": FamiliarizationConfig,
+    "cohort": CohortConfig,
+    "operator": TraitDistribution,
+    "hand_filter": HandFilterConfig,
+}
 CAMERA_GRAPH_KEY = "camera_graph"
 """Not a field: a graph file whose camera edge becomes ``camera_pose``."""
 
@@ -125,9 +132,11 @@ def _build(cls: type, values: Any, table: str, where: _Locator, index: int | Non
         kwargs[key] = _convert(value, hints[key], where.at(table, key, index), table, key)
     try:
         return cls(**kwargs)
-    except StudyDefinitionError as err:
-        key = _key_in(str(err), names)
-        raise StudyDefinitionError(f"{where.at(table, key or '', index)}: {err}") from None
+    except ConfigurationError as err:
+        # The model's own classes name themselves; the file names the table.
+        message = str(err).replace(f"{cls.__name__}.", f"{table}.")
+        key = _key_in(message, names)
+        raise StudyDefinitionError(f"{where.at(table, key or '', index)}: {message}") from None
 
 
 def _convert(value: Any, hint: Any, at: str, table: str, key: str) -> Any:
@@ -257,6 +266,19 @@ _COMMENTS = {
     "cohort.both_experts": "of those, expert in both",
     "cohort.movement_time_sd": "between-participant SD of log movement time",
     "cohort.id_prefix": "participant ids: prefix and a two-digit number",
+    "operator.miss_rate": "simulated participants' traits (docs/operator-model.md): median "
+    "1 - confidence",
+    "operator.miss_rate_sd": "its SD between participants (of the log; likewise every *_sd)",
+    "operator.grasp_criterion_sd": "grasp criterion: a share (median 1) of the gripper's clearance",
+    "operator.placement_criterion_m": "median placement criterion: close enough to the target (m)",
+    "operator.urgency_s": "median effort after which the criterion has doubled (s)",
+    "operator.glance_s": "median time per glance while looking (s)",
+    "operator.avr_depth_factor": "AR/VR experts' depth judgement from the cloud: a factor on SD",
+    "operator.games_speed_factor": "gamers' movement time: a factor on their own",
+    "hand_filter.enabled": "1-euro filter on the operator's reconstructed hand (Casiez 2012)",
+    "hand_filter.min_cutoff_hz": "cutoff at rest (Hz): lower removes more jitter, adds more lag",
+    "hand_filter.beta_per_m": "how fast the cutoff rises with the hand's speed (Hz per m/s)",
+    "hand_filter.derivative_cutoff_hz": "cutoff of the speed estimate (Hz)",
 }
 
 _HEADER = """\
@@ -283,11 +305,11 @@ _PARTICIPANTS_HELP = """\
 def study_text(config: StudyConfig) -> str:
     """The definition as commented TOML, every key written out."""
     out = [_HEADER]
-    nested = {"familiarization", "cohort", "participants"}
+    nested = {"participants", *_TABLES}
     for f in dataclasses.fields(config):
         if f.name not in nested:
             out.append(_key_line(f.name, getattr(config, f.name), f.name))
-    for table in ("familiarization", "cohort"):
+    for table in _TABLES:
         out.append(f"\n[{table}]\n")
         sub = getattr(config, table)
         for f in dataclasses.fields(sub):

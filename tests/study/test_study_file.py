@@ -30,6 +30,27 @@ def test_the_written_definition_reads_back_as_the_same_study() -> None:
         participants=(ParticipantSpec("S01", avr_hours=3, gender="f"), ParticipantSpec("S02")),
     )  # fmt: skip
     assert parse_study(study_text(named)) == named
+    operator = parse_study("[operator]\nmiss_rate = 0.02\n[hand_filter]\nenabled = false\n")
+    assert operator.operator.miss_rate == 0.02 and not operator.hand_filter.enabled
+    assert parse_study(study_text(operator)) == operator
+
+
+def test_the_operator_and_filter_tables_reach_the_participants_and_trials() -> None:
+    from arteleop.study.plan import plan_study
+    from arteleop.study.protocol import operator_traits, trial_config
+    from arteleop.study.sites import StudySite
+
+    text = "[familiarization]\ntrials = 0\n"
+    default = parse_study(text)
+    strict = parse_study(text + "[operator]\nplacement_criterion_m = 0.004\nmiss_rate = 0.01\n"
+                         "[hand_filter]\nmin_cutoff_hz = 2.5\n")  # fmt: skip
+    person = default.participants or ParticipantSpec("P01")
+    before, after = operator_traits(default, person), operator_traits(strict, person)
+    # The same draws scaled: the medians move, the person's place in the cohort does not.
+    assert after.placement_criterion_m == pytest.approx(before.placement_criterion_m * 0.4)
+    assert 1 - after.confidence == pytest.approx((1 - before.confidence) * 0.2)
+    spec = plan_study(strict)[0]
+    assert trial_config(strict, StudySite(), spec).controller.hand_filter.min_cutoff_hz == 2.5
 
 
 def test_study_init_writes_the_commented_default(tmp_path: Path, capsys) -> None:
@@ -50,7 +71,7 @@ def test_study_init_writes_the_commented_default(tmp_path: Path, capsys) -> None
          "s.toml line 2: unknown key 'ordr'. Valid keys: name, seed, modalities, order, "
          "orders, trials_per_modality, timeout_s, delay_ms, camera_offset_mm, "
          "camera_offset_deg, camera_pose, start_xy_m, target_xy_m, familiarization, cohort, "
-         "participants."),
+         "participants, operator, hand_filter."),
         ("camera_offset_mm = [600, 0, 0]\n",
          "s.toml line 1: camera_offset_mm = [600.0, 0.0, 0.0]: expected three numbers (mm, "
          "camera frame) whose length is at most 500 mm."),
@@ -88,6 +109,18 @@ def test_study_init_writes_the_commented_default(tmp_path: Path, capsys) -> None
          "s.toml line 1: orders = [['none', 'full']]: give sequences in orders exactly when "
          "order = \"listed\" (order is 'williams')."),
         ("orders = [1, 2]\n", "s.toml line 1: orders must be a list of lists of text, got [1, 2]."),
+        ("[operator]\nmiss_rate = 0.01\nplacement_criterion_m = 0.2\n",
+         "s.toml line 3: operator.placement_criterion_m = 0.2: expected 0.002-0.05 (m)."),
+        ("[operator]\nmiss_rate = 0.5\n",
+         "s.toml line 2: operator.miss_rate = 0.5: expected 0.005-0.2 (a probability: 1 - the "
+         "confidence)."),
+        ("[operator]\nurgency_sd = -1\n",
+         "s.toml line 2: operator.urgency_sd = -1.0: expected 0.0-1.0 (the SD of a log)."),
+        ("\n[hand_filter]\nbeta_per_m = -5\n",
+         "s.toml line 3: hand_filter.beta_per_m = -5.0: expected 0-1000 (Hz per m/s; 0 is a "
+         "plain low-pass filter)."),
+        ("[hand_filter]\nmin_cutoff_hz = 0\n",
+         "s.toml line 2: hand_filter.min_cutoff_hz = 0.0: expected a cutoff of 0.01-100 Hz."),
     ],
 )  # fmt: skip
 def test_bad_definitions_are_refused_naming_line_and_key(text: str, message: str) -> None:
