@@ -47,6 +47,28 @@ class Page:
     def __init__(self, page: object) -> None:
         self._page = page
 
+    def scene_size_px(self) -> tuple[float, float]:
+        """The 3D scene's width and height on the page (CSS pixels): the page beside the
+        docked panel."""
+        size = self._page.evaluate(  # type: ignore[attr-defined]
+            "() => { const r = document.querySelector('canvas').getBoundingClientRect();"
+            " return [r.width, r.height]; }"
+        )
+        return float(size[0]), float(size[1])
+
+    def shows(self, text: str) -> bool:
+        """Whether an element labelled ``text`` is visible inside the page's viewport."""
+        found = self._page.get_by_text(text, exact=True).first  # type: ignore[attr-defined]
+        if not found.is_visible():
+            return False
+        box = found.bounding_box()
+        return (
+            box is not None
+            and box["x"] >= 0 and box["y"] >= 0
+            and box["x"] + box["width"] <= VIEWPORT["width"]
+            and box["y"] + box["height"] <= VIEWPORT["height"]
+        )  # fmt: skip
+
     def screenshot(self, path: Path, timeout_s: float = 30.0) -> NDArray[np.uint8]:
         """The tab's pixels (H, W, 3) RGB, once two shots half a second apart are equal."""
         previous = None

@@ -40,6 +40,9 @@ class DisplayFrame:
         cloud_points_m: (N, 3) float32 point cloud of the camera frame, or None when this
             instant was not rendered (batch runs render only to track the bowl).
         cloud_colors: (N, 3) uint8 colours of the cloud's points, or None.
+        cloud_spacing_rad: The angle between neighbouring points of the cloud as the camera saw
+            them (rad): a pixel's angle times the decimation; a point's footprint is this times
+            its distance.
         target_radius_m: Radius of the target circle drawn on the table (m).
         T_cloud_true: (4, 4) where the point cloud shows a point of the real scene: the
             camera's registration error, in the base frame (None: a perfect registration).
@@ -65,6 +68,7 @@ class DisplayFrame:
     cloud_colors: NDArray[np.uint8] | None = None
     T_cloud_true: NDArray[np.float64] | None = None
     target_radius_m: float = 0.06
+    cloud_spacing_rad: float | None = None
 
     def __post_init__(self) -> None:
         shapes = {
@@ -84,8 +88,14 @@ class DisplayFrame:
                     f"DisplayFrame.{name} must have shape {shape}, got {value.shape}"
                 )
             object.__setattr__(self, name, value)
-        if (self.cloud_points_m is None) != (self.cloud_colors is None):
-            raise DisplayFrameError("DisplayFrame needs both cloud_points_m and cloud_colors")
+        if (
+            not (self.cloud_points_m is None)
+            == (self.cloud_colors is None)
+            == (self.cloud_spacing_rad is None)
+        ):
+            raise DisplayFrameError(
+                "DisplayFrame needs cloud_points_m, cloud_colors and cloud_spacing_rad together"
+            )
         if self.cloud_points_m is not None:
             # Views, not copies: a 640x480 cloud is rebuilt every frame and never changed.
             points = np.asarray(self.cloud_points_m, dtype=np.float32).view()

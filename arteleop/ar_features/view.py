@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import contextlib
 import io
+import math
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -42,22 +43,36 @@ class ViewConfig:
             other machines (the operator's headset or laptop) connect.
         port: TCP port; if it is taken viser tries the next ones, and 0 picks any free port.
             :attr:`OperatorView.url` tells which one was bound.
-        point_size_m: Diameter of a drawn point (m). A 320x240 cloud of the table at about 1.2 m
-            has a point every 4 mm.
+        point_overlap: A drawn point's width as a share of its pixel's footprint at its distance
+            (above 1: neighbours overlap a little, so no gaps show between them).
         vertical_fov_deg: The browser camera's vertical field of view: the head camera's (the
             Kinect's 57 deg horizontal over 640x480 pixels gives 44.3 deg).
+        horizontal_fov_deg: The head camera's horizontal field of view: a browser whose scene
+            is narrower than the camera's 4:3 widens its vertical field until the whole
+            camera image fits beside the docked panel.
     """
 
     host: str = "127.0.0.1"
     port: int = 8080
-    point_size_m: float = 0.004
+    point_overlap: float = 1.25
     vertical_fov_deg: float = 44.3
+    horizontal_fov_deg: float = 57.0
+
+    def fitting_fov_rad(self, aspect: float) -> float:
+        """The vertical field of view (rad) that shows the whole camera image in a scene of
+        ``aspect`` (width over height)."""
+        half_v = np.tan(np.radians(self.vertical_fov_deg) / 2)
+        half_h = np.tan(np.radians(self.horizontal_fov_deg) / 2)
+        return float(2 * np.arctan(max(half_v, half_h / aspect)))
 
     def __post_init__(self) -> None:
         if not 0 <= self.port <= 65535:
             raise ConfigurationError(f"ViewConfig.port={self.port} is not a TCP port (0..65535)")
-        if self.point_size_m <= 0:
-            raise ConfigurationError(f"ViewConfig.point_size_m={self.point_size_m} must be > 0")
+        if not (math.isfinite(self.point_overlap) and 0.5 <= self.point_overlap <= 4):
+            raise ConfigurationError(
+                f"ViewConfig.point_overlap={self.point_overlap}: expected 0.5-4 (a share of a "
+                "point's footprint)."
+            )
 
 
 class OperatorView(Closeable):
@@ -81,7 +96,10 @@ class OperatorView(Closeable):
             )
         server.scene.set_up_direction("+z")  # Baxter's base frame
         server.gui.configure_theme(show_logo=False, show_share_button=False)
-        self.layers: list[Layer] = [CloudLayer(server.scene, config.point_size_m)]
+        # Docked beside the scene, the panel hides none of the camera image (floating, it
+        # covered the right arm at rest and the bowl's start).
+        server.gui.main_panel.dock_right()
+        self.layers: list[Layer] = [CloudLayer(server.scene, config.point_overlap)]
         if assets is not None:
             self.layers += [
                 GhostLayer(server, assets),
@@ -93,6 +111,7 @@ class OperatorView(Closeable):
         self._panel = ModalityPanel(server.gui, [layer.cue for layer in self.layers if layer.cue])
         self._T_base_camera: NDArray[np.float64] | None = None
         server.gui.add_button("Egocentric view").on_click(lambda _: self._egocentric(True))
+        server.on_client_connect(self._follow_shape)
         self.updates = 0
         """Frames shown so far."""
 
@@ -150,6 +169,19 @@ class OperatorView(Closeable):
             camera.look_at = eye + forward
             camera.up = up
             camera.fov = np.radians(self.config.vertical_fov_deg)
+        for camera in cameras[1:]:
+            self._fit(camera)
+
+    def _follow_shape(self, client: viser.ClientHandle) -> None:
+        """Keep a browser's field fitted to its scene's shape, which the page sets after it
+        connects (the panel docks) and whenever the window is resized."""
+        self._fit(client.camera)
+        client.camera.on_update(self._fit)
+
+    def _fit(self, camera: viser.CameraHandle) -> None:
+        """Widen a browser's field until the whole camera image fits its scene, which the
+        docked panel makes narrower than the camera's 4:3."""
+        camera.fov = self.config.fitting_fov_rad(camera.aspect)
 
     def close(self) -> None:
         """Stop the server."""

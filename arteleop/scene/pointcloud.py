@@ -20,12 +20,16 @@ if TYPE_CHECKING:
 class PointCloud:
     """Points (N, 3) in metres in the base frame, with (N, 3) uint8 colours and their pixels.
 
-    ``pixels`` (N, 2) holds each point's (row, column) in the frame it came from.
+    ``pixels`` (N, 2) holds each point's (row, column) in the frame it came from;
+    ``spacing_rad`` the angle between neighbouring points as the camera saw them (a pixel's
+    angle at the image centre times the stride, rad): a point's footprint is this times its
+    distance from the camera.
     """
 
     points_m: NDArray[np.float64]
     colors: NDArray[np.uint8]
     pixels: NDArray[np.int64]
+    spacing_rad: float
 
     def to_open3d(self) -> o3d.geometry.PointCloud:
         import open3d as o3d  # 1.7 s to import (dash, IPython): only when asked for
@@ -61,4 +65,5 @@ def frame_to_point_cloud(
     T = frame.T_base_camera if T_base_camera is None else T_base_camera
     points = transform_points(T, grid[valid])
     colors = frame.rgb[::stride, ::stride][valid]
-    return PointCloud(points, colors, np.column_stack([rows * stride, cols * stride]))
+    pixels = np.column_stack([rows * stride, cols * stride])
+    return PointCloud(points, colors, pixels, stride / frame.intrinsics.fx_px)

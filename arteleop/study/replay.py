@@ -133,7 +133,14 @@ def replay(
         cloud = frame_to_point_cloud(site.capture(), stride=CLOUD_STRIDE)
         if speed > 0:
             time.sleep(max(0.0, start + frame_time / speed - time.perf_counter()))
-        display.show(replace(frame, cloud_points_m=cloud.points_m, cloud_colors=cloud.colors))
+        display.show(
+            replace(
+                frame,
+                cloud_points_m=cloud.points_m,
+                cloud_colors=cloud.colors,
+                cloud_spacing_rad=cloud.spacing_rad,
+            )
+        )
         frames += 1
         if on_frame is not None:
             on_frame(float(frame_time))

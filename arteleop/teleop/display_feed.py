@@ -215,6 +215,11 @@ class DisplayFeed:
         if self._display is not None:
             with self._timer.stage("display"):
                 self._display.show(
-                    replace(frame, cloud_points_m=cloud.points_m, cloud_colors=cloud.colors)
+                    replace(
+                        frame,
+                        cloud_points_m=cloud.points_m,
+                        cloud_colors=cloud.colors,
+                        cloud_spacing_rad=cloud.spacing_rad,
+                    )
                 )
         self._latency.frame_shown(applied_sample_time_s)

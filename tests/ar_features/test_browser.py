@@ -21,20 +21,20 @@ from arteleop.ar_features import (
     ViewAssets,
     ViewConfig,
 )
-from arteleop.ar_features.browser import VIEWPORT, BrowserError, browser_page, chromium_path
+from arteleop.ar_features.browser import BrowserError, browser_page, chromium_path
 from arteleop.ar_features.layers.beam import BEAM_WIDTH_PX
+from arteleop.ar_features.live_input import LiveInput
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig, Workspace
 from arteleop.teleop import TrialConfig, display_frame_at, trial_operator, view_assets
 
 MOMENT_S = 5.0
 """Seed 0 has reached over the bowl at the start then, 13 cm above the grasp point: bowl,
 gripper, beam and target all in view."""
-PANEL_X_PX = 940
-"""The project's panel covers the page right of this column."""
 
 
 @pytest.fixture(scope="module")
-def moment(site_config: SiteConfig) -> tuple[DisplayFrame, ViewAssets]:
+def moment(site_config: SiteConfig) -> tuple[DisplayFrame, ViewAssets, NDArray[np.float64]]:
+    """The display frame at the moment, the view's assets and the gripper at rest (m)."""
     try:
         chromium_path()
     except BrowserError as err:  # CI installs it: there, a missing browser fails
@@ -44,16 +44,18 @@ def moment(site_config: SiteConfig) -> tuple[DisplayFrame, ViewAssets]:
     small = replace(site_config, camera=HeadCameraConfig(width_px=320, height_px=240))
     config = TrialConfig(seed=0, site=small)
     with RemoteSite(config.site) as site:
+        rest_m = site.observe().gripper_m
         frame = display_frame_at(trial_operator(site, config), config, MOMENT_S, site)
         assets = view_assets(site)
     assert frame.time_s == pytest.approx(MOMENT_S) and frame.has_cloud
-    return frame, assets
+    return frame, assets, rest_m
 
 
-def _classes(shot: NDArray[np.uint8]) -> dict[str, int]:
-    """Pixel counts of each cue's colour, left of the panel. The beam is pure red, unlike the
-    shaded red of the robot in the cloud; the yellow bowl and grey table are neither."""
-    r, g, b = (shot[:, :PANEL_X_PX, k].astype(int) for k in range(3))
+def _classes(shot: NDArray[np.uint8], scene_px: tuple[float, float]) -> dict[str, int]:
+    """Pixel counts of each cue's colour in the scene, left of the docked panel. The beam is
+    pure red, unlike the shaded red of the robot in the cloud; the yellow bowl and grey table
+    are neither."""
+    r, g, b = (shot[:, : int(scene_px[0]), k].astype(int) for k in range(3))
     return {
         "red": int(((r > 200) & (g < 70) & (b < 70)).sum()),
         "green": int((g - np.maximum(r, b) > 35).sum()),
@@ -61,19 +63,25 @@ def _classes(shot: NDArray[np.uint8]) -> dict[str, int]:
     }
 
 
-def _pixel(frame: DisplayFrame, point_m: NDArray[np.float64], fov_deg: float) -> NDArray:
-    """Where a base-frame point lands in the screenshot of the egocentric view."""
-    T = frame.T_base_camera
-    pc = T[:3, :3].T @ (point_m - T[:3, 3])
-    f = VIEWPORT["height"] / 2 / np.tan(np.radians(fov_deg) / 2)
-    centre = np.array([VIEWPORT["width"], VIEWPORT["height"]]) / 2
-    return np.round(centre + f * pc[:2] / pc[2]).astype(int)
+class _Egocentric:
+    """Where base-frame points land in a screenshot of the egocentric view: the scene beside
+    the docked panel, its field fitted to show the whole camera image."""
+
+    def __init__(self, frame: DisplayFrame, config: ViewConfig, scene_px: tuple[float, float]):
+        self.T = frame.T_base_camera
+        self.size = np.array(scene_px)
+        fov = config.fitting_fov_rad(scene_px[0] / scene_px[1])
+        self.f = scene_px[1] / 2 / np.tan(fov / 2)
+
+    def __call__(self, point_m: NDArray[np.float64]) -> NDArray:
+        pc = self.T[:3, :3].T @ (point_m - self.T[:3, 3])
+        return np.round(self.size / 2 + self.f * pc[:2] / pc[2]).astype(int)
 
 
 def test_layers_appear_under_full_and_not_under_none(
     moment: tuple[DisplayFrame, ViewAssets], tmp_path: Path
 ) -> None:
-    frame, assets = moment
+    frame, assets, _ = moment
     config = ViewConfig(port=0)
     no_ghost = replace(MODALITIES["full"], ghost=False)
     shots = {}
@@ -84,11 +92,12 @@ def test_layers_appear_under_full_and_not_under_none(
                                ("no_ghost", no_ghost)):  # fmt: skip
                 view.show(replace(frame, cues=cues))
                 shots[name] = page.screenshot(tmp_path / f"{name}.png")
-    none, full = _classes(shots["none"]), _classes(shots["full"])
+            scene_px = page.scene_size_px()
+    pixel = _Egocentric(frame, config, scene_px)
+    none, full = _classes(shots["none"], scene_px), _classes(shots["full"], scene_px)
     assert none == {"red": 0, "green": 0, "blue": 0}, none
     # The beam: red pixels along the projected segment from the gripper to the grasp point.
-    fov = config.vertical_fov_deg
-    ends = _pixel(frame, frame.gripper_m, fov), _pixel(frame, frame.grasp_point_m(), fov)
+    ends = pixel(frame.gripper_m), pixel(frame.grasp_point_m())
     length_px = float(np.hypot(*(ends[1] - ends[0])))
     assert length_px > 10, "premise: the beam is long enough to see at this moment"
     assert full["red"] >= 0.5 * length_px * BEAM_WIDTH_PX, (full, length_px)
@@ -103,10 +112,16 @@ def test_layers_appear_under_full_and_not_under_none(
     # camera than the sensor's 0.8 m and reads as no return.
     changed = np.abs(shots["full"].astype(int) - shots["no_ghost"]).max(axis=2) > 12
     wrist = frame.gripper_m - 0.25 * frame.T_base_gripper[:3, 2]  # tool z points out, down
-    u, v = _pixel(frame, wrist, config.vertical_fov_deg)
-    u_t, v_t = _pixel(frame, frame.target_m, config.vertical_fov_deg)
+    u, v = pixel(wrist)
+    u_t, v_t = pixel(frame.target_m)
     assert changed[v - 30 : v + 30, u - 30 : u + 30].mean() > 0.6
     assert changed[v_t - 30 : v_t + 30, u_t - 30 : u_t + 30].mean() < 0.02
+    # The cloud covers the table: no light gaps between its points, where the table is far
+    # (25 cm beyond the target: 21 % of that window was gaps with 4 mm points at 320x240).
+    u_f, v_f = pixel(frame.target_m + [0.25, 0.0, 0.0])
+    far_table = shots["none"][v_f - 30 : v_f + 30, u_f - 30 : u_f + 30].mean(axis=2)
+    assert np.median(far_table) < 190, "premise: the window is on the grey table"
+    assert (far_table > 195).mean() < 0.01
 
 
 def test_the_page_opens_on_the_head_cameras_view(
@@ -114,21 +129,52 @@ def test_the_page_opens_on_the_head_cameras_view(
 ) -> None:
     """Egocentric: the target marker's circle (the target mesh) lands where the head camera
     sees the target, and the cloud fills most of the page, not a patch of it."""
-    frame, assets = moment
+    frame, assets, _ = moment
     config = ViewConfig(port=0)
     with OperatorView(config, assets) as view:
         view.show(replace(frame, cues=ArCues(target_mesh=True)))
         with browser_page(view.url) as page:
             shot = page.screenshot(tmp_path / "task.png")
+            scene_px = page.scene_size_px()
     # Left of the panel, whose "connected" icon is green too.
-    page_left = shot[:, :PANEL_X_PX]
+    page_left = shot[:, : int(scene_px[0])]
     green = (page_left[..., 1].astype(int) - np.maximum(page_left[..., 0], page_left[..., 2])) > 35
     v, u = np.nonzero(green)
     # The mesh's middle: half the bowl's height above the target (its bottom centre).
     middle = frame.target_m + [0.0, 0.0, Workspace().bowl.height_m / 2]
-    expected = _pixel(frame, middle, config.vertical_fov_deg)
+    expected = _Egocentric(frame, config, scene_px)(middle)
     assert np.hypot(u.mean() - expected[0], v.mean() - expected[1]) < 25
     # viser's default viewpoint showed the cloud as a 130x110 px patch; the table and what is
     # on it now cover more than half of the page (beyond the table nothing returns: white).
-    background = (shot[:, :PANEL_X_PX] > 250).all(axis=2)
+    background = (page_left > 250).all(axis=2)
     assert background.mean() < 0.5
+
+
+def test_live_input_shows_beside_the_docked_panel(
+    moment: tuple[DisplayFrame, ViewAssets, NDArray[np.float64]], tmp_path: Path
+) -> None:
+    """``arteleop teleop --operator live``: the gizmo at the gripper's rest position (at the
+    right edge of the head camera's image) and the Grip slider are both in view; the
+    floating panel used to cover the gizmo."""
+    frame, assets, rest_m = moment
+    config = ViewConfig(port=0)
+    with OperatorView(config, assets) as view:
+        LiveInput(view.server, rest_m, lambda gripper_m, grip: None)
+        view.show(replace(frame, cues=MODALITIES["none"]))
+        with browser_page(view.url) as page:
+            shot = page.screenshot(tmp_path / "live.png")
+            scene_px = page.scene_size_px()
+            assert page.shows("Grip")
+    u, v = _Egocentric(frame, config, scene_px)(rest_m)
+    width = int(scene_px[0])
+    assert 0 < v < scene_px[1] and width - 120 < u < width + 60, "premise: at the image's edge"
+    # The gizmo's handles within the scene beside the panel: its red (a pink the cloud's
+    # shaded red never reaches), green and blue, none of which the frame under no AR draws.
+    near = shot[max(v - 120, 0) : v + 120, u - 120 : width].astype(int)
+    r, g, b = (near[..., k] for k in range(3))
+    handles = {
+        "red": int((r - np.maximum(g, b) > 120).sum()),
+        "green": int((g - np.maximum(r, b) > 35).sum()),
+        "blue": int((b - np.maximum(r, g) > 35).sum()),
+    }
+    assert min(handles.values()) >= 50, handles

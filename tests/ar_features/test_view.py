@@ -8,10 +8,11 @@ import numpy as np
 import pytest
 
 from arteleop.ar_features import DisplayFrame, OperatorView, ViewConfig, ViewProbe
+from arteleop.ar_features.layers import CloudLayer
 from arteleop.errors import ConfigurationError, DisplayFrameError
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
 from arteleop.teleop import Outcome, TrialConfig, run_trial, trial_operator
-from tests.ar_features.frames import display_frame
+from tests.ar_features.frames import CAMERA_M, display_frame
 
 
 def test_view_serves_this_machine_only_by_default() -> None:
@@ -21,14 +22,23 @@ def test_view_serves_this_machine_only_by_default() -> None:
         assert not view.url.endswith(":0")
 
 
+def _shell(rng: np.random.Generator, n: int, near_m: float, far_m: float) -> np.ndarray:
+    """``n`` points between ``near_m`` and ``far_m`` from the test frames' camera (m)."""
+    directions = rng.normal(size=(n, 3))
+    directions /= np.linalg.norm(directions, axis=1, keepdims=True)
+    distance = rng.uniform(near_m, far_m, (n, 1))
+    return (CAMERA_M + directions * distance).astype(np.float32)
+
+
 def test_a_connected_browser_receives_the_exact_points() -> None:
     rng = np.random.default_rng(0)
-    points = rng.uniform(-1, 1, (5000, 3)).astype(np.float32)
+    points = _shell(rng, 5000, 1.0, 1.2)  # one band of distance: one buffer
     colors = rng.integers(0, 256, (5000, 3), dtype=np.uint8)
     with OperatorView(ViewConfig(port=0)) as view, ViewProbe(view.url) as browser:
         time.sleep(0.3)  # let the connection settle before the first update
         sent_s = time.perf_counter()
-        view.show(display_frame(cloud_points_m=points, cloud_colors=colors))
+        view.show(display_frame(cloud_points_m=points, cloud_colors=colors,
+                                cloud_spacing_rad=0.004))  # fmt: skip
         # viser sends large arrays as raw buffers beside the compressed message.
         got = browser.wait_for(points.tobytes())
         assert got is not None and got.time_s > sent_s
@@ -41,11 +51,13 @@ def test_bad_frames_are_refused_with_the_shapes() -> None:
     with pytest.raises(
         DisplayFrameError, match=r"points \(N, 3\) and colours \(N, 3\); got \(10, 2\)"
     ):
-        display_frame(cloud_points_m=np.zeros((10, 2)), cloud_colors=np.zeros((10, 2)))
+        display_frame(cloud_points_m=np.zeros((10, 2)), cloud_colors=np.zeros((10, 2)),
+                      cloud_spacing_rad=0.004)  # fmt: skip
     with pytest.raises(DisplayFrameError, match=r"got \(10, 3\) and \(9, 3\)"):
-        display_frame(cloud_points_m=np.zeros((10, 3)), cloud_colors=np.zeros((9, 3)))
-    with pytest.raises(DisplayFrameError, match="needs both cloud_points_m and cloud_colors"):
-        display_frame(cloud_points_m=np.zeros((10, 3)))
+        display_frame(cloud_points_m=np.zeros((10, 3)), cloud_colors=np.zeros((9, 3)),
+                      cloud_spacing_rad=0.004)  # fmt: skip
+    with pytest.raises(DisplayFrameError, match="needs cloud_points_m, cloud_colors and cloud_sp"):
+        display_frame(cloud_points_m=np.zeros((10, 3)), cloud_colors=np.zeros((10, 3)))
     with pytest.raises(DisplayFrameError, match=r"DisplayFrame.arm_q_rad must have shape \(7,\)"):
         display_frame(arm_q_rad=np.zeros(6))
 
@@ -62,8 +74,49 @@ def test_a_frame_is_a_read_only_copy_of_what_it_was_given() -> None:
 def test_bad_view_settings_are_refused() -> None:
     with pytest.raises(ConfigurationError, match="port=70000"):
         ViewConfig(port=70000)
-    with pytest.raises(ConfigurationError, match="point_size_m"):
-        ViewConfig(point_size_m=0.0)
+    with pytest.raises(ConfigurationError, match=r"point_overlap=0.1: expected 0.5-4"):
+        ViewConfig(point_overlap=0.1)
+
+
+class _Scene:
+    """Records the point clouds a layer adds, as viser's scene would draw them."""
+
+    def __init__(self) -> None:
+        self.clouds: dict[str, tuple[int, float]] = {}
+
+    def add_point_cloud(self, name: str, points, colors, point_size: float, **_) -> _Cloud:
+        self.clouds[name] = (len(points), point_size)
+        return _Cloud(self, name)
+
+
+class _Cloud:
+    def __init__(self, scene: _Scene, name: str) -> None:
+        self.scene, self.name, self.visible = scene, name, True
+
+    def remove(self) -> None:
+        del self.scene.clouds[self.name]
+
+
+def test_each_point_is_as_wide_as_its_footprint_at_its_distance() -> None:
+    """Points 1.0-1.05 m and 2.0-2.1 m from the camera: two bands, each drawn as wide as a
+    point's footprint at the band's far edge (the nearest point times 1.25 per band) times the
+    overlap; a band a later frame lacks is removed."""
+    rng = np.random.default_rng(1)
+    points = np.vstack([_shell(rng, 300, 1.0, 1.05), _shell(rng, 200, 2.0, 2.1)])
+    colors = np.zeros_like(points, dtype=np.uint8)
+    scene = _Scene()
+    layer = CloudLayer(scene, overlap=1.5)  # type: ignore[arg-type]
+    layer.draw(display_frame(cloud_points_m=points, cloud_colors=colors, cloud_spacing_rad=0.01))
+    near = float(np.linalg.norm(points - CAMERA_M, axis=1).min())
+    assert near == pytest.approx(1.0, abs=0.01)
+    # 2.0 m is 1.25^3.1 times the nearest: band 3.
+    assert scene.clouds == {
+        "/camera/cloud/0": (300, pytest.approx(1.5 * 0.01 * near * 1.25)),
+        "/camera/cloud/3": (200, pytest.approx(1.5 * 0.01 * near * 1.25**4)),
+    }
+    layer.draw(display_frame(cloud_points_m=points[:300], cloud_colors=colors[:300],
+                             cloud_spacing_rad=0.01))  # fmt: skip
+    assert list(scene.clouds) == ["/camera/cloud/0"]
 
 
 class _CountingDisplay:
