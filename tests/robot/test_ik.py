@@ -1,5 +1,6 @@
 """mink IK on the MuJoCo model, checked against pinocchio's forward kinematics."""
 
+import mink
 import numpy as np
 import pytest
 
@@ -55,6 +56,33 @@ def test_solves_grasp_poses_over_start_and_target(ik: ArmIK, kin: BaxterKinemati
         # The answer is a real configuration: pinocchio puts the gripper on the target too.
         np.testing.assert_allclose(_fk(kin, result.q_rad)[:3, 3], T[:3, 3], atol=1e-3)
         kin.limits(RIGHT_ARM_JOINTS).check(result.q_rad)
+
+
+def test_daqp_on_minks_rows_gives_minks_joints_to_the_bit(
+    ik: ArmIK, description: BaxterDescription, kin: BaxterKinematics
+) -> None:
+    """The IK hands mink's rows to daqp itself; mink's own solve_ik (through qpsolvers) must
+    give the same joints, tick for tick, near the table (collision rows active) and out of
+    reach (velocity limits active)."""
+    table = Workspace().table_box()
+    reference = ArmIK(description.urdf_path, kin.limits(RIGHT_ARM_JOINTS), REST_POSE.right,
+                      table.center_m, table.half_extents_m)  # fmt: skip
+    low = _fk(kin, np.array([0.3, -0.3, 0.0, 1.0, 0.0, 0.8, 0.0]))
+    low[2, 3] = table.center_m[2] + table.half_extents_m[2] - 0.02  # under the table top
+    far = low.copy()
+    far[:3, 3] += [1.5, -0.5, 0.5]
+    for arm in (ik, reference):
+        arm.reset(REST_POSE.right)
+    for target in (low, far):
+        ik.set_target(target)
+        reference.set_target(target)
+        for _ in range(60):
+            q = ik.step(0.01).q_rad
+            v = mink.solve_ik(reference.configuration, reference.tasks, 0.01, "daqp", 1e-6,
+                              limits=reference.limits)  # fmt: skip
+            reference.configuration.integrate_inplace(v, 0.01)
+            np.testing.assert_array_equal(q, reference.configuration.q)
+    assert ik.step(0.01).position_error_m > 0.3, "premise: the far target is out of reach"
 
 
 def test_each_step_respects_the_velocity_limits(ik: ArmIK, kin: BaxterKinematics) -> None:
