@@ -9,6 +9,7 @@ import os
 from dataclasses import replace
 from pathlib import Path
 
+import cv2
 import numpy as np
 import pytest
 from numpy.typing import NDArray
@@ -110,7 +111,13 @@ def test_layers_appear_under_full_and_not_under_none(
     # The ghost changes the image where the arm is, and not on the table far from it. It shows
     # most where the cloud cannot: the wrist, 25 cm up the tool's axis, is nearer to the head
     # camera than the sensor's 0.8 m and reads as no return.
-    changed = np.abs(shots["full"].astype(int) - shots["no_ghost"]).max(axis=2) > 12
+    # Changed: unlike every pixel within 1 px in the other shot (the browser's camera can
+    # settle a pixel apart between two shots, seen once on CI: every edge then differed).
+    kernel = np.ones((3, 3), np.uint8)
+    low = cv2.erode(shots["no_ghost"], kernel).astype(int) - 12
+    high = cv2.dilate(shots["no_ghost"], kernel).astype(int) + 12
+    full_px = shots["full"].astype(int)
+    changed = ((full_px < low) | (full_px > high)).any(axis=2)
     wrist = frame.gripper_m - 0.25 * frame.T_base_gripper[:3, 2]  # tool z points out, down
     u, v = pixel(wrist)
     u_t, v_t = pixel(frame.target_m)
