@@ -181,7 +181,10 @@ class OperatorView(Closeable):
     def _fit(self, camera: viser.CameraHandle) -> None:
         """Widen a browser's field until the whole camera image fits its scene, which the
         docked panel makes narrower than the camera's 4:3."""
-        camera.fov = self.config.fitting_fov_rad(camera.aspect)
+        fov = self.config.fitting_fov_rad(camera.aspect)
+        # Only a change: setting it sends the browser a camera update, which calls this again.
+        if not math.isclose(camera.fov, fov, rel_tol=1e-9):
+            camera.fov = fov
 
     def close(self) -> None:
         """Stop the server."""
