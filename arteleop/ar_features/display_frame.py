@@ -96,6 +96,11 @@ class DisplayFrame:
             raise DisplayFrameError(
                 "DisplayFrame needs cloud_points_m, cloud_colors and cloud_spacing_rad together"
             )
+        spacing = self.cloud_spacing_rad
+        if spacing is not None and not (np.isfinite(spacing) and spacing > 0):
+            raise DisplayFrameError(
+                f"DisplayFrame.cloud_spacing_rad={spacing}: expected a positive angle (rad)"
+            )
         if self.cloud_points_m is not None:
             # Views, not copies: a 640x480 cloud is rebuilt every frame and never changed.
             points = np.asarray(self.cloud_points_m, dtype=np.float32).view()

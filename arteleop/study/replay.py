@@ -20,13 +20,13 @@ import pandas as pd
 from arteleop.ar_features import Display, modality_cues
 from arteleop.errors import ConfigurationError, RunFolderError
 from arteleop.robot import RIGHT_ARM_JOINTS
-from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig, frame_to_point_cloud
+from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
 from arteleop.study.plan import TrialSpec, plan_study
 from arteleop.study.run_folder import STUDY_FILE, RunFolder
 from arteleop.study.sites import StudySite
 from arteleop.study.study_file import parse_study
 from arteleop.teleop import LoopRates, display_frame
-from arteleop.teleop.display_feed import CLOUD_STRIDE
+from arteleop.teleop.display_feed import with_cloud
 
 REPLAY_COLUMNS: tuple[str, ...] = (
     "time_s", "gripper_target_x_m", "gripper_closure", *(f"{j}_rad" for j in RIGHT_ARM_JOINTS),
@@ -130,17 +130,10 @@ def replay(
             state, site.sight_bowl(), site.frames, site.config.workspace, cues, engaged[k],
             site.T_cloud_true,
         )  # fmt: skip
-        cloud = frame_to_point_cloud(site.capture(), stride=CLOUD_STRIDE)
+        shown = with_cloud(frame, site.capture())
         if speed > 0:
             time.sleep(max(0.0, start + frame_time / speed - time.perf_counter()))
-        display.show(
-            replace(
-                frame,
-                cloud_points_m=cloud.points_m,
-                cloud_colors=cloud.colors,
-                cloud_spacing_rad=cloud.spacing_rad,
-            )
-        )
+        display.show(shown)
         frames += 1
         if on_frame is not None:
             on_frame(float(frame_time))

@@ -47,6 +47,19 @@ CLOUD_STRIDE = 2
 """The display's cloud keeps every second row and column of the depth image."""
 
 
+def with_cloud(frame: DisplayFrame, rgbd: RGBDFrame) -> DisplayFrame:
+    """``frame`` with the point cloud of ``rgbd`` for the view: decimated by
+    :data:`CLOUD_STRIDE` and placed with the frame's camera pose (the graph's, as the layers
+    are)."""
+    cloud = frame_to_point_cloud(rgbd, CLOUD_STRIDE, frame.T_base_camera)
+    return replace(
+        frame,
+        cloud_points_m=cloud.points_m,
+        cloud_colors=cloud.colors,
+        cloud_spacing_rad=cloud.spacing_rad,
+    )
+
+
 def display_frame(
     state: SiteState,
     bowl: BowlTrack,
@@ -210,16 +223,8 @@ class DisplayFeed:
     def _show(self, frame: DisplayFrame, rgbd: RGBDFrame, applied_sample_time_s: float) -> None:
         """Point cloud and display update of a frame showing samples up to ``applied``."""
         with self._timer.stage("point_cloud"):
-            # Placed with the frame's camera pose: the graph's, as the layers are.
-            cloud = frame_to_point_cloud(rgbd, CLOUD_STRIDE, frame.T_base_camera)
+            shown = with_cloud(frame, rgbd)
         if self._display is not None:
             with self._timer.stage("display"):
-                self._display.show(
-                    replace(
-                        frame,
-                        cloud_points_m=cloud.points_m,
-                        cloud_colors=cloud.colors,
-                        cloud_spacing_rad=cloud.spacing_rad,
-                    )
-                )
+                self._display.show(shown)
         self._latency.frame_shown(applied_sample_time_s)

@@ -58,6 +58,9 @@ def test_bad_frames_are_refused_with_the_shapes() -> None:
                       cloud_spacing_rad=0.004)  # fmt: skip
     with pytest.raises(DisplayFrameError, match="needs cloud_points_m, cloud_colors and cloud_sp"):
         display_frame(cloud_points_m=np.zeros((10, 3)), cloud_colors=np.zeros((10, 3)))
+    with pytest.raises(DisplayFrameError, match=r"cloud_spacing_rad=0.0: expected a positive"):
+        display_frame(cloud_points_m=np.zeros((10, 3)), cloud_colors=np.zeros((10, 3)),
+                      cloud_spacing_rad=0.0)  # fmt: skip
     with pytest.raises(DisplayFrameError, match=r"DisplayFrame.arm_q_rad must have shape \(7,\)"):
         display_frame(arm_q_rad=np.zeros(6))
 
