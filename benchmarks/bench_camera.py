@@ -1,8 +1,10 @@
 """The head camera's cost per frame on one core: render, depth and noise, point cloud.
 
-Baseline, side by side in this script: the full render, every body drawn every frame (what
-``RenderWorld`` did before it drew in layers). The floor row is TinyRenderer drawing an empty
-world at the same size and camera, what any frame costs before anything is drawn. The frames are states of a full-AR trial, spread
+Side by side in this script, frame by frame: TinyRenderer's full render, every body drawn every
+frame (the baseline); TinyRenderer in two layers (what ``RenderWorld`` does with
+``renderer="tiny"``); and OpenGL (``renderer="gl"``, Mesa's llvmpipe here). The floor row is
+TinyRenderer drawing an empty world at the same size and camera, what any of its frames costs
+before anything is drawn. The frames are states of a full-AR trial, spread
 evenly over it, so the arm is seen at rest, reaching, carrying and returning.
 
     python benchmarks/bench_camera.py [--frames 40]
@@ -17,6 +19,7 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")  # before numpy/open3d load their 
 import argparse
 import statistics
 import time
+from dataclasses import replace
 
 import numpy as np
 import pybullet as p
@@ -42,15 +45,16 @@ def trial_states(site: RemoteSite, frames: int) -> list[SceneState]:
 
 
 def measure(
-    site: RemoteSite, states: list[SceneState], empty: BulletClient
+    site: RemoteSite, gl_site: RemoteSite, states: list[SceneState], empty: BulletClient
 ) -> dict[str, dict[str, float]]:
-    """Median ms per stage, for the baseline, the layers and an empty world (the floor),
-    interleaved frame by frame."""
+    """Median ms per stage, for the baseline, the layers, OpenGL and an empty world (the
+    floor), interleaved frame by frame."""
     world, camera = site.render_world, site.camera
     request = camera.request()
     renders = {
         "baseline": lambda: render(world.client, request),
         "layers": lambda: world.render(request),
+        "gl": lambda: gl_site.render_world.render(request),
         "floor": lambda: render(empty, request),
     }
     times: dict[str, dict[str, list[float]]] = {
@@ -58,6 +62,7 @@ def measure(
     }
     for k, state in enumerate(states):
         world.sync(state)
+        gl_site.render_world.sync(state)
         for name, draw in renders.items():
             t0 = time.perf_counter()
             raw = draw()
@@ -83,28 +88,37 @@ def main() -> None:
         f"Head camera on one core: median ms per frame over {args.frames} frames of a full-AR "
         f"trial; the cloud keeps every {CLOUD_STRIDE}nd row and column, as the display's does.\n"
     )
-    print("| image | stage | baseline: full render (ms) | layers (ms) | baseline / layers |")
-    print("| --- | --- | ---: | ---: | ---: |")
+    print(
+        "| image | stage | baseline: TinyRenderer full (ms) | TinyRenderer layers (ms) "
+        "| OpenGL (ms) | baseline / layers | baseline / OpenGL |"
+    )
+    print("| --- | --- | ---: | ---: | ---: | ---: | ---: |")
     for w, h in ((640, 480), (320, 240)):
-        config = SiteConfig(camera=HeadCameraConfig(width_px=w, height_px=h))
+        camera = HeadCameraConfig(width_px=w, height_px=h, renderer="tiny")
         with native_stdout_silenced():  # PyBullet prints its argv on connecting
             empty = BulletClient(connection_mode=p.DIRECT)
-        with RemoteSite(config) as site:
-            result = measure(site, trial_states(site, args.frames), empty)
+        with (
+            RemoteSite(SiteConfig(camera=camera)) as site,
+            RemoteSite(SiteConfig(camera=replace(camera, renderer="gl"))) as gl_site,
+        ):
+            result = measure(site, gl_site, trial_states(site, args.frames), empty)
         empty.disconnect()
-        base, ours = result["baseline"], result["layers"]
+        base, layers, gl = result["baseline"], result["layers"], result["gl"]
         for stage in ("render", "depth", "cloud", "total"):
             label = "render + depth + cloud" if stage == "total" else stage
             print(
-                f"| {w}x{h} | {label} | {base[stage]:.1f} | {ours[stage]:.1f} "
-                f"| {base[stage] / ours[stage]:.2f} |"
+                f"| {w}x{h} | {label} | {base[stage]:.1f} | {layers[stage]:.1f} "
+                f"| {gl[stage]:.1f} | {base[stage] / layers[stage]:.2f} "
+                f"| {base[stage] / gl[stage]:.2f} |"
             )
         print(
             f"| {w}x{h} | frames per second | {1000 / base['total']:.1f} "
-            f"| {1000 / ours['total']:.1f} | {base['total'] / ours['total']:.2f} |"
+            f"| {1000 / layers['total']:.1f} | {1000 / gl['total']:.1f} "
+            f"| {base['total'] / layers['total']:.2f} | {base['total'] / gl['total']:.2f} |"
         )
         print(
-            f"| {w}x{h} | floor: render of an empty world | | {result['floor']['render']:.1f} | |"
+            f"| {w}x{h} | floor: TinyRenderer, empty world | {result['floor']['render']:.1f} "
+            "| | | | |"
         )
 
 

@@ -3,6 +3,7 @@ so the tests also exercise mesh decimation and URDF rewriting from a clean state
 
 from __future__ import annotations
 
+import os
 from collections.abc import Iterator
 from dataclasses import replace
 from pathlib import Path
@@ -26,6 +27,21 @@ def description(description_config: BaxterDescriptionConfig) -> BaxterDescriptio
 @pytest.fixture(scope="session")
 def site_config(description_config: BaxterDescriptionConfig) -> SiteConfig:
     return SiteConfig(robot=description_config)
+
+
+@pytest.fixture(scope="session")
+def gl_site_config(site_config: SiteConfig) -> SiteConfig:
+    """The site with the OpenGL head camera; skipped where no EGL context opens, but on CI
+    (which installs Mesa's EGL), where that fails."""
+    from arteleop.scene.gl_renderer import RendererUnavailableError, gl_context
+
+    try:
+        gl_context()
+    except RendererUnavailableError as err:
+        if os.environ.get("CI"):
+            pytest.fail(str(err))
+        pytest.skip(str(err))
+    return replace(site_config, camera=replace(site_config.camera, renderer="gl"))
 
 
 @pytest.fixture

@@ -15,6 +15,9 @@ if TYPE_CHECKING:
 Modality = Literal["none", "manipulation", "embodiment", "task", "full"]
 """The AR modalities (docs/study.md §3), as the command line offers them."""
 
+Renderer = Literal["auto", "gl", "tiny"]
+"""The head camera's renderers (``HeadCameraConfig.renderer``)."""
+
 
 def check_seed(seed: int) -> None:
     if seed < 0:
@@ -26,9 +29,12 @@ class CameraSize:
     """The head camera's image size, shared by the commands that render it."""
 
     width_px: int = 640
-    """camera image width (px); 320x240 keeps 30 frames/s in real time on two cores"""
+    """camera image width (px)"""
     height_px: int = 480
     """camera image height (px)"""
+    renderer: Renderer = "auto"
+    """what draws the head camera: 'gl' (OpenGL through EGL, on the CPU or a GPU), 'tiny'
+    (PyBullet's TinyRenderer, several times slower), 'auto' (gl where it opens, else tiny)"""
     camera_offset_mm: tuple[float, float, float] = (0.0, 0.0, 0.0)
     """a mis-registered camera: the pose the system uses for it (for the point cloud, the
     tracked bowl, the operator's eye) is the true one moved by this (mm, camera frame: x right,
@@ -62,5 +68,6 @@ class CameraSize:
                 ) from None
             registration = {"registered_pose": tuple(tuple(row) for row in T.tolist())}
         return HeadCameraConfig(
-            width_px=self.width_px, height_px=self.height_px, **registration, **overrides
-        )
+            width_px=self.width_px, height_px=self.height_px, renderer=self.renderer,
+            **registration, **overrides,
+        )  # fmt: skip

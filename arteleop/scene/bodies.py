@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 import pybullet as p
+from numpy.typing import NDArray
 from pybullet_utils.bullet_client import BulletClient
 
 from arteleop.scene.bowl import CollisionBox, bowl_collision_boxes, bowl_mesh
@@ -86,8 +87,11 @@ def add_start_cross(client: BulletClient, ws: Workspace) -> int:
     return client.createMultiBody(0.0, -1, vis, basePosition=[*ws.start_xy_m, z])
 
 
-def add_target_circle(client: BulletClient, ws: Workspace, segments: int = 64) -> int:
-    """Visual-only ring marker centred on the target point."""
+def target_ring_mesh(
+    ws: Workspace, segments: int = 64
+) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
+    """The target marker's ring in its own frame (centred, on z = 0): (vertices (N, 3) m,
+    triangles (M, 3))."""
     r0 = ws.target_circle_radius_m - ws.marker_line_width_m / 2
     r1 = ws.target_circle_radius_m + ws.marker_line_width_m / 2
     a = np.linspace(0, 2 * np.pi, segments, endpoint=False)
@@ -99,6 +103,12 @@ def add_target_circle(client: BulletClient, ws: Workspace, segments: int = 64) -
     tris = np.vstack(
         [np.column_stack([j, segments + k, k]), np.column_stack([j, segments + j, segments + k])]
     )
+    return ring, tris
+
+
+def add_target_circle(client: BulletClient, ws: Workspace) -> int:
+    """Visual-only ring marker centred on the target point."""
+    ring, tris = target_ring_mesh(ws)
     vis = client.createVisualShape(
         p.GEOM_MESH, vertices=ring.tolist(), indices=tris.ravel().tolist(), rgbaColor=ws.marker_rgba
     )

@@ -102,6 +102,10 @@ class CameraIntrinsics:
         )
 
 
+RENDERERS = ("auto", "gl", "tiny")
+"""The head camera's renderers (:attr:`HeadCameraConfig.renderer`)."""
+
+
 @dataclass(frozen=True)
 class HeadCameraConfig:
     """The head-mounted RGB-D sensor.
@@ -125,6 +129,10 @@ class HeadCameraConfig:
             measures what calibration brings such an error down to.
         registered_pose: Instead of the offsets, the pose itself (``T_base_camera``, 4x4 rows,
             m), e.g. the ``base -> head_camera`` edge of ``arteleop calibrate``'s graph file.
+        renderer: What draws the frames: ``"gl"`` (OpenGL through EGL, on the CPU or a GPU),
+            ``"tiny"`` (PyBullet's TinyRenderer, several times slower) or ``"auto"`` (GL where
+            a context opens, TinyRenderer elsewhere). Both give the same colours and depth to
+            microns away from silhouettes (``arteleop.scene.gl_renderer``).
     """
 
     width_px: int = 640
@@ -143,8 +151,14 @@ class HeadCameraConfig:
     registration_offset_mm: tuple[float, float, float] = (0.0, 0.0, 0.0)
     registration_offset_deg: tuple[float, float, float] = (0.0, 0.0, 0.0)
     registered_pose: tuple[tuple[float, ...], ...] | None = None
+    renderer: str = "auto"
 
     def __post_init__(self) -> None:
+        if self.renderer not in RENDERERS:
+            raise ConfigurationError(
+                f"--renderer {self.renderer}: expected auto, gl or tiny (auto: OpenGL where an "
+                "EGL context opens, PyBullet's TinyRenderer elsewhere)"
+            )
         if self.width_px < 8 or self.height_px < 8:
             raise ConfigurationError(
                 f"camera image {self.width_px}x{self.height_px} px is too small"

@@ -41,6 +41,7 @@ class RenderProcess(Closeable):
         ws: Workspace,
         body_ids: tuple[int, ...],
         moving_joints: tuple[str, ...] = (),
+        renderer: str = "tiny",
     ) -> None:
         ours, theirs = socket.socketpair()
         self._process = subprocess.Popen(
@@ -50,7 +51,7 @@ class RenderProcess(Closeable):
         theirs.close()
         self._conn = Connection(ours.detach())
         self._busy = False
-        self._conn.send((str(robot_urdf), ws, body_ids, moving_joints))
+        self._conn.send((str(robot_urdf), ws, body_ids, moving_joints, renderer))
         if not self._conn.poll(START_TIMEOUT_S):
             self.close()
             raise RenderProcessError(
@@ -106,8 +107,8 @@ class RenderProcess(Closeable):
 def serve(conn: Connection) -> None:
     """The child: build the world, then render each request until told to stop."""
     try:
-        robot_urdf, ws, body_ids, moving_joints = conn.recv()
-        world = RenderWorld(Path(robot_urdf), ws, body_ids, moving_joints)
+        robot_urdf, ws, body_ids, moving_joints, renderer = conn.recv()
+        world = RenderWorld(Path(robot_urdf), ws, body_ids, moving_joints, renderer)
     except Exception as err:  # sent to the parent, which raises it
         conn.send(err)
         return

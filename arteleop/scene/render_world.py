@@ -6,11 +6,13 @@ the colours of others. The camera therefore renders this copy of the scene: Baxt
 from the same URDF, the same table, markers and bowl, with the moving state (the right arm's
 joints and the bowl's pose) copied over from the physics world before each frame.
 
-Given the joints that move, it also draws in two layers: the head camera never moves, so what
-never moves (the table, the markers, the robot but for the links those joints carry) is drawn
-once per camera pose and kept, and each frame draws only what moves (those links and the bowl)
-and takes each pixel from the nearer layer. TinyRenderer shades each surface by itself (no
-shadows here), so the two layers give the image of a full render (a test compares them).
+It draws with OpenGL (:class:`~arteleop.scene.gl_renderer.GLScene`, the world's own shapes
+and poses) or with PyBullet's TinyRenderer. With TinyRenderer and the joints that move given,
+it draws in two layers: the head camera never moves, so what never moves (the table, the
+markers, the robot but for the links those joints carry) is drawn once per camera pose and
+kept, and each frame draws only what moves (those links and the bowl) and takes each pixel from
+the nearer layer. TinyRenderer shades each surface by itself (no shadows here), so the two
+layers give the image of a full render (a test compares them).
 """
 
 from __future__ import annotations
@@ -26,7 +28,14 @@ from pybullet_utils.bullet_client import BulletClient
 from arteleop.errors import SimulationError
 from arteleop.robot.description import hide_links
 from arteleop.robot.native_output import native_stdout_silenced
-from arteleop.scene.bodies import add_bowl, add_start_cross, add_table, add_target_circle
+from arteleop.scene.bodies import (
+    add_bowl,
+    add_start_cross,
+    add_table,
+    add_target_circle,
+    target_ring_mesh,
+)
+from arteleop.scene.bowl import bowl_mesh
 from arteleop.scene.camera import RawImage, RenderRequest, render
 from arteleop.scene.workspace import Workspace
 
@@ -43,7 +52,8 @@ class SceneState:
 
 class RenderWorld:
     """The drawn copy of the site; bodies are added in the physics world's order, so body ids
-    (and segmentation masks) mean the same in both."""
+    (and segmentation masks) mean the same in both. ``renderer`` is ``"gl"`` or ``"tiny"``
+    (:func:`~arteleop.scene.gl_renderer.resolve_renderer` turns ``"auto"`` into one)."""
 
     def __init__(
         self,
@@ -51,6 +61,7 @@ class RenderWorld:
         ws: Workspace,
         body_ids: Sequence[int],
         moving_joints: Sequence[str] = (),
+        renderer: str = "tiny",
     ) -> None:
         with native_stdout_silenced():
             self.client = BulletClient(connection_mode=p.DIRECT)
@@ -74,13 +85,21 @@ class RenderWorld:
             for i in range(self.client.getNumJoints(robot))
         }
 
+        self.renderer = renderer
         self._layers = None
-        if moving_joints:
-            try:
+        self._gl = None
+        try:
+            if renderer == "gl":
+                from arteleop.scene.gl_renderer import GLScene
+
+                target, bowl = ids[3], ids[4]
+                meshes = {target: target_ring_mesh(ws), bowl: bowl_mesh(ws.bowl)}
+                self._gl = GLScene(self.client, self.body_ids, meshes)
+            elif moving_joints:
                 self._layers = _Layers(self.client, robot, robot_urdf, ws, moving_joints)
-            except BaseException:
-                self.client.disconnect()
-                raise
+        except BaseException:
+            self.client.disconnect()
+            raise
 
     def sync(self, state: SceneState) -> None:
         """Copy the moving state over from the physics world."""
@@ -89,15 +108,21 @@ class RenderWorld:
             self._layers.sync(state, self._joint_index)
 
     def render(self, request: RenderRequest) -> RawImage:
-        """Render ``request`` of the synced state: in two layers when the world has them and
-        holds only its own bodies (a body another module added, e.g. a calibration marker, is
-        drawn by a full render), and fully when segmentation is asked for."""
-        layered = self._layers is not None and not request.with_segmentation
-        if not layered or self.client.getNumBodies() != len(self.body_ids):
+        """Render ``request`` of the synced state. A world holding a body another module added
+        (e.g. a calibration marker, printed with a texture) is drawn fully by TinyRenderer;
+        otherwise with OpenGL, or in TinyRenderer's two layers when the world has them (fully
+        when segmentation is asked for)."""
+        if self.client.getNumBodies() != len(self.body_ids):
             return render(self.client, request)
-        return self._layers.render(request)  # type: ignore[union-attr]
+        if self._gl is not None:
+            return self._gl.render(request)
+        if self._layers is None or request.with_segmentation:
+            return render(self.client, request)
+        return self._layers.render(request)
 
     def close(self) -> None:
+        if self._gl is not None:
+            self._gl.close()
         if self._layers is not None:
             self._layers.close()
         if self.client.isConnected():

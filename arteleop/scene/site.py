@@ -38,6 +38,7 @@ from arteleop.scene.bowl_tracking import BowlTrack
 from arteleop.scene.camera import HeadCamera, RGBDFrame
 from arteleop.scene.camera_config import HeadCameraConfig
 from arteleop.scene.camera_geometry import colocation_errors
+from arteleop.scene.gl_renderer import resolve_renderer
 from arteleop.scene.render_process import RenderProcess
 from arteleop.scene.render_world import RenderWorld, SceneState
 from arteleop.scene.site_frames import BASE_FRAME, BOWL_FRAME, SiteFrames
@@ -174,9 +175,12 @@ class RemoteSite(Closeable):
                 "bowl": add_bowl(self._client, ws, ws.start_xy_m),
             }
             self._bowl_id = self._bodies["bowl"]
+            self.renderer = resolve_renderer(config.camera.renderer)
+            """What draws the head camera here: ``"gl"`` or ``"tiny"``."""
             self.render_world = RenderWorld(
-                self.robot.urdf_path, ws, tuple(self._bodies.values()), MOVING_JOINTS
-            )
+                self.robot.urdf_path, ws, tuple(self._bodies.values()), MOVING_JOINTS,
+                self.renderer,
+            )  # fmt: skip
             self.camera = HeadCamera(
                 self.render_world.render,
                 config.camera,
@@ -360,7 +364,7 @@ class RemoteSite(Closeable):
         if self._renderer is None:
             self._renderer = RenderProcess(
                 self.robot.urdf_path, self.config.workspace, self.render_world.body_ids,
-                MOVING_JOINTS,
+                MOVING_JOINTS, self.renderer,
             )  # fmt: skip
         return self._renderer
 

@@ -23,6 +23,7 @@ import pandas as pd
 
 from arteleop.analysis.data import PARTICIPANT_COLUMNS, QUESTIONNAIRE_COLUMNS
 from arteleop.errors import RunFolderError, StudyDefinitionError
+from arteleop.scene.gl_renderer import renderer_description, resolve_renderer
 from arteleop.study.cohort import participants
 from arteleop.study.definition import ParticipantSpec, StudyConfig
 from arteleop.study.plan import EXPERIMENTAL, TrialSpec, plan_study
@@ -33,7 +34,7 @@ from arteleop.study.sites import StudySite
 from arteleop.study.study_file import first_difference, parse_study, study_text
 
 PACKAGES = ("arteleop", "pybullet", "pin", "mink", "mujoco", "ruckig", "numpy", "scipy",
-            "pandas", "statsmodels", "open3d")  # fmt: skip
+            "pandas", "statsmodels", "open3d", "moderngl")  # fmt: skip
 """Packages whose versions the manifest records: each can change the numbers."""
 
 Progress = Callable[[TrialSpec, int, int], None]
@@ -95,6 +96,8 @@ def run_study(
         "participants": len(people),
         "packages": _versions(),
         "python": platform.python_version(),
+        # The final tracker looks are rendered: a GPU and Mesa may differ in a pixel's last bit.
+        "head_camera": renderer_description(resolve_renderer("auto")),
         "started": _now(),
         "finished": None,
     }
