@@ -188,6 +188,19 @@ class GLScene:
                     continue
                 self._add_part(body, shape, triangles)
         self._targets: dict[tuple[int, int], _Targets] = {}
+        # What a frame asks PyBullet, found once: each body's links that carry shapes, and where
+        # a base's own frame sits from its centre of mass (PyBullet reports a base by the latter).
+        self._links: dict[int, list[int]] = {}
+        for part in self._parts:
+            if part.link >= 0 and part.link not in self._links.setdefault(part.body, []):
+                self._links[part.body].append(part.link)
+        self._T_inertial_base = {
+            part.body: np.linalg.inv(
+                pybullet_pose_to_transform(*client.getDynamicsInfo(part.body, -1)[3:5])
+            )
+            for part in self._parts
+            if part.link < 0
+        }
 
     def _add_part(self, body: int, shape: tuple, triangles: NDArray[np.float32]) -> None:
         buffer = self.ctx.buffer(np.ascontiguousarray(triangles, dtype=np.float32).tobytes())
@@ -216,13 +229,9 @@ class GLScene:
         targets.clear()
         targets.both.use()
         self.ctx.enable(self.ctx.DEPTH_TEST)
-        poses: dict[tuple[int, int], NDArray[np.float64]] = {}
+        poses = self._link_poses()
         for part in self._parts:
-            key = (part.body, part.link)
-            T_world_link = poses.get(key)
-            if T_world_link is None:
-                T_world_link = poses[key] = self._link_pose(part.body, part.link)
-            T = T_world_link @ part.T_link_shape
+            T = poses[part.body, part.link] @ part.T_link_shape
             program["world_from_model"].write(T.T.astype(np.float32).tobytes())
             # A rigid motion turns normals as it turns points (meshes are scaled on upload).
             program["normal_to_world"].write(T[:3, :3].T.astype(np.float32).tobytes())
@@ -231,17 +240,18 @@ class GLScene:
             part.vao.render()
         return targets.read(request.with_segmentation)
 
-    def _link_pose(self, body: int, link: int) -> NDArray[np.float64]:
-        """The pose of a link's own frame in the world (PyBullet reports a base by its centre
-        of mass)."""
+    def _link_poses(self) -> dict[tuple[int, int], NDArray[np.float64]]:
+        """The world pose of the frame of every link that carries a shape, by (body, link)."""
         c = self._client
-        if link >= 0:
-            return pybullet_pose_to_transform(
-                *c.getLinkState(body, link, computeForwardKinematics=True)[4:6]
-            )
-        T_world_inertial = pybullet_pose_to_transform(*c.getBasePositionAndOrientation(body))
-        T_base_inertial = pybullet_pose_to_transform(*c.getDynamicsInfo(body, -1)[3:5])
-        return T_world_inertial @ np.linalg.inv(T_base_inertial)
+        poses = {}
+        for body, T_inertial_base in self._T_inertial_base.items():
+            T_world_inertial = pybullet_pose_to_transform(*c.getBasePositionAndOrientation(body))
+            poses[body, -1] = T_world_inertial @ T_inertial_base
+        for body, links in self._links.items():
+            states = c.getLinkStates(body, links, computeForwardKinematics=True)
+            for link, state in zip(links, states, strict=True):
+                poses[body, link] = pybullet_pose_to_transform(state[4], state[5])
+        return poses
 
     def close(self) -> None:
         for part in self._parts:
