@@ -1,9 +1,10 @@
-"""Make the README's pictures: the head camera's image and depth at rest, and the operator's
-view under each modality at the same moment.
+"""Make the README's pictures: the head camera's image and depth at rest, the operator's view
+under each modality at the same moment, and the predictive ghost ahead of a delayed view.
 
 Seed 0's synthetic operator under full AR, 5 s into the trial (13 cm over the grasp point), at the
 Kinect's 640x480; headless Chromium takes each picture of the view (needs ``apt-get install
-chromium``).
+chromium``). The predictive ghost: the same seed under the ghost and the predictive ghost with a
+500 ms round trip, while the arm reaches.
 
     python docs/make_images.py [--out docs/images]
 """
@@ -17,12 +18,20 @@ from pathlib import Path
 
 import cv2
 
-from arteleop.ar_features import MODALITIES, OperatorView, ViewConfig
+from arteleop.ar_features import MODALITIES, STUDY_MODALITIES, OperatorView, ViewConfig
 from arteleop.ar_features.browser import browser_page
 from arteleop.scene import RemoteSite, write_snapshot
-from arteleop.teleop import TrialConfig, display_frame_at, trial_operator, view_assets
+from arteleop.teleop import (
+    NetworkConfig,
+    TrialConfig,
+    display_frame_at,
+    trial_operator,
+    view_assets,
+)
 
 MOMENT_S = 5.0
+DELAYED_MOMENT_S = 5.5
+"""Seed 0 reaches for the bowl then, in view: the predicted gripper is 15 cm ahead."""
 WIDTH_PX = 800
 """The pictures are scaled down to this width for the README."""
 
@@ -46,12 +55,26 @@ def main() -> None:
     with OperatorView(ViewConfig(port=0), assets) as view:
         view.show(frame)
         with browser_page(view.url) as page:
-            for name, cues in MODALITIES.items():
-                view.show(replace(frame, cues=cues))
+            for name in STUDY_MODALITIES:
+                view.show(replace(frame, cues=MODALITIES[name]))
                 path = out / f"view_{name}.png"
                 shot = page.screenshot(path)
                 _write(path, cv2.cvtColor(shot, cv2.COLOR_RGB2BGR), WIDTH_PX)
                 print(f"wrote {path}")
+    delayed = TrialConfig(
+        seed=0, modality="embodiment+predictive", network=NetworkConfig(delay_s=0.25)
+    )
+    with RemoteSite(delayed.site) as site:
+        source = trial_operator(site, delayed)
+        frame = display_frame_at(source, delayed, DELAYED_MOMENT_S, site)
+    with OperatorView(ViewConfig(port=0), assets) as view:
+        view.show(frame)
+        with browser_page(view.url) as page:
+            view.show(frame)
+            path = out / "view_predictive_500ms.png"
+            shot = page.screenshot(path)
+            _write(path, cv2.cvtColor(shot, cv2.COLOR_RGB2BGR), WIDTH_PX)
+            print(f"wrote {path}")
 
 
 def _write(path: Path, bgr: cv2.typing.MatLike, width_px: float) -> None:

@@ -48,12 +48,12 @@ def test_bare_command_and_help_list_every_command(capsys: pytest.CaptureFixture[
             assert f"\n  {command} " in text, command
 
 
-def test_modality_is_offered_as_its_five_choices(capsys: pytest.CaptureFixture[str]) -> None:
+def test_modality_is_offered_as_its_six_choices(capsys: pytest.CaptureFixture[str]) -> None:
     assert get_args(cli.Modality) == tuple(MODALITIES)
     with pytest.raises(SystemExit):
         main(["trial", "--help"])
     out = capsys.readouterr().out
-    assert "{none,manipulation,embodiment,task,full}" in out
+    assert "{none,manipulation,embodiment,task,full,predictive}" in out
     for option in ("--seed", "--timeout-s", "--delay-ms", "--operator", "--quiet"):
         line = next(line for line in out.splitlines() if option in line)
         assert "(default" in line or line.strip() != option  # each has its description

@@ -50,10 +50,12 @@ def test_a_trial_loads_without_the_mesh_plotting_and_statistics_libraries() -> N
 
 def test_the_analysis_knows_the_same_modalities_as_the_view() -> None:
     """analysis/ imports nothing else from arteleop, so it keeps its own list: the same one."""
-    from arteleop.analysis import MODALITIES as ANALYSED
-    from arteleop.ar_features import MODALITIES
+    from arteleop.analysis.data import CUE_NAMES
+    from arteleop.analysis.data import MODALITIES as ANALYSED
+    from arteleop.ar_features import LAYER_NAMES, MODALITIES, STUDY_MODALITIES
 
-    assert ANALYSED == tuple(MODALITIES)
+    assert ANALYSED == STUDY_MODALITIES
+    assert sorted(CUE_NAMES) == sorted([*MODALITIES, *LAYER_NAMES])
 
 
 @pytest.mark.parametrize(

@@ -17,6 +17,7 @@ from arteleop.analysis.data import (
 )
 from arteleop.analysis.errors import AnalysisInputError
 from arteleop.analysis.smoothness import (
+    idle_share,
     log_dimensionless_jerk,
     normalized_jerk,
     path_length,
@@ -81,6 +82,7 @@ __all__ = [
     "compare_independent",
     "compare_paired",
     "holm",
+    "idle_share",
     "load_study",
     "load_trajectory",
     "log_dimensionless_jerk",

@@ -13,6 +13,12 @@ import pandas as pd
 from arteleop.analysis.errors import AnalysisInputError
 
 MODALITIES: tuple[str, ...] = ("none", "manipulation", "embodiment", "task", "full")
+"""The original study's modalities, compared by the thesis's tests (docs/study.md §3)."""
+CUE_NAMES: tuple[str, ...] = (
+    *MODALITIES, "predictive", "ghost", "beam", "distance_bar", "grip_bar", "target_mesh",
+    "predictive_ghost",
+)  # fmt: skip
+"""What a ``modality`` cell may name: a modality, or modalities and AR layers joined by '+'."""
 MEASURES: tuple[str, ...] = (
     "completion_time_s", "placement_error_m", "normalized_jerk_xy", "ldlj_xy", "sparc_xy",
     "submovements_xy",
@@ -26,9 +32,12 @@ QUESTIONNAIRE_ITEMS = ("presence", "embodiment", "ease")
 TRIAL_COLUMNS = (
     "participant", "phase", "trial_index", "modality", "position", "seed", "outcome",
     "completion_time_s", "placement_error_m", "placement_error_true_m", "normalized_jerk_xy",
-    "ldlj_xy", "sparc_xy", "submovements_xy", "grasp_attempts", "hand_path_length_m",
-    "latency_median_ms", "colocation_error_px", "colocation_error_m", "trajectory_file",
+    "ldlj_xy", "sparc_xy", "submovements_xy", "idle_share_xy", "grasp_attempts",
+    "hand_path_length_m", "latency_median_ms", "colocation_error_px", "colocation_error_m",
+    "round_trip_ms", "jitter_ms", "loss", "trajectory_file",
 )  # fmt: skip
+NETWORK_COLUMNS = ("round_trip_ms", "jitter_ms", "loss")
+"""A trial's network profile; empty reads as none (0)."""
 TRIAL_REQUIRED = (
     "participant", "phase", "modality", "position", "outcome", "completion_time_s",
     "placement_error_m",
@@ -38,8 +47,8 @@ SUCCESS_ONLY = ("completion_time_s", "placement_error_m")
 TRIAL_NUMERIC = (
     "trial_index", "position", "seed", "completion_time_s", "placement_error_m",
     "placement_error_true_m", "normalized_jerk_xy", "ldlj_xy", "sparc_xy", "submovements_xy",
-    "grasp_attempts", "hand_path_length_m", "latency_median_ms", "colocation_error_px",
-    "colocation_error_m",
+    "idle_share_xy", "grasp_attempts", "hand_path_length_m", "latency_median_ms",
+    "colocation_error_px", "colocation_error_m", "round_trip_ms", "jitter_ms", "loss",
 )  # fmt: skip
 PARTICIPANT_COLUMNS = (
     "participant", "age", "gender", "handedness", "avr_experience", "avr_hours",
@@ -89,9 +98,10 @@ def load_study(path: Path, participants_path: Path | None = None) -> StudyData:
         raise AnalysisInputError(f"{trials_path}: no such file; a run folder holds trials.csv")
     trials = read_table(
         trials_path, TRIAL_COLUMNS, TRIAL_REQUIRED, TRIAL_NUMERIC,
-        {"phase": PHASES, "modality": MODALITIES}, may_be_empty=SUCCESS_ONLY,
+        {"phase": PHASES}, may_be_empty=SUCCESS_ONLY,
     )  # fmt: skip
     _check_trials(trials_path, trials)
+    trials[list(NETWORK_COLUMNS)] = trials[list(NETWORK_COLUMNS)].fillna(0.0)
     participants = None
     if participants_path is not None:
         participants = read_table(
@@ -185,24 +195,46 @@ def _optional(path: Path) -> Path | None:
     return path if path.is_file() else None
 
 
+def network_label(round_trip_ms: float, jitter_ms: float = 0.0, loss: float = 0.0) -> str:
+    """A network profile's name in tables: ``250ms``, ``250ms~20ms-0.05loss``."""
+    label = f"{round_trip_ms:g}ms"
+    if jitter_ms:
+        label += f"~{jitter_ms:g}ms"
+    if loss:
+        label += f"-{loss:g}loss"
+    return label
+
+
 def _check_trials(path: Path, trials: pd.DataFrame) -> None:
-    exp = trials[trials["phase"] == "experimental"]
-    bad_pos = exp[~exp["position"].isin([1.0, 2.0, 3.0, 4.0, 5.0])]
+    for i, label in trials["modality"].items():
+        unknown = [part for part in label.split("+") if part not in CUE_NAMES]
+        if unknown:
+            raise AnalysisInputError(
+                f"{path}, line {i + 2}, column modality: unknown value '{label}'. Expected one "
+                f"of: {', '.join(MODALITIES)}, predictive; or modalities and AR layers joined "
+                f"by '+' ({', '.join(CUE_NAMES[len(MODALITIES) + 1 :])})"
+            )
+    exp = trials[trials["phase"] == "experimental"].fillna({c: 0.0 for c in NETWORK_COLUMNS})
+    conditions = max(5, len(exp[["modality", *NETWORK_COLUMNS]].drop_duplicates()))
+    bad_pos = exp[
+        (exp["position"] < 1) | (exp["position"] > conditions) | (exp["position"] % 1 != 0)
+    ]
     if len(bad_pos):
         i = bad_pos.index[0]
         raise AnalysisInputError(
-            f"{path}, line {i + 2}, column position: {trials['position'][i]:g}; expected 1 to 5"
+            f"{path}, line {i + 2}, column position: {trials['position'][i]:g}; expected a whole "
+            f"number from 1 to {conditions}, the study's count of conditions"
         )
-    dup = exp[exp.duplicated(["participant", "modality"], keep=False)]
+    cell = ["participant", "modality", *NETWORK_COLUMNS]
+    dup = exp[exp.duplicated(cell, keep=False)]
     if len(dup):
         first = dup.iloc[0]
-        lines = [str(i + 2) for i in dup.index[
-            (dup["participant"] == first["participant"]) & (dup["modality"] == first["modality"])
-        ]]  # fmt: skip
+        same = (dup["participant"] == first["participant"]) & (dup["modality"] == first["modality"])
+        lines = [str(i + 2) for i in dup.index[same]]
         raise AnalysisInputError(
             f"{path}, lines {', '.join(lines)}: participant '{first['participant']}' has "
-            f"{len(lines)} experimental trials in modality '{first['modality']}'; "
-            "the design has one."
+            f"{len(lines)} experimental trials in modality '{first['modality']}' under the "
+            "same network profile; the design has one."
         )
     success = trials["outcome"] == "success"
     for column in SUCCESS_ONLY:

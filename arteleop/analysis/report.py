@@ -8,6 +8,7 @@ import numpy as np
 import pandas as pd
 
 from arteleop.analysis.data import MEASURES, MODALITIES, StudyData
+from arteleop.analysis.delay import ANOVA_SUBSET
 from arteleop.analysis.figures import (
     expertise_bars,
     measure_boxplot,
@@ -40,6 +41,9 @@ def write_report(
     ):
         df.to_csv(out_dir / name, index=False, float_format="%.6g")
         files[name] = out_dir / name
+    if result.cells is not None:
+        result.cells.to_csv(out_dir / "cells.csv", index=False, float_format="%.6g")
+        files["cells.csv"] = out_dir / "cells.csv"
     files |= _figures(study, result, options, figures)
     (out_dir / "report.md").write_text(_markdown(study, result, options, tests, files, out_dir))
     files["report.md"] = out_dir / "report.md"
@@ -143,11 +147,13 @@ def _markdown(
         "| measure | a | b | test | n | statistic | p | effect | |",
         "| --- | --- | --- | --- | --- | ---: | ---: | ---: | --- |",
     ]
-    all_rows = tests[(tests["subset"] == "all") & (tests["test"] != "anova")]
+    in_all = tests["subset"].str.match(r"all( @ |$)")
+    all_rows = tests[in_all & (tests["test"] != "anova")]
     for _, r in all_rows.iterrows():
         why = f" ({r['note']})" if isinstance(r["note"], str) and r["note"] else ""
+        network = r["subset"].removeprefix("all").replace(" @ ", " @ ")
         lines.append(
-            f"| {r['measure']} | {r['group_a']} | {r['group_b']} | {r['test'] or '-'}{why} | {r['n_a']}/{r['n_b']} "
+            f"| {r['measure']}{network} | {r['group_a']} | {r['group_b']} | {r['test'] or '-'}{why} | {r['n_a']}/{r['n_b']} "
             f"| {_fmt(r['statistic'])} | {_fmt(r['p_value'])} | {_fmt(r['effect_size'])} {r['effect_size_kind'] or ''} | {r['stars'] or ''} |"
         )
     lines += [
@@ -161,7 +167,9 @@ def _markdown(
         lines.append(
             f"| {r['measure']} | {_fmt(r['F'])} | {_fmt(r['df_between'])}, {_fmt(r['df_within'])} | {_fmt(r['p_value'])} | {_fmt(r.get('eta_squared', np.nan))} |"
         )
-    sig = tests[(tests["stars"] != "") & tests["stars"].notna() & (tests["subset"] != "all")]
+    if result.cells is not None:
+        lines += _delay_section(result.cells, tests[tests["subset"] == ANOVA_SUBSET])
+    sig = tests[(tests["stars"] != "") & tests["stars"].notna() & ~in_all]
     if len(sig):
         lines += ["", "## Significant results in subsets", ""]
         lines += [
@@ -172,3 +180,40 @@ def _markdown(
         lines += ["", "## Notes", ""] + [f"- {n}" for n in result.notes]
     lines += ["", "## Files", ""] + [f"- `{p.relative_to(out_dir)}`" for p in files.values()]
     return "\n".join(lines) + "\n"
+
+
+def _delay_section(cells: pd.DataFrame, anova: pd.DataFrame) -> list[str]:
+    """The cells of a study crossing network profiles with cue sets, and the two-way
+    repeated-measures ANOVA of each measure."""
+    lines = [
+        "",
+        "## Delay x cue",
+        "",
+        "Per network profile (round trip, jitter, loss) and cue set: successful trials of all, and "
+        "the medians over them of completion time, placement error and the share of the time the "
+        "hand was still (moving and waiting raises it).",
+        "",
+        "| network | cues | successes | time (s) | error (mm) | hand still |",
+        "| --- | --- | ---: | ---: | ---: | ---: |",
+    ]
+    for _, c in cells.iterrows():
+        lines.append(
+            f"| {c['network']} | {c['modality']} | {c['successes']}/{c['trials']} "
+            f"| {_fmt(c['median_completion_time_s'])} | {_fmt(c['median_placement_error_m'] * 1000)} "
+            f"| {_fmt(c['median_idle_share_xy'], 2)} |"
+        )
+    lines += [
+        "",
+        "Two-way repeated-measures ANOVA (statsmodels' AnovaRM) over cue set x network profile, "
+        "on the participants with a successful trial in every cell.",
+        "",
+        "| measure | effect | F | p | partial eta squared | participants | |",
+        "| --- | --- | ---: | ---: | ---: | ---: | --- |",
+    ]
+    for _, r in anova.iterrows():
+        why = f" ({r['note']})" if isinstance(r["note"], str) and r["note"] else ""
+        lines.append(
+            f"| {r['measure']} | {r['group_a']} | {_fmt(r['statistic'])} {r['group_b']}{why} "
+            f"| {_fmt(r['p_value'])} | {_fmt(r['effect_size'])} | {r['n_a']} | {r['stars'] or ''} |"
+        )
+    return lines

@@ -1,4 +1,5 @@
-"""Smoothness of hand trajectories: normalised jerk, LDLJ, SPARC and the number of submovements.
+"""Smoothness of hand trajectories: normalised jerk, LDLJ, SPARC and the number of submovements;
+and the share of the time the hand is still, which move-and-wait behaviour under delay raises.
 
 Preprocessing (all four metrics): the trajectory is resampled onto a uniform time grid at its
 median rate, then low-pass filtered with a zero-phase 4th-order Butterworth filter (scipy's
@@ -35,6 +36,9 @@ from arteleop.analysis.errors import AnalysisInputError
 AXES = {"x": 0, "y": 1, "z": 2}
 SG_POLYORDER = 5
 SG_WINDOW_S = 0.1
+STILL_SPEED_M_S = 0.05
+"""Below this speed (m/s) the hand is still: the speed that starts the trial's clock
+(docs/study.md §1), so that the hand before motion onset would count as still."""
 
 
 def _prepare(
@@ -192,3 +196,19 @@ def submovement_count(
     padded = np.concatenate([[0.0], speed, [0.0]])
     peaks, _ = find_peaks(padded, prominence=min_prominence * top)
     return len(peaks)
+
+
+def idle_share(
+    time_s: ArrayLike,
+    positions_m: ArrayLike,
+    plane: str | Sequence[int] = "xy",
+    cutoff_hz: float | None = 6.0,
+    still_m_s: float = STILL_SPEED_M_S,
+) -> float:
+    """The share of the time (0..1) that the hand is still, its filtered speed below
+    ``still_m_s`` (m/s): waiting to see what the robot did, looking, grasping. Moving and
+    waiting under delay (Ferrell 1965; Sheridan 1993) raises it.
+    """
+    _, p, dt = _prepare(time_s, positions_m, plane, cutoff_hz)
+    speed = np.linalg.norm(_derivative(p, dt, 1), axis=1)
+    return float(np.mean(speed < still_m_s))

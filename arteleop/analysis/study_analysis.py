@@ -16,8 +16,17 @@ from arteleop.analysis.data import (
     StudyData,
     load_trajectory,
 )
+from arteleop.analysis.delay import (
+    CELL_MEASURES,
+    cell_table,
+    cue_sets,
+    delay_cue_anova,
+    profiles,
+    with_network,
+)
 from arteleop.analysis.errors import AnalysisInputError
 from arteleop.analysis.smoothness import (
+    idle_share,
     log_dimensionless_jerk,
     normalized_jerk,
     spectral_arc_length,
@@ -53,6 +62,7 @@ class AnalysisResult:
     trajectories: dict[tuple[str, float], pd.DataFrame]
     notes: list[str] = field(default_factory=list)
     counts: dict[str, int] = field(default_factory=dict)
+    cells: pd.DataFrame | None = None  # per network profile and cue set, when there are several
 
 
 def analyse(study: StudyData, options: AnalysisOptions | None = None) -> AnalysisResult:
@@ -80,14 +90,34 @@ def analyse(study: StudyData, options: AnalysisOptions | None = None) -> Analysi
     tests: list[TestResult] = []
     norms: list[NormalityResult] = []
     order_rows = []
+    trials = with_network(trials)
+    networks = profiles(study.trials)
+    crossed = len(networks) > 1
     for m in measures:
-        sub = trim_extremes(trials, m, ["modality"]) if options.trim else trials
-        t, n = pairwise(sub, m, "modality", MODALITIES, "all", options)
-        tests += t
-        norms += n
+        # Crossed with delay, the thesis's comparisons run within each network profile.
+        for network in networks if crossed else [None]:
+            part = trials if network is None else trials[trials["network"] == network]
+            sub = trim_extremes(part, m, ["modality"]) if options.trim else part
+            groups = cue_sets(study.trials)
+            if network is not None:
+                groups = [g for g in groups if g in set(part["modality"])]
+            t, n = pairwise(sub, m, "modality", groups, _subset(network), options)
+            tests += t
+            norms += n
         row, summary = order_effect(trials, m)
         tests.append(row)
         order_rows.append(summary)
+    cells = None
+    if crossed:
+        filled = study.trials.copy()  # with the measures computed from trajectory files
+        filled.loc[trials.index, list(CELL_MEASURES)] = trials[list(CELL_MEASURES)]
+        cells = cell_table(filled)
+        for m in CELL_MEASURES:
+            if m in trials and trials[m].notna().any():
+                rows, note = delay_cue_anova(trials, m)
+                tests += rows
+                if note:
+                    notes.append(f"Delay x cue ANOVA of {m}: {note}.")
 
     if study.participants is None:
         notes.append("Expertise analysis skipped: no participants table.")
@@ -116,7 +146,13 @@ def analyse(study: StudyData, options: AnalysisOptions | None = None) -> Analysi
         trajectories=trajectories,
         notes=notes,
         counts=counts,
+        cells=cells,
     )
+
+
+def _subset(network: str | None) -> str:
+    """The subset of a family of pairwise tests: all trials, or those of one network profile."""
+    return "all" if network is None else f"all @ {network}"
 
 
 def _expertise(
@@ -217,6 +253,7 @@ def _fill_smoothness(trials: pd.DataFrame, trajectories: dict, notes: list[str])
     measures = {
         "normalized_jerk_xy": normalized_jerk, "ldlj_xy": log_dimensionless_jerk,
         "sparc_xy": spectral_arc_length, "submovements_xy": submovement_count,
+        "idle_share_xy": idle_share,
     }  # fmt: skip
     trials = trials.copy()
     computed = dict.fromkeys(measures, 0)

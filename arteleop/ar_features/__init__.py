@@ -10,9 +10,15 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 from arteleop.ar_features.assets import ViewAssets
-from arteleop.ar_features.display_frame import Display, DisplayFrame
+from arteleop.ar_features.display_frame import Display, DisplayFrame, PredictedArm
 from arteleop.ar_features.layer import Layer
-from arteleop.ar_features.modalities import MODALITIES, ArCues, modality_cues
+from arteleop.ar_features.modalities import (
+    LAYER_NAMES,
+    MODALITIES,
+    STUDY_MODALITIES,
+    ArCues,
+    modality_cues,
+)
 
 if TYPE_CHECKING:
     from arteleop.ar_features.view import OperatorView, ViewConfig
@@ -26,12 +32,15 @@ _LAZY = {
 }
 
 __all__ = [
+    "LAYER_NAMES",
     "MODALITIES",
+    "STUDY_MODALITIES",
     "ArCues",
     "Display",
     "DisplayFrame",
     "Layer",
     "OperatorView",
+    "PredictedArm",
     "Received",
     "ViewAssets",
     "ViewConfig",

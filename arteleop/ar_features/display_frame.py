@@ -18,6 +18,38 @@ from arteleop.errors import DisplayFrameError
 
 
 @dataclass(frozen=True)
+class PredictedArm:
+    """Where the commands the operator has already sent will put the arm, at the operator's
+    present: what the predictive ghost draws, ahead of the delayed frame it is drawn over.
+
+    Attributes:
+        time_s: The operator's present, when the newest command was sent (simulated time, s).
+        arm_q_rad: (7,) the right arm's joint targets those commands give (rad).
+        T_base_gripper: (4, 4) the gripper's tool frame at those joints (base frame, m).
+        gripper_closure: The gripper's commanded closure, 0 (open) .. 1 (closed).
+    """
+
+    time_s: float
+    arm_q_rad: NDArray[np.float64]
+    T_base_gripper: NDArray[np.float64]
+    gripper_closure: float
+
+    def __post_init__(self) -> None:
+        for name, shape in (("arm_q_rad", (7,)), ("T_base_gripper", (4, 4))):
+            value = frozen_array(getattr(self, name))
+            if value.shape != shape:
+                raise DisplayFrameError(
+                    f"PredictedArm.{name} must have shape {shape}, got {value.shape}"
+                )
+            object.__setattr__(self, name, value)
+
+    @property
+    def gripper_m(self) -> NDArray[np.float64]:
+        """The predicted gripper's tool-frame position (m)."""
+        return self.T_base_gripper[:3, 3]
+
+
+@dataclass(frozen=True)
 class DisplayFrame:
     """The display's content at one instant, in Baxter's base frame (m).
 
@@ -50,6 +82,9 @@ class DisplayFrame:
             operator sees the real gripper and the target marker where the cloud shows them,
             off the ghost and the target mesh, which stay where the robot and the task put
             them. The view draws the cloud itself and does not use it.
+        predicted: Where the commands already sent will put the arm, at the operator's present
+            (newer than ``time_s`` by the round trip); None where nothing predicts it (the
+            predictive ghost then draws the arm of this frame).
     """
 
     time_s: float
@@ -69,6 +104,7 @@ class DisplayFrame:
     T_cloud_true: NDArray[np.float64] | None = None
     target_radius_m: float = 0.06
     cloud_spacing_rad: float | None = None
+    predicted: PredictedArm | None = None
 
     def __post_init__(self) -> None:
         shapes = {
@@ -130,6 +166,11 @@ class DisplayFrame:
         if self.T_cloud_true is None:
             return point_m
         return self.T_cloud_true[:3, :3] @ point_m + self.T_cloud_true[:3, 3]
+
+    @property
+    def shown_predicted(self) -> PredictedArm | None:
+        """The predicted arm where the predictive ghost is on and has a prediction to draw."""
+        return self.predicted if self.cues.predictive_ghost else None
 
     @property
     def has_cloud(self) -> bool:

@@ -20,6 +20,7 @@ LABELS = {
     "distance_bar": "distance bar",
     "grip_bar": "grip bar",
     "target_mesh": "target mesh",
+    "predictive_ghost": "predictive ghost",
 }
 
 

@@ -26,6 +26,7 @@ from arteleop.ar_features.layers import (
     DistanceBarLayer,
     GhostLayer,
     GripBarLayer,
+    PredictiveGhostLayer,
     TargetLayer,
 )
 from arteleop.ar_features.modalities import ArCues
@@ -103,6 +104,7 @@ class OperatorView(Closeable):
         if assets is not None:
             self.layers += [
                 GhostLayer(server, assets),
+                PredictiveGhostLayer(server, assets),
                 TargetLayer(server.scene, assets),
                 BeamLayer(server.scene),
                 DistanceBarLayer(server.scene),

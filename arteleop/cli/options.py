@@ -12,7 +12,7 @@ if TYPE_CHECKING:
     from arteleop.scene import HeadCameraConfig
 
 
-Modality = Literal["none", "manipulation", "embodiment", "task", "full"]
+Modality = Literal["none", "manipulation", "embodiment", "task", "full", "predictive"]
 """The AR modalities (docs/study.md §3), as the command line offers them."""
 
 Renderer = Literal["auto", "gl", "tiny"]

@@ -181,11 +181,14 @@ class TeleopCommand:
     """'synthetic' (a new simulated participant each trial), 'live' (drive the gripper with a
     gizmo and a grip slider in the page), or the path of a wearable recording's CSV"""
     modality: Modality = "full"
-    """AR modality of the trials (docs/study.md §3); the page's panel can switch layers live"""
+    """AR modality of the trials (docs/study.md §3; 'predictive': the predictive ghost, ahead of
+    a delayed view); the page's panel can switch layers live"""
     seed: int = 0
     """seed of the first trial (0 or more); each next trial takes the next one"""
     delay_ms: float = 0.0
-    """one-way network delay between operator and robot (ms)"""
+    """one-way network delay between operator and robot (ms): the view shows each camera frame
+    this long after it was taken, and the predictive ghost where the commands sent will put
+    the arm"""
     timeout_s: float = 120.0
     """simulated time after which a trial ends as a timeout (s)"""
     width_px: int = 320

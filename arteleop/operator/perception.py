@@ -25,7 +25,7 @@ each glance, which a longer look averages away. The operator knows how precise a
 from __future__ import annotations
 
 import zlib
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
@@ -138,6 +138,9 @@ class Perceived:
         closure_known: The display shows whether the gripper is closed.
         placed_by_gripper: The placement was judged from the gripper (the bowl in hand hidden):
             the bowl's place in the hand adds its own uncertainty.
+        lead_m: How far ahead of the frame's own arm the gripper judged is (m): the predictive
+            ghost's lead, zero without it. The bowl is seen in the frame, a round trip old: a
+            bowl carried by the hand is that much behind where the judged gripper carries it.
     """
 
     gripper_m: NDArray[np.float64]
@@ -148,6 +151,17 @@ class Perceived:
     grasp_cov: NDArray[np.float64]
     placement_cov: NDArray[np.float64]
     placed_by_gripper: bool
+    lead_m: NDArray[np.float64] = field(default_factory=lambda: np.zeros(3))
+
+
+def shown_gripper_m(view: DisplayFrame) -> NDArray[np.float64]:
+    """Where the display shows the gripper (m): the predictive ghost's, where it is on (where
+    the commands sent will put it); else the ghost's (where the encoders put it); else the real
+    gripper's in the cloud (the camera's registration error moves it)."""
+    if view.cues.predictive_ghost:
+        predicted = view.predicted
+        return view.gripper_m if predicted is None else predicted.gripper_m
+    return view.gripper_m if view.cues.ghost else view.in_cloud(view.gripper_m)
 
 
 def perceive(
@@ -162,10 +176,8 @@ def perceive(
     cues = view.cues
     depth_sd = params.depth_sd_m * depth_factor
     lateral_sd = params.lateral_sd_m
-    gripper_seen = view.gripper_in_camera or cues.ghost
-    # The ghost draws the gripper where the encoders put it; without it, the operator sees the
-    # real gripper in the cloud.
-    shown_gripper = view.gripper_m if cues.ghost else view.in_cloud(view.gripper_m)
+    gripper_seen = view.gripper_in_camera or cues.ghost or cues.predictive_ghost
+    shown_gripper = shown_gripper_m(view)
 
     def seen(
         stream: str,
@@ -268,10 +280,12 @@ def perceive(
         else:
             placement_cov = placement_cov + gripper_cov
             placed_by_gripper = True
-    closure_known = cues.grip_bar or view.gripper_in_camera or cues.ghost
+    closure_known = gripper_seen or cues.grip_bar
+    predicted = view.shown_predicted
+    lead = np.zeros(3) if predicted is None else predicted.gripper_m - view.gripper_m
     return Perceived(
         gripper, bowl, target, gripper_seen, closure_known, grasp_cov, placement_cov,
-        placed_by_gripper,
+        placed_by_gripper, lead,
     )  # fmt: skip
 
 
@@ -289,8 +303,10 @@ class BowlMemory:
         """The bowl after a look: as seen when shown, else as remembered; None before it was
         ever seen."""
         if seen.bowl_m is not None:
-            self._last_seen_m = seen.bowl_m
-            return seen.bowl_m
+            # Held, it is where the judged gripper carries it, ahead of the frame by the lead.
+            present = seen.bowl_m + seen.lead_m if self._in_hand_m is not None else seen.bowl_m
+            self._last_seen_m = present
+            return present
         if self._in_hand_m is not None:
             return seen.gripper_m + self._in_hand_m
         return self._last_seen_m
@@ -315,5 +331,6 @@ class BowlMemory:
         a held bowl tilts and the estimates err by centimetres, but a lift is 15 cm.)"""
         if seen.bowl_m is None or self._in_hand_m is None:
             return False
-        expected = seen.gripper_m + self._in_hand_m
+        # Compared within the frame the bowl is seen in: its own gripper, not the lead's.
+        expected = seen.gripper_m - seen.lead_m + self._in_hand_m
         return bool(expected[2] - seen.bowl_m[2] > drop_m)

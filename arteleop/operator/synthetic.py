@@ -44,6 +44,7 @@ from arteleop.operator.perception import (
     PerceptionParams,
     PerceptualErrors,
     perceive,
+    shown_gripper_m,
 )
 from arteleop.operator.recording import CalibrationPosture
 from arteleop.operator.submovements import submovement_duration_s
@@ -367,15 +368,15 @@ class SyntheticOperator:
     # -- seeing ----------------------------------------------------------------------------------
     def _watch(self, view: DisplayFrame) -> None:
         """Keep the display's gripper over the arrival window; None where it is not shown."""
-        if self._shown and view.time_s <= self._shown[-1][0]:
+        # A prediction is of the operator's present, newer than the frame it is drawn over.
+        predicted = view.shown_predicted
+        stamp = view.time_s if predicted is None else predicted.time_s
+        if self._shown and stamp <= self._shown[-1][0]:
             return
-        shown = None
-        if view.cues.ghost:
-            shown = view.gripper_m
-        elif view.gripper_in_camera:
-            shown = view.in_cloud(view.gripper_m)
-        self._shown.append((view.time_s, shown))
-        while self._shown and self._shown[0][0] < view.time_s - 2 * self.p.arrival_window_s:
+        cues = view.cues
+        seen = cues.ghost or cues.predictive_ghost or view.gripper_in_camera
+        self._shown.append((stamp, shown_gripper_m(view) if seen else None))
+        while self._shown and self._shown[0][0] < stamp - 2 * self.p.arrival_window_s:
             self._shown.popleft()
 
     def _arrived(self, t: float, expected_m: float) -> bool:

@@ -15,14 +15,15 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-from arteleop.ar_features import MODALITIES
+from arteleop.analysis.data import network_label
+from arteleop.ar_features import LAYER_NAMES, MODALITIES, STUDY_MODALITIES, modality_cues
 from arteleop.errors import ConfigurationError, StudyDefinitionError
 from arteleop.operator.traits import TraitDistribution
 from arteleop.scene.camera_config import HeadCameraConfig
 from arteleop.teleop.hand_filter import HandFilterConfig
 
-MODALITY_NAMES: tuple[str, ...] = tuple(MODALITIES)
-"""The modalities, in the order of the one modality table (``arteleop.ar_features``)."""
+MODALITY_NAMES: tuple[str, ...] = STUDY_MODALITIES
+"""The original study's modalities, in its order: the default conditions."""
 ORDER_SCHEMES: tuple[str, ...] = ("williams", "cyclic", "random", "listed")
 
 
@@ -144,12 +145,57 @@ class FamiliarizationConfig:
     def __post_init__(self) -> None:
         if self.trials < 0:
             raise StudyDefinitionError(f"familiarization.trials = {self.trials}: expected >= 0.")
-        if self.modality not in MODALITY_NAMES:
+        if not _is_cue_set(self.modality):
             raise StudyDefinitionError(
                 f"familiarization.modality = {self.modality!r}; expected one of "
-                f"{', '.join(MODALITY_NAMES)}."
+                f"{', '.join(MODALITIES)}, or layers joined by '+'."
             )
         _check_timeout("familiarization.timeout_s", self.timeout_s)
+
+
+@dataclass(frozen=True)
+class ConditionSpec:
+    """One condition of a study: a set of AR layers shown over a network profile.
+
+    Attributes:
+        cues: What the display shows: modalities and AR layers, their layers together (``[]``
+            none, ``["embodiment"]``, ``["ghost", "predictive_ghost"]``).
+        round_trip_ms: Round-trip delay between operator and robot (ms): half of it each way,
+            operator samples to the robot and camera frames back.
+        jitter_ms: Standard deviation of each one-way delay (ms).
+        loss: Chance that an operator sample is lost on its way, in [0, 1).
+    """
+
+    cues: tuple[str, ...] = ()
+    round_trip_ms: float = 0.0
+    jitter_ms: float = 0.0
+    loss: float = 0.0
+
+    def __post_init__(self) -> None:
+        bad = [c for c in self.cues if c not in MODALITIES and c not in LAYER_NAMES]
+        if bad:
+            raise StudyDefinitionError(
+                f"conditions.cues = {list(self.cues)}: unknown {bad[0]!r}; expected modalities "
+                f"({', '.join(MODALITIES)}) or AR layers ({', '.join(LAYER_NAMES)})."
+            )
+        for key in ("round_trip_ms", "jitter_ms"):
+            value = getattr(self, key)
+            if not (math.isfinite(value) and value >= 0):
+                raise StudyDefinitionError(f"conditions.{key} = {value}: expected 0 ms or more.")
+        if not (math.isfinite(self.loss) and 0 <= self.loss < 1):
+            raise StudyDefinitionError(
+                f"conditions.loss = {self.loss}: expected a probability in [0, 1)."
+            )
+
+    @property
+    def modality(self) -> str:
+        """The cue set's label, as ``trials.csv`` records it (:attr:`ArCues.label`)."""
+        return modality_cues("+".join(self.cues) or "none").label
+
+    @property
+    def name(self) -> str:
+        """The condition's name: its cue set and network profile (``predictive@500ms``)."""
+        return f"{self.modality}@{network_label(self.round_trip_ms, self.jitter_ms, self.loss)}"
 
 
 @dataclass(frozen=True)
@@ -160,7 +206,8 @@ class StudyConfig:
         name: A name for the report.
         seed: Seed of everything random in the study: the cohort, the orders, the practice
             positions and every trial (each trial's seed derives from it and the trial's place).
-        modalities: The conditions, in the order the order schemes number them.
+        modalities: The conditions, in the order the order schemes number them: modalities
+            (or AR layers joined by ``+``), all under ``delay_ms``.
         order: ``williams`` (a balanced Latin square: each condition follows each other equally
             often; for an odd count, 2n sequences), ``cyclic`` (n rotations), ``random``
             (a seeded permutation per participant) or ``listed`` (the sequences in ``orders``).
@@ -171,7 +218,11 @@ class StudyConfig:
         trials_per_modality: Experimental trials per modality: 1, as in the original and as
             the data format (version 2) records.
         timeout_s: Simulated time after which an experimental trial ends as a timeout (s).
-        delay_ms: One-way network delay between operator and robot (ms).
+        delay_ms: One-way network delay between operator and robot (ms), in every trial.
+        conditions: Instead of ``modalities`` and ``delay_ms``: the conditions, each a set of
+            AR layers over a network profile (``[[conditions]]`` tables), e.g. delay crossed
+            with cues; numbered in this order by the order schemes. Practice runs without
+            delay.
         camera_offset_mm, camera_offset_deg: A mis-registered head camera in every trial: the
             pose the system uses for it is the true one moved by this translation (mm) and
             rotation vector (deg), in the camera's frame (``HeadCameraConfig``'s
@@ -211,20 +262,34 @@ class StudyConfig:
     participants: tuple[ParticipantSpec, ...] = ()
     operator: TraitDistribution = field(default_factory=TraitDistribution)
     hand_filter: HandFilterConfig = field(default_factory=HandFilterConfig)
+    conditions: tuple[ConditionSpec, ...] = ()
 
     def __post_init__(self) -> None:
         if self.seed < 0:
             raise StudyDefinitionError(f"seed = {self.seed}: expected a whole number, 0 or more.")
-        unknown = [m for m in self.modalities if m not in MODALITY_NAMES]
+        unknown = [m for m in self.modalities if not _is_cue_set(m)]
         if unknown or not self.modalities:
             raise StudyDefinitionError(
                 f"modalities = {list(self.modalities)}: expected one or more of "
-                f"{', '.join(MODALITY_NAMES)}."
+                f"{', '.join(MODALITIES)} (or AR layers joined by '+')."
             )
         if len(set(self.modalities)) != len(self.modalities):
             raise StudyDefinitionError(
                 f"modalities = {list(self.modalities)}: each modality at most once."
             )
+        if self.conditions:
+            if self.modalities != MODALITY_NAMES or self.delay_ms:
+                raise StudyDefinitionError(
+                    "conditions: the [[conditions]] tables replace modalities and delay_ms; "
+                    "give one or the other."
+                )
+            names = [c.name for c in self.conditions]
+            for k, name in enumerate(names):
+                if name in names[:k]:
+                    raise StudyDefinitionError(
+                        f"conditions: condition {k + 1} ({name}) repeats condition "
+                        f"{names.index(name) + 1}; each condition at most once."
+                    )
         if self.order not in ORDER_SCHEMES:
             raise StudyDefinitionError(
                 f"order = {self.order!r}; expected one of {', '.join(ORDER_SCHEMES)}."
@@ -234,11 +299,12 @@ class StudyConfig:
                 f"orders = {[list(o) for o in self.orders]}: give sequences in orders exactly "
                 f'when order = "listed" (order is {self.order!r}).'
             )
+        names = self.condition_names
         for k, sequence in enumerate(self.orders):
-            if sorted(sequence) != sorted(self.modalities):
+            if sorted(sequence) != sorted(names):
                 raise StudyDefinitionError(
                     f"orders = ...: sequence {k + 1}, {list(sequence)}, must name each of the "
-                    f"{len(self.modalities)} modalities {list(self.modalities)} exactly once."
+                    f"{len(names)} conditions {list(names)} exactly once."
                 )
         if self.trials_per_modality != 1:
             raise StudyDefinitionError(
@@ -279,6 +345,21 @@ class StudyConfig:
                 f"participants: the id {twice[0]!r} is used more than once; ids must be unique."
             )
 
+    @property
+    def planned_conditions(self) -> tuple[ConditionSpec, ...]:
+        """The conditions in order: the ``[[conditions]]``, or each modality under
+        ``delay_ms`` each way."""
+        if self.conditions:
+            return self.conditions
+        return tuple(ConditionSpec((m,), round_trip_ms=2 * self.delay_ms) for m in self.modalities)
+
+    @property
+    def condition_names(self) -> tuple[str, ...]:
+        """What ``orders`` names the conditions by: the modalities, or the conditions' names."""
+        if self.conditions:
+            return tuple(c.name for c in self.conditions)
+        return self.modalities
+
     def camera_registration(self) -> dict[str, Any]:
         """The head camera's registration, as :class:`~arteleop.scene.HeadCameraConfig`'s
         fields."""
@@ -287,6 +368,14 @@ class StudyConfig:
             "registration_offset_deg": self.camera_offset_deg,
             "registered_pose": self.camera_pose or None,
         }
+
+
+def _is_cue_set(label: str) -> bool:
+    try:
+        modality_cues(label)
+    except ConfigurationError:
+        return False
+    return True
 
 
 def _check_timeout(name: str, value: float) -> None:

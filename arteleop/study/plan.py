@@ -1,4 +1,5 @@
-"""Every trial of a study, planned before any runs: who, which modality, where, with which seed.
+"""Every trial of a study, planned before any runs: who, which condition (modality and network),
+where, with which seed.
 
 The plan is a pure function of the definition, so a resumed or parallel run plans the same
 trials, and each trial's seed depends only on the study's seed and the trial's place.
@@ -42,6 +43,9 @@ class TrialSpec:
         start_xy_m: Where the bowl starts (base frame, m).
         target_xy_m: Where it must go (base frame, m).
         timeout_s: Simulated time after which the trial ends as a timeout (s).
+        round_trip_ms: The network's round-trip delay (ms), half each way.
+        jitter_ms: SD of each one-way delay (ms).
+        loss: Chance that an operator sample is lost.
     """
 
     participant: str
@@ -54,6 +58,9 @@ class TrialSpec:
     start_xy_m: tuple[float, float]
     target_xy_m: tuple[float, float]
     timeout_s: float
+    round_trip_ms: float = 0.0
+    jitter_ms: float = 0.0
+    loss: float = 0.0
 
     @property
     def key(self) -> tuple[str, int]:
@@ -76,9 +83,10 @@ def plan_study(
     definition has practice trials.
     """
     people = participants(config)
-    n = len(config.modalities)
+    names = config.condition_names
+    n = len(names)
     if config.order == "listed":
-        listed = [tuple(config.modalities.index(m) for m in o) for o in config.orders]
+        listed = [tuple(names.index(m) for m in o) for o in config.orders]
         orders = [listed[k % len(listed)] for k in range(len(people))]
     else:
         orders = participant_orders(config.order, n, len(people), config.seed)
@@ -114,22 +122,28 @@ def _session(
                 start_xy_m=start,
                 target_xy_m=target,
                 timeout_s=fam.timeout_s,
+                round_trip_ms=0.0 if config.conditions else 2 * config.delay_ms,
             )
         )
-    for position, condition in enumerate(order, start=1):
+    conditions = config.planned_conditions
+    for position, c in enumerate(order, start=1):
         index = fam.trials + position
+        condition = conditions[c]
         trials.append(
             TrialSpec(
                 participant=person.id,
                 participant_index=k,
                 phase=EXPERIMENTAL,
                 trial_index=index,
-                modality=config.modalities[condition],
+                modality=condition.modality,
                 position=position,
                 seed=trial_seed(config.seed, k, index),
                 start_xy_m=config.start_xy_m,
                 target_xy_m=config.target_xy_m,
                 timeout_s=config.timeout_s,
+                round_trip_ms=condition.round_trip_ms,
+                jitter_ms=condition.jitter_ms,
+                loss=condition.loss,
             )
         )
     return trials

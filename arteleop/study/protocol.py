@@ -61,7 +61,11 @@ def trial_config(study: StudyConfig, site: StudySite, spec: TrialSpec) -> TrialC
         modality=spec.modality,
         seed=spec.seed,
         timeout_s=spec.timeout_s,
-        network=NetworkConfig(delay_s=study.delay_ms / 1000),
+        network=NetworkConfig(
+            delay_s=spec.round_trip_ms / 2000,
+            jitter_s=spec.jitter_ms / 1000,
+            loss_probability=spec.loss,
+        ),
         controller=ControllerConfig(hand_filter=study.hand_filter),
         site=site.site_config(spec, study.camera_registration()),
         record_trace=True,
@@ -87,6 +91,9 @@ def run_planned_trial(
         "trial_index": spec.trial_index,
         "position": spec.position,
         **result.to_row(),
+        "round_trip_ms": spec.round_trip_ms,
+        "jitter_ms": spec.jitter_ms,
+        "loss": spec.loss,
         "trajectory_file": trajectory_file(spec),
     }
     if result.trace is None:

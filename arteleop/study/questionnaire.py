@@ -19,7 +19,9 @@ and each item (presence, embodiment, ease), on the 1-7 Likert scale:
 
 The gains are Likert points, chosen so that a class that halves the time moves ease by about
 1.5 points: in the original study the ratings spread over most of the scale (docs/study.md §4).
-Real answers replace these with ``arteleop study answer``.
+In a study that crosses delay with cues, a participant's answers come from their trials under
+the least delay (the questionnaire asks about the cues, not the network). Real answers replace
+these with ``arteleop study answer``.
 """
 
 from __future__ import annotations
@@ -30,7 +32,7 @@ from collections.abc import Sequence
 import numpy as np
 import pandas as pd
 
-from arteleop.analysis.data import AR_CLASSES
+from arteleop.analysis.data import AR_CLASSES, NETWORK_COLUMNS
 from arteleop.analysis.data import QUESTIONNAIRE_ITEMS as ITEMS
 from arteleop.ar_features import modality_cues
 
@@ -49,7 +51,9 @@ def simulated_answers(
     """(participant, ar_class, item, score) rows for one participant, from their experimental
     trials (``modality``, ``outcome``, ``completion_time_s``, ``placement_error_m``)."""
     rng = np.random.default_rng(seed)
-    by_modality = experimental.set_index("modality")
+    network = [c for c in NETWORK_COLUMNS if c in experimental]
+    least_delay = experimental.sort_values(network, kind="stable").drop_duplicates("modality")
+    by_modality = least_delay.set_index("modality")
     leniency = rng.normal(0.0, LENIENCY_SD)
     rows = []
     for ar_class in AR_CLASSES:

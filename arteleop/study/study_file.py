@@ -16,6 +16,7 @@ from arteleop.errors import ConfigurationError, FrameGraphError, StudyDefinition
 from arteleop.operator.traits import TraitDistribution
 from arteleop.study.definition import (
     CohortConfig,
+    ConditionSpec,
     FamiliarizationConfig,
     ParticipantSpec,
     StudyConfig,
@@ -70,6 +71,21 @@ def parse_study(text: str, source: str = "<study>") -> StudyConfig:
     for key, value in data.items():
         if key in _TABLES:
             top[key] = _build(_TABLES[key], value, key, where)
+        elif key == "conditions":
+            if not isinstance(value, list):
+                raise StudyDefinitionError(
+                    f"{where.at('', key)}: conditions must be [[conditions]] tables."
+                )
+            given = [k for k in ("modalities", "delay_ms") if k in data]
+            if given:
+                raise StudyDefinitionError(
+                    f"{where.at('', given[0])}: {given[0]} and [[conditions]]: the conditions "
+                    "give each trial's cues and network; remove one or the other."
+                )
+            top[key] = tuple(
+                _build(ConditionSpec, item, "conditions", where, index)
+                for index, item in enumerate(value)
+            )
         elif key == "participants":
             if not isinstance(value, list):
                 raise StudyDefinitionError(
@@ -250,11 +266,15 @@ _COMMENTS = {
     "orders": 'with order = "listed": the sequences, e.g. [["none", "full"], ["full", "none"]]',
     "trials_per_modality": "experimental trials per modality (data format version 2: 1)",
     "timeout_s": "simulated time after which a trial ends as a timeout (s)",
-    "delay_ms": "one-way network delay between operator and robot (ms)",
+    "delay_ms": "one-way network delay between operator and robot (ms), in every trial",
     "camera_offset_mm": "error of the head camera's registration: translation (mm, camera frame)",
     "camera_offset_deg": "and rotation vector (deg, camera frame); zero is a perfect registration",
     "camera_pose": "or its registered pose, 4 rows of T_base_camera (m); camera_graph = "
     '"calibration.json" takes it from that file (arteleop calibrate)',
+    "conditions.cues": "modalities and AR layers shown",
+    "conditions.round_trip_ms": "round-trip delay between operator and robot (ms), half each way",
+    "conditions.jitter_ms": "SD of each one-way delay (ms)",
+    "conditions.loss": "chance that an operator sample is lost, in [0, 1)",
     "start_xy_m": "where the bowl starts, Baxter's base frame (m)",
     "target_xy_m": "where it must go (m)",
     "familiarization.trials": "practice trials per participant, random start and target",
@@ -288,6 +308,16 @@ _HEADER = """\
 # Run it: arteleop study run THIS_FILE --out RUN_DIR
 """
 
+_CONDITIONS_HELP = """\
+# Conditions that cross network delay with AR cues replace modalities and delay_ms, e.g.
+# [[conditions]]
+# cues = ["predictive"]  # modalities and AR layers, e.g. [] or ["ghost", "predictive_ghost"]
+# round_trip_ms = 500    # round-trip delay (ms), half each way
+# jitter_ms = 0          # SD of each one-way delay (ms)
+# loss = 0.0             # chance that an operator sample is lost, in [0, 1)
+
+"""
+
 _PARTICIPANTS_HELP = """\
 # Named participants replace the simulated cohort, e.g. (ids name folders of the run):
 # [[participants]]
@@ -305,7 +335,9 @@ _PARTICIPANTS_HELP = """\
 def study_text(config: StudyConfig) -> str:
     """The definition as commented TOML, every key written out."""
     out = [_HEADER]
-    nested = {"participants", *_TABLES}
+    nested = {"participants", "conditions", *_TABLES}
+    if config.conditions:  # they replace the modalities and the delay
+        nested |= {"modalities", "delay_ms"}
     for f in dataclasses.fields(config):
         if f.name not in nested:
             out.append(_key_line(f.name, getattr(config, f.name), f.name))
@@ -315,6 +347,15 @@ def study_text(config: StudyConfig) -> str:
         for f in dataclasses.fields(sub):
             out.append(_key_line(f.name, getattr(sub, f.name), f"{table}.{f.name}"))
     out.append("\n")
+    if config.conditions:
+        for condition in config.conditions:
+            out.append(f"[[conditions]]  # {condition.name}\n")
+            for f in dataclasses.fields(condition):
+                value = getattr(condition, f.name)
+                out.append(_key_line(f.name, value, f"conditions.{f.name}"))
+            out.append("\n")
+    else:
+        out.append(_CONDITIONS_HELP)
     if config.participants:
         for person in config.participants:
             out.append("[[participants]]\n")

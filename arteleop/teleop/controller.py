@@ -28,7 +28,7 @@ from arteleop.robot.grip_control import GripCommand, GripHysteresis
 from arteleop.robot.ik import ArmIK, IKConfig, IKResult
 from arteleop.robot.mapping import HandToGripper, MappingConfig
 from arteleop.robot.trajectory import JointTrajectory, TrajectoryLimits
-from arteleop.scene import Box, SiteState
+from arteleop.scene import Box
 from arteleop.teleop.clock import LoopRates
 from arteleop.teleop.hand_filter import HandFilter, HandFilterConfig
 from arteleop.teleop.hand_speed import HandSpeed
@@ -41,6 +41,17 @@ class OperatorBody(Protocol):
 
     arm: ArmModel
     calibration: CalibrationPosture
+
+
+class ArmReading(Protocol):
+    """What a control tick reads of the arm: its encoders and where they put the gripper (a
+    :class:`~arteleop.scene.SiteState` at the site; a display frame on the operator's side)."""
+
+    @property
+    def arm_q_rad(self) -> NDArray[np.float64]: ...
+
+    @property
+    def gripper_m(self) -> NDArray[np.float64]: ...
 
 
 class ControllerState(Enum):
@@ -170,7 +181,7 @@ class TeleopController:
         """The arm follows the operator's hand."""
         return self.state is ControllerState.ENGAGED
 
-    def control_tick(self, state: SiteState) -> ArmCommand | None:
+    def control_tick(self, state: ArmReading) -> ArmCommand | None:
         """Mapping, IK and a new trajectory target from the newest hand sample; returns the
         gripper command once engaged (the arm's joint targets come from :meth:`physics_tick`).
 

@@ -7,7 +7,9 @@ engaged indicator). The bowl's track comes from the model of the tracker
 period), updated at the tracker's rate and held in between. When
 the camera renders, the frame carries the point cloud and goes to the display: in place in
 batch runs; in real time, through the render process on the other core, shown when it comes
-back. The operator sees each frame once the return link's delay has passed.
+back. The operator sees each frame once the return link's delay has passed, on the display as
+in the synthetic operator's eyes; a frame reaches the display with the newest prediction of the
+arm (:class:`~arteleop.teleop.predictor.CommandPredictor`) for the predictive ghost.
 """
 
 from __future__ import annotations
@@ -19,7 +21,7 @@ from dataclasses import replace
 import numpy as np
 from numpy.typing import NDArray
 
-from arteleop.ar_features import ArCues, Display, DisplayFrame, ViewAssets
+from arteleop.ar_features import ArCues, Display, DisplayFrame, PredictedArm, ViewAssets
 from arteleop.robot import (
     GRIPPER_FRAME,
     HEAD_PAN_JOINT,
@@ -149,6 +151,9 @@ class DisplayFeed:
         self._timer = timer
         self._latency = latency
         self._history: deque[DisplayFrame] = deque(maxlen=64)
+        self._in_flight: deque[tuple[DisplayFrame, float]] = deque()  # (frame, applied sample)
+        self.predicted: PredictedArm | None = None
+        """The newest prediction of the arm, drawn over the frames as they reach the display."""
         self._requested: tuple[float, float, DisplayFrame] | None = None  # wall, applied, frame
         self._owed = False
         self.colocation_px: list[float] = []
@@ -207,6 +212,18 @@ class DisplayFeed:
         self._timer.record("camera", requested_wall)
         self._show(frame, rgbd, applied)
 
+    def deliver(self, t: float) -> None:
+        """Show the rendered frames whose return trip is over at ``t`` (s), each with the newest
+        prediction of the arm."""
+        while self._in_flight and self._in_flight[0][0].time_s + self._delay_s <= t:
+            frame, applied = self._in_flight.popleft()
+            if self.predicted is not None:
+                frame = replace(frame, predicted=self.predicted)
+            if self._display is not None:
+                with self._timer.stage("display"):
+                    self._display.show(frame)
+            self._latency.frame_shown(applied)
+
     def seen_by_operator(self, t: float) -> DisplayFrame:
         """The newest frame that has reached the operator at ``t`` (the return link's delay);
         the oldest kept one before any has."""
@@ -221,10 +238,11 @@ class DisplayFeed:
         self._owed = False
 
     def _show(self, frame: DisplayFrame, rgbd: RGBDFrame, applied_sample_time_s: float) -> None:
-        """Point cloud and display update of a frame showing samples up to ``applied``."""
+        """Point cloud of a frame showing samples up to ``applied``, sent back to the display
+        (:meth:`deliver` shows it once the return link's delay is over)."""
         with self._timer.stage("point_cloud"):
             shown = with_cloud(frame, rgbd)
-        if self._display is not None:
-            with self._timer.stage("display"):
-                self._display.show(shown)
-        self._latency.frame_shown(applied_sample_time_s)
+        if self._display is None:
+            self._latency.frame_shown(applied_sample_time_s)
+            return
+        self._in_flight.append((shown, applied_sample_time_s))

@@ -28,6 +28,7 @@ from arteleop.teleop.controller import TeleopController
 from arteleop.teleop.display_feed import DisplayFeed
 from arteleop.teleop.latency import LatencyAccount
 from arteleop.teleop.network import NetworkLink
+from arteleop.teleop.predictor import CommandPredictor
 from arteleop.teleop.task_monitor import TaskMonitor
 from arteleop.teleop.timing import StageTimer
 from arteleop.teleop.trace import TrialTrace
@@ -83,9 +84,11 @@ def trial_operator(site: RemoteSite, config: TrialConfig, **kwargs: Any) -> Synt
 def display_frame_at(
     source: OperatorSource, config: TrialConfig, time_s: float, site: RemoteSite | None = None
 ) -> DisplayFrame:
-    """The display frame, point cloud included, that a trial shows at ``time_s`` (s): the trial
-    runs to then, rendering every camera frame; for pictures and tests of the view."""
-    config = replace(config, timeout_s=time_s + 1.0 / config.rates.camera_hz, render_camera=True)
+    """The display frame, point cloud included, that a trial captures at ``time_s`` (s), as it
+    reaches the display (a return trip later, with the predicted arm): the trial runs to then,
+    rendering every camera frame; for pictures and tests of the view."""
+    end_s = time_s + config.network.delay_s + 1.0 / config.rates.camera_hz
+    config = replace(config, timeout_s=end_s, render_camera=True)
     frames: list[DisplayFrame] = []
     run_trial(source, config, site, _FirstFrameFrom(time_s, frames))
     if not frames:
@@ -124,21 +127,33 @@ class _Loop:
             site.start_render_process()  # before the clock starts: it takes a few seconds
         self.clock = LoopClock(config.rates, config.realtime)
         self.timer = StageTimer()
-        self.control = TeleopController(
-            site.description.urdf_path,
-            site.kinematics.limits(RIGHT_ARM_JOINTS),
-            site.observe(links=()).arm_q_rad,
-            source,
-            config.rates,
-            ws.table_box(),
-            config.controller,
-            self.timer,
+        cues = modality_cues(config.modality)
+
+        def controller(timer: StageTimer) -> TeleopController:
+            return TeleopController(
+                site.description.urdf_path,
+                site.kinematics.limits(RIGHT_ARM_JOINTS),
+                site.observe(links=()).arm_q_rad,
+                source,
+                config.rates,
+                ws.table_box(),
+                config.controller,
+                timer,
+            )
+
+        self.control = controller(self.timer)
+        # The predictive ghost's model runs where it is shown: in the trial's cues, or in a
+        # view whose panel can switch it on.
+        self.predictor = (
+            CommandPredictor(controller(StageTimer()))
+            if cues.predictive_ghost or display is not None
+            else None
         )
         self.monitor = TaskMonitor(ws, BowlTracker(ws.bowl))
         self.latency = LatencyAccount()
         self.feed = DisplayFeed(
             site,
-            modality_cues(config.modality),
+            cues,
             render=config.render_camera,
             in_background=background,
             return_delay_s=config.network.delay_s,
@@ -148,6 +163,7 @@ class _Loop:
             track_every=config.rates.frames_per_track,
         )
         self._background = background
+        self._delivering = display is not None
         self._gate_tracker = config.skip_hidden_tracker_renders
         self.hand_t: list[float] = []
         self.hand_p: list[NDArray[np.float64]] = []
@@ -163,6 +179,8 @@ class _Loop:
             t = tick.time_s
             if self._background:
                 self.feed.poll(control.engaged, control.applied_sample_time_s)
+            if self._delivering:
+                self.feed.deliver(t)
             if t > self.config.timeout_s:
                 return self._result(self.monitor.timed_out(), t)
             if tick.camera:
@@ -193,6 +211,9 @@ class _Loop:
         """
         control, timer = self.control, self.timer
         frame = self.feed.seen_by_operator(t)
+        predictor = self.predictor
+        if predictor is not None and predictor.predicted is not None:
+            frame = replace(frame, predicted=predictor.predicted)
         created_wall = time.perf_counter()
         with timer.stage("operator_input"):
             sample = self.source.sample(t, frame)
@@ -202,6 +223,10 @@ class _Loop:
             if self.config.realtime:
                 self.latency.sample_created(sample.time_s, created_wall)
             self.link.send(sample.time_s, sample, t)
+            if predictor is not None:
+                predictor.sent(sample)
+        if predictor is not None:
+            self.feed.predicted = predictor.tick(t, frame)
         with timer.stage("reconstruction"):
             for _, received in self.link.receive(t):
                 if received.sensor_quat_wxyz is None:
@@ -216,8 +241,10 @@ class _Loop:
         hand = control.last_hand
         moving = None
         if control.engaged and hand is not None:
-            self.hand_t.append(hand.time_s)
-            self.hand_p.append(hand.hand_m)
+            # A tick without a new sample (one came late, two come at the next) adds nothing.
+            if not self.hand_t or hand.time_s > self.hand_t[-1]:
+                self.hand_t.append(hand.time_s)
+                self.hand_p.append(hand.hand_m)
             moving = control.hand_speed_m_s
         self.monitor.control(t, moving, control.grip.closed, state)
         if self.trace is not None:

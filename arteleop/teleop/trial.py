@@ -15,6 +15,7 @@ from numpy.typing import NDArray
 
 from arteleop.analysis import (
     AnalysisInputError,
+    idle_share,
     log_dimensionless_jerk,
     normalized_jerk,
     path_length,
@@ -215,8 +216,9 @@ class TrialResult:
             jerk, length = normalized_jerk(t, hand, "xy"), path_length(t, hand)
             ldlj, sparc = log_dimensionless_jerk(t, hand, "xy"), spectral_arc_length(t, hand, "xy")
             peaks = float(submovement_count(t, hand, "xy"))
+            idle = idle_share(t, hand, "xy")
         except AnalysisInputError:  # fewer than 8 samples, or no movement
-            jerk = length = ldlj = sparc = peaks = float("nan")
+            jerk = length = ldlj = sparc = peaks = idle = float("nan")
         latency = self.latency_wall_ms if len(self.latency_wall_ms) else self.latency_sim_ms
         return {
             "modality": self.modality,
@@ -229,6 +231,7 @@ class TrialResult:
             "ldlj_xy": ldlj,
             "sparc_xy": sparc,
             "submovements_xy": peaks,
+            "idle_share_xy": idle,
             "grasp_attempts": self.grasp_attempts,
             "hand_path_length_m": length,
             "latency_median_ms": _median(latency),

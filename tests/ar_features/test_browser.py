@@ -19,6 +19,7 @@ from arteleop.ar_features import (
     ArCues,
     DisplayFrame,
     OperatorView,
+    PredictedArm,
     ViewAssets,
     ViewConfig,
 )
@@ -185,3 +186,33 @@ def test_live_input_shows_beside_the_docked_panel(
         "blue": int((b - np.maximum(r, g) > 35).sum()),
     }
     assert min(handles.values()) >= 50, handles
+
+
+def _amber(shot: NDArray[np.uint8], scene_px: tuple[float, float]) -> NDArray[np.bool_]:
+    """The predictive ghost's amber over the scene: red well above green, green well above
+    blue (the yellow bowl has red and green alike; the shaded red robot, no green)."""
+    r, g, b = (shot[:, : int(scene_px[0]), k].astype(int) for k in range(3))
+    return (r - g > 40) & (g - b > 40)
+
+
+def test_the_predictive_ghost_shows_in_its_colour_under_predictive_only(
+    moment: tuple[DisplayFrame, ViewAssets], tmp_path: Path
+) -> None:
+    """Where the commands sent will put the arm (here its shoulder swung 0.35 rad ahead of
+    the delayed frame), drawn under ``predictive`` and not under ``none`` or ``embodiment``."""
+    frame, assets, _ = moment
+    ahead = frame.arm_q_rad + np.array([0.35, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    predicted = PredictedArm(frame.time_s + 0.5, ahead, frame.T_base_gripper, 0.0)
+    frame = replace(frame, predicted=predicted)
+    config = ViewConfig(port=0)
+    shots = {}
+    with OperatorView(config, assets) as view:
+        view.show(replace(frame, cues=MODALITIES["none"]))
+        with browser_page(view.url) as page:
+            for name in ("none", "embodiment", "predictive"):
+                view.show(replace(frame, cues=MODALITIES[name]))
+                shots[name] = page.screenshot(tmp_path / f"{name}.png")
+            scene_px = page.scene_size_px()
+    amber = {name: int(_amber(shot, scene_px).sum()) for name, shot in shots.items()}
+    assert amber["none"] < 50 and amber["embodiment"] < 50, amber
+    assert amber["predictive"] > 2000, amber

@@ -140,6 +140,26 @@ def test_the_operator_remembers_a_hidden_bowl_and_carries_it_with_the_hand() -> 
     np.testing.assert_array_equal(memory.bowl_m(look([0.7, 0.0, 0.1], None)), [0.6, -0.4, -0.2])
 
 
+def test_a_carried_bowl_is_judged_within_its_own_frame_under_the_predictive_ghost() -> None:
+    """The predictive ghost's gripper is 15 cm up (lifting) while the delayed frame still shows
+    the arm, and the bowl in its hand, at the table: the bowl was not left behind, and it is
+    believed where the lifting hand carries it."""
+    memory = BowlMemory()
+    at_grasp = Perceived(
+        np.array([0.5, -0.3, 0.0]), np.array([0.6, -0.4, -0.2]), np.zeros(3), True, True,
+        np.eye(3) * 1e-4, np.eye(3) * 1e-4, False,
+    )  # fmt: skip
+    memory.grasp(at_grasp, at_grasp.bowl_m)
+    lifting = replace(
+        at_grasp, gripper_m=np.array([0.5, -0.3, 0.15]), lead_m=np.array([0, 0, 0.15])
+    )
+    assert not memory.left_behind(lifting)
+    np.testing.assert_allclose(memory.bowl_m(lifting), [0.6, -0.4, -0.05])
+    # Had the grasp missed, the frame's own arm rises while the bowl stays: left behind.
+    missed = replace(lifting, lead_m=np.zeros(3))
+    assert memory.left_behind(missed)
+
+
 def test_the_bar_and_beam_are_read_along_the_drawn_beam() -> None:
     view = _view(MODALITIES["manipulation"])
     beam = view.gripper_m - view.grasp_point_m()  # the layers' own grasp point

@@ -71,7 +71,7 @@ def test_study_init_writes_the_commented_default(tmp_path: Path, capsys) -> None
          "s.toml line 2: unknown key 'ordr'. Valid keys: name, seed, modalities, order, "
          "orders, trials_per_modality, timeout_s, delay_ms, camera_offset_mm, "
          "camera_offset_deg, camera_pose, start_xy_m, target_xy_m, familiarization, cohort, "
-         "participants, operator, hand_filter."),
+         "participants, operator, hand_filter, conditions."),
         ("camera_offset_mm = [600, 0, 0]\n",
          "s.toml line 1: camera_offset_mm = [600.0, 0.0, 0.0]: expected three numbers (mm, "
          "camera frame) whose length is at most 500 mm."),
@@ -87,7 +87,7 @@ def test_study_init_writes_the_commented_default(tmp_path: Path, capsys) -> None
          "s.toml line 1: start_xy_m must be two numbers (x, y), got [0.68]."),
         ('modalities = ["none", "ful"]\n',
          "s.toml line 1: modalities = ['none', 'ful']: expected one or more of none, "
-         "manipulation, embodiment, task, full."),
+         "manipulation, embodiment, task, full, predictive (or AR layers joined by '+')."),
         ("[cohort]\nsize = 5\navr_experts = 7\n",
          "s.toml line 2: cohort: 7 AR/VR experts and 7 gamers, 4 of them both, do not fit 5 "
          "participants: both_experts must not exceed either count, and avr_experts + "
@@ -103,7 +103,7 @@ def test_study_init_writes_the_commented_default(tmp_path: Path, capsys) -> None
          "modality, so 1 is the only value it can record."),
         ("seed = \n", "s.toml: not valid TOML: Invalid value (at line 1, column 8)."),
         ('modalities = ["none", "full"]\norder = "listed"\norders = [["none", "full"], ["full"]]\n',
-         "s.toml line 3: orders = ...: sequence 2, ['full'], must name each of the 2 modalities "
+         "s.toml line 3: orders = ...: sequence 2, ['full'], must name each of the 2 conditions "
          "['none', 'full'] exactly once."),
         ('orders = [["none", "full"]]\n',
          "s.toml line 1: orders = [['none', 'full']]: give sequences in orders exactly when "

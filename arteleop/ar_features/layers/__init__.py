@@ -3,7 +3,7 @@
 from arteleop.ar_features.layers.beam import BeamLayer
 from arteleop.ar_features.layers.cloud import CloudLayer
 from arteleop.ar_features.layers.distance_bar import DistanceBarLayer
-from arteleop.ar_features.layers.ghost import GhostLayer
+from arteleop.ar_features.layers.ghost import GhostLayer, PredictiveGhostLayer
 from arteleop.ar_features.layers.grip_bar import GripBarLayer
 from arteleop.ar_features.layers.target import TargetLayer
 
@@ -13,5 +13,6 @@ __all__ = [
     "DistanceBarLayer",
     "GhostLayer",
     "GripBarLayer",
+    "PredictiveGhostLayer",
     "TargetLayer",
 ]

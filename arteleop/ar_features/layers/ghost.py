@@ -1,7 +1,9 @@
-"""Embodiment cue: a 1:1 translucent model of the robot, animated by its joint encoders.
+"""Ghosts: 1:1 translucent models of the robot, built from the same URDF and render meshes as
+the head camera's scene.
 
-It shows the arm where the camera cannot: out of the image, or nearer than the sensor's
-minimum range. Built from the same URDF and render meshes as the head camera's scene.
+The embodiment cue is animated by the joint encoders: it shows the arm where the camera cannot
+(out of the image, or nearer than the sensor's minimum range). The predictive ghost shows the
+arm where the commands already sent will put it, ahead of a delayed view.
 """
 
 from __future__ import annotations
@@ -16,14 +18,16 @@ from viser.extras import ViserUrdf
 from arteleop.ar_features.assets import ViewAssets
 from arteleop.ar_features.display_frame import DisplayFrame
 from arteleop.ar_features.layer import Layer
-from arteleop.ar_features.layers.colors import GHOST_RGBA
+from arteleop.ar_features.layers.colors import GHOST_RGBA, PREDICTIVE_RGBA
 from arteleop.transforms import make_transform, transform_to_pose
 
 GHOST_NODE = "/ar/ghost"
+PREDICTIVE_NODE = "/ar/predictive_ghost"
 
 
 class GhostLayer(Layer):
-    """The robot model; its base frame is the scene's world frame (Baxter's base).
+    """The robot model at the frame's encoder readings; its base frame is the scene's world
+    frame (Baxter's base).
 
     The first update poses every joint through viser's ``ViserUrdf.update_cfg``; later ones
     pose only the joints that move (the right arm and its fingers) from each joint's origin and
@@ -32,13 +36,15 @@ class GhostLayer(Layer):
     """
 
     cue = "ghost"
+    node = GHOST_NODE
+    rgba = GHOST_RGBA
 
     def __init__(self, server: viser.ViserServer, assets: ViewAssets) -> None:
         super().__init__()
         self._assets = assets
-        self._root = server.scene.add_frame(GHOST_NODE, show_axes=False, visible=False)
+        self._root = server.scene.add_frame(self.node, show_axes=False, visible=False)
         self._urdf = ViserUrdf(
-            server, assets.robot_urdf, root_node_name=GHOST_NODE, mesh_color_override=GHOST_RGBA
+            server, assets.robot_urdf, root_node_name=self.node, mesh_color_override=self.rgba
         )
         self._names = self._urdf.get_actuated_joint_names()
         moving = {*assets.arm_joints, *assets.finger_joints}
@@ -52,8 +58,12 @@ class GhostLayer(Layer):
         ]
         self._posed = False
 
+    def arm(self, frame: DisplayFrame) -> tuple[NDArray[np.float64], float]:
+        """The arm's joints (rad) and the gripper's closure that the ghost shows."""
+        return frame.arm_q_rad, frame.gripper_closure
+
     def update(self, frame: DisplayFrame) -> None:
-        q = self._assets.joint_positions(frame.arm_q_rad, frame.gripper_closure)
+        q = self._assets.joint_positions(*self.arm(frame))
         if not self._posed:
             self._urdf.update_cfg(np.array([q.get(name, 0.0) for name in self._names]))
             self._posed = True
@@ -65,6 +75,28 @@ class GhostLayer(Layer):
 
     def _set_visible(self, visible: bool) -> None:
         self._root.visible = visible
+
+
+class PredictiveGhostLayer(GhostLayer):
+    """The robot model where the commands already sent will put it (:class:`PredictedArm`),
+    in its own colour; the frame's own arm where nothing is predicted (no delay to lead)."""
+
+    cue = "predictive_ghost"
+    node = PREDICTIVE_NODE
+    rgba = PREDICTIVE_RGBA
+
+    def __init__(self, server: viser.ViserServer, assets: ViewAssets) -> None:
+        super().__init__(server, assets)
+        # Only the arm is predicted: the rest of the robot, drawn around the egocentric
+        # camera, would tint the whole view and hide the delayed arm behind it.
+        shoulder = self._urdf._urdf.joint_map[assets.arm_joints[0]].child
+        for mesh in self._urdf._meshes:
+            mesh.visible = f"/{shoulder}/" in mesh.name
+
+    def arm(self, frame: DisplayFrame) -> tuple[NDArray[np.float64], float]:
+        if frame.predicted is None:
+            return super().arm(frame)
+        return frame.predicted.arm_q_rad, frame.predicted.gripper_closure
 
 
 def _joint_transform(joint: yourdfpy.Joint, q: float) -> NDArray[np.float64]:
