@@ -151,7 +151,7 @@ def _markdown(
     all_rows = tests[in_all & (tests["test"] != "anova")]
     for _, r in all_rows.iterrows():
         why = f" ({r['note']})" if isinstance(r["note"], str) and r["note"] else ""
-        network = r["subset"].removeprefix("all").replace(" @ ", " @ ")
+        network = r["subset"].removeprefix("all")  # " @ 250ms" within a network profile
         lines.append(
             f"| {r['measure']}{network} | {r['group_a']} | {r['group_b']} | {r['test'] or '-'}{why} | {r['n_a']}/{r['n_b']} "
             f"| {_fmt(r['statistic'])} | {_fmt(r['p_value'])} | {_fmt(r['effect_size'])} {r['effect_size_kind'] or ''} | {r['stars'] or ''} |"
@@ -169,7 +169,8 @@ def _markdown(
         )
     if result.cells is not None:
         lines += _delay_section(result.cells, tests[tests["subset"] == ANOVA_SUBSET])
-    sig = tests[(tests["stars"] != "") & tests["stars"].notna() & ~in_all]
+    subsets = ~in_all & (tests["subset"] != ANOVA_SUBSET)  # the ANOVA has its own section
+    sig = tests[(tests["stars"] != "") & tests["stars"].notna() & subsets]
     if len(sig):
         lines += ["", "## Significant results in subsets", ""]
         lines += [

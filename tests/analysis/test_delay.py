@@ -82,4 +82,6 @@ def test_the_report_has_the_cells_and_the_anova(tmp_path: Path) -> None:
     text = files["report.md"].read_text()
     assert "## Delay x cue" in text
     assert "| 500ms | predictive | 7/8 |" in text
+    assert "| completion_time_s @ 500ms | none | predictive |" in text  # pairwise, per delay
+    assert "delay x cue, completion_time_s" not in text  # not listed again among subsets
     assert pd.read_csv(files["cells.csv"]).shape == (4, 8)
