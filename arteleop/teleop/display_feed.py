@@ -217,9 +217,9 @@ class DisplayFeed:
         prediction of the arm."""
         while self._in_flight and self._in_flight[0][0].time_s + self._delay_s <= t:
             frame, applied = self._in_flight.popleft()
-            if self.predicted is not None:
-                frame = replace(frame, predicted=self.predicted)
             if self._display is not None:
+                if self.predicted is not None:
+                    frame = replace(frame, predicted=self.predicted)
                 with self._timer.stage("display"):
                     self._display.show(frame)
             self._latency.frame_shown(applied)
@@ -242,7 +242,5 @@ class DisplayFeed:
         (:meth:`deliver` shows it once the return link's delay is over)."""
         with self._timer.stage("point_cloud"):
             shown = with_cloud(frame, rgbd)
-        if self._display is None:
-            self._latency.frame_shown(applied_sample_time_s)
-            return
+        # Through the return link with or without a display: the wall-clock latency counts it.
         self._in_flight.append((shown, applied_sample_time_s))

@@ -163,7 +163,7 @@ class _Loop:
             track_every=config.rates.frames_per_track,
         )
         self._background = background
-        self._delivering = display is not None
+        self._delivering = config.render_camera
         self._gate_tracker = config.skip_hidden_tracker_renders
         self.hand_t: list[float] = []
         self.hand_p: list[NDArray[np.float64]] = []
