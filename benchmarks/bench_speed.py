@@ -1,7 +1,10 @@
 """Batch speed of synthetic trials, this checkout against a baseline commit, side by side.
 
 Runs the same trials (``--seeds`` per modality) in this checkout and in a git worktree of
-``--baseline``, at the same time, each on a core of its own, so both see the same machine. Prints
+``--baseline``, at the same time, each on a core of its own, so both see the same machine; the
+cores are swapped half-way through the seeds, since one core may be slower than the other (here
+an identical checkout ran 12 % slower on the first). ``--baseline HEAD`` on a clean checkout
+measures that noise: its ratios should be 1.00. Prints
 per modality the median batch speed (simulated seconds per wall second) of each and their
 ratio, and whether the trials' outcomes agree.
 
@@ -35,19 +38,25 @@ IDENTITY = ("outcome", "duration_s", "placement_error_m")
 NESTED = ("ik", "mapping")
 
 
-def worker(modalities: list[str], seeds: int, replay: bool) -> None:
-    """Run the trials with whichever ``arteleop`` is on the path; one JSON line per trial."""
+def worker(modalities: list[str], seeds: range, replay: bool) -> None:
+    """Run the trials with whichever ``arteleop`` is on the path; one JSON line per trial.
+
+    Both sides record their commands, so that their timed trials do the same work; the side
+    that replays them does so after its last trial, not between trials (replaying between
+    them made an identical checkout look 13 % slower than itself).
+    """
     import arteleop
     from arteleop.scene import RemoteSite
     from arteleop.teleop import TrialConfig, run_trial, trial_operator
 
     print(json.dumps({"package": str(Path(arteleop.__file__).parent)}), flush=True)
+    done = []
     for modality in modalities:
-        for seed in range(seeds):
+        for seed in seeds:
             config = TrialConfig(modality=modality, seed=seed)
             with RemoteSite(config.site) as site:
                 source = trial_operator(site, config)
-                commands = record_commands(site) if replay else None
+                commands = record_commands(site)
                 t0 = time.perf_counter()
                 result = run_trial(source, config, site)
                 wall = time.perf_counter() - t0
@@ -59,13 +68,15 @@ def worker(modalities: list[str], seeds: int, replay: bool) -> None:
                 "duration_s": result.duration_s, "wall_s": wall,
                 "stages_ms": {s.stage: s.latency_total_ms for s in result.stages},
             }  # fmt: skip
-            if commands is not None:
-                with RemoteSite(config.site) as fresh:
-                    line["replay_wall_s"] = replay_commands(fresh, commands)
-                    line["replay_same"] = bool(
-                        np.array_equal(fresh.observe(links=()).T_base_bowl, bowl)
-                    )
-            print(json.dumps(line), flush=True)
+            done.append((line, config, commands if replay else None, bowl))
+    for line, config, commands, bowl in done:
+        if commands is not None:
+            with RemoteSite(config.site) as fresh:
+                line["replay_wall_s"] = replay_commands(fresh, commands)
+                line["replay_same"] = bool(
+                    np.array_equal(fresh.observe(links=()).T_base_bowl, bowl)
+                )
+        print(json.dumps(line), flush=True)
 
 
 def record_commands(site: object) -> list[object]:
@@ -112,10 +123,13 @@ def baseline_tree(ref: str) -> Path:
     return tree
 
 
-def launch(tree: Path, core: int, args: argparse.Namespace, replay: bool) -> subprocess.Popen[str]:
+def launch(
+    tree: Path, core: int, args: argparse.Namespace, seeds: range, replay: bool
+) -> subprocess.Popen[str]:
     env = {**os.environ, "PYTHONPATH": str(tree), "OMP_NUM_THREADS": "1"}
     command = [sys.executable, str(Path(__file__).resolve()), "--worker",
-               "--seeds", str(args.seeds), "--modalities", args.modalities]  # fmt: skip
+               "--first-seed", str(seeds.start), "--seeds", str(len(seeds)),
+               "--modalities", args.modalities]  # fmt: skip
     if replay:
         command.append("--replay")
     return subprocess.Popen(
@@ -124,31 +138,51 @@ def launch(tree: Path, core: int, args: argparse.Namespace, replay: bool) -> sub
     )  # fmt: skip
 
 
+def run_side_by_side(trees: dict[str, Path], args: argparse.Namespace) -> dict[str, list[dict]]:
+    """Each tree's trials, on a core of its own at the same time; the first half of the seeds
+    with the checkout on the first core, the second half with the cores swapped (one core of
+    this machine ran the same code 12 % slower than the other)."""
+    cores = sorted(os.sched_getaffinity(0))
+    half = (args.seeds + 1) // 2
+    rows: dict[str, list[dict]] = {name: [] for name in trees}
+    for swap, seeds in enumerate((range(half), range(half, args.seeds))):
+        if not seeds:
+            continue
+        runs = {
+            name: launch(tree, cores[(i + swap) % len(cores)], args, seeds, replay=i == 0)
+            for i, (name, tree) in enumerate(trees.items())
+        }
+        for name, process in runs.items():
+            out, _ = process.communicate()
+            if process.returncode != 0:
+                sys.exit(f"{name}: the trials failed (exit {process.returncode})")
+            lines = [json.loads(line) for line in out.splitlines() if line.startswith("{")]
+            if not swap:
+                print(f"{name}: arteleop from {lines[0]['package']}")
+            rows[name] += lines[1:]
+    order = args.modalities.split(",")
+    for lines in rows.values():
+        lines.sort(key=lambda r: (order.index(r["modality"]), r["seed"]))
+    return rows
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--baseline", help="git commit to compare with, e.g. 88190a3")
     parser.add_argument("--seeds", type=int, default=5)
+    parser.add_argument("--first-seed", type=int, default=0, help=argparse.SUPPRESS)
     parser.add_argument("--modalities", default="none,manipulation,embodiment,task,full")
     parser.add_argument("--worker", action="store_true", help=argparse.SUPPRESS)
     parser.add_argument("--replay", action="store_true", help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.worker:
-        worker(args.modalities.split(","), args.seeds, args.replay)
+        seeds = range(args.first_seed, args.first_seed + args.seeds)
+        worker(args.modalities.split(","), seeds, args.replay)
         return
     if not args.baseline:
         parser.error("--baseline: give the commit to compare with, e.g. --baseline 88190a3")
-    cores = sorted(os.sched_getaffinity(0))
     trees = {"this checkout": ROOT, f"baseline {args.baseline}": baseline_tree(args.baseline)}
-    runs = {name: launch(tree, cores[i % len(cores)], args, replay=i == 0) for i, (name, tree)
-            in enumerate(trees.items())}  # fmt: skip
-    rows: dict[str, list[dict]] = {}
-    for name, process in runs.items():
-        out, _ = process.communicate()
-        if process.returncode != 0:
-            sys.exit(f"{name}: the trials failed (exit {process.returncode})")
-        lines = [json.loads(line) for line in out.splitlines() if line.startswith("{")]
-        print(f"{name}: arteleop from {lines[0]['package']}")
-        rows[name] = lines[1:]
+    rows = run_side_by_side(trees, args)
     new, old = rows.values()
     print(f"\n## Batch speed, one core each, {args.seeds} seeds per modality (x real time)\n")
     print(f"| modality | this checkout | baseline {args.baseline} | ratio | PyBullet alone "
