@@ -40,13 +40,15 @@ def _policy(
     value = np.zeros_like(_X)
     best = np.full_like(_X, _D[0])
     log_x = np.log(_X)
+    # Error left after a submovement of duration D from x: x * k / D * chi_3, as a multiple of
+    # the criterion; within 1 it ends there. Fixed across the iterations: only V changes.
+    left = (_X[:, None, None] * noise_k_s / durations[:, :, None]) * _Q[None, None, :]
+    outside = left > 1.0
+    log_left = np.log(np.maximum(left[outside], _X[0]))
+    future = np.zeros_like(left)
     for _ in range(60):
-        # Error left after a submovement of duration D from x: x * k / D * chi_3, as a multiple
-        # of the criterion; within 1 it ends there.
-        left = (_X[:, None, None] * noise_k_s / durations[:, :, None]) * _Q[None, None, :]
-        inside = left <= 1.0
-        future = np.interp(np.log(np.maximum(left, _X[0])), log_x, value)
-        expected = np.where(inside, 0.0, future).mean(axis=2)  # (nX, nD)
+        future[outside] = np.interp(log_left, log_x, value)
+        expected = future.mean(axis=2)  # (nX, nD)
         total = durations + look_cost_s + expected
         new = total.min(axis=1)
         best = _D[total.argmin(axis=1)]

@@ -23,6 +23,7 @@ from mink.solve_ik import build_ik
 from numpy.typing import ArrayLike, NDArray
 
 from arteleop.errors import ConfigurationError
+from arteleop.robot.ik_limits import HingeConfigurationLimit, KeptVelocityLimit
 from arteleop.robot.joints import GRIPPER_FRAME, RIGHT_ARM_JOINTS, JointLimits
 from arteleop.robot.mujoco_model import (
     ARM_COLLISION_BODIES,
@@ -126,8 +127,8 @@ class ArmIK:
             raise ConfigurationError(f"limits are for {limits.names}, expected {RIGHT_ARM_JOINTS}")
         velocities = dict(zip(RIGHT_ARM_JOINTS, limits.velocity.tolist(), strict=True))
         self.limits: list[mink.Limit] = [
-            mink.ConfigurationLimit(self.model),
-            mink.VelocityLimit(self.model, velocities),
+            HingeConfigurationLimit(self.model),
+            KeptVelocityLimit(self.model, velocities),
         ]
         if table_center_m is not None:
             arm = body_geoms(self.model, ARM_COLLISION_BODIES)

@@ -326,11 +326,8 @@ def _shape_triangles(
     if kind != p.GEOM_MESH:
         return None
     if filename:
-        import trimesh
-
-        mesh = trimesh.load(Path(filename.decode()), force="mesh", process=False)
-        vertices = np.asarray(mesh.vertices, dtype=np.float64) * dims
-        return _flat(vertices[np.asarray(mesh.faces)])
+        vertices, faces = _mesh_file(filename.decode())
+        return _flat((vertices * dims)[faces])
     if memory_mesh is None:
         return None
     vertices, triangles = memory_mesh
@@ -340,6 +337,19 @@ def _shape_triangles(
     normals = np.where(length > 1e-9, vertices / np.maximum(length, 1e-9), [1.0, 0.0, 0.0])
     corners = np.asarray(triangles).ravel()
     return np.hstack([vertices[corners], normals[corners]]).astype(np.float32)
+
+
+@functools.cache
+def _mesh_file(path: str) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
+    """A mesh file's vertices (V, 3) and faces (F, 3), read once per process: every site of
+    a study's worker draws the same robot."""
+    import trimesh
+
+    mesh = trimesh.load(Path(path), force="mesh", process=False)
+    vertices = np.asarray(mesh.vertices, dtype=np.float64)
+    faces = np.asarray(mesh.faces, dtype=np.int64)
+    vertices.flags.writeable = faces.flags.writeable = False
+    return vertices, faces
 
 
 def _convex(points: NDArray[np.float64]) -> NDArray[np.float32]:

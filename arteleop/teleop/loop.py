@@ -22,7 +22,7 @@ from arteleop.ar_features import Display, DisplayFrame, modality_cues
 from arteleop.errors import ConfigurationError
 from arteleop.operator import OperatorSource, SyntheticSource, WearableSample, synthetic_source
 from arteleop.robot import RIGHT_ARM_JOINTS
-from arteleop.scene import BowlTracker, RemoteSite
+from arteleop.scene import BowlTracker, RemoteSite, SiteState
 from arteleop.teleop.clock import LoopClock
 from arteleop.teleop.controller import TeleopController
 from arteleop.teleop.display_feed import DisplayFeed
@@ -183,18 +183,20 @@ class _Loop:
                 self.feed.deliver(t)
             if t > self.config.timeout_s:
                 return self._result(self.monitor.timed_out(), t)
-            if tick.camera:
+            if tick.camera or tick.control:
+                # One observation for both: nothing moves the physics between their turns.
                 state = site.observe()
-                self.feed.camera_tick(state, control.engaged, control.applied_sample_time_s)
-                outcome = self.monitor.camera(
-                    t, state, site.capture, site.sight_bowl if self._gate_tracker else None
-                )
-                if outcome is not None:
-                    return self._result(outcome, t)
-                if self._progress is not None:
-                    self._progress(self._status(t))
-            if tick.control and not self._control(t):
-                return self._result(self.monitor.operator_stopped(), t)
+                if tick.camera:
+                    self.feed.camera_tick(state, control.engaged, control.applied_sample_time_s)
+                    outcome = self.monitor.camera(
+                        t, state, site.capture, site.sight_bowl if self._gate_tracker else None
+                    )
+                    if outcome is not None:
+                        return self._result(outcome, t)
+                    if self._progress is not None:
+                        self._progress(self._status(t))
+                if tick.control and not self._control(t, state):
+                    return self._result(self.monitor.operator_stopped(), t)
             if tick.physics:
                 with timer.stage("trajectory"):
                     command = control.physics_tick()
@@ -203,11 +205,11 @@ class _Loop:
                 with timer.stage("physics"):
                     site.step()
 
-    def _control(self, t: float) -> bool:
+    def _control(self, t: float, state: SiteState) -> bool:
         """One control tick; False once the operator has stopped before letting go of the bowl.
 
         An operator who stops after the release (a recording that ends there) has done the task:
-        the robot holds while the bowl settles and is tracked.
+        the robot holds while the bowl settles and is tracked. ``state``: the site now.
         """
         control, timer = self.control, self.timer
         frame = self.feed.seen_by_operator(t)
@@ -233,7 +235,6 @@ class _Loop:
                     self.samples_lost_wearable += 1
                 control.receive(received.time_s, received.sensor_quat_wxyz, received.grip)
                 self._received = received
-        state = self.site.observe()
         with timer.stage("control_tick"):
             command = control.control_tick(state)
             if command is not None:

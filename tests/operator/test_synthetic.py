@@ -348,6 +348,31 @@ def test_fitts_law_comes_out_of_the_planner_and_a_costly_look_slows_the_movement
     assert costly > cheap
 
 
+@pytest.mark.parametrize(("look_cost_s", "noise_k_s"), [(0.05, 0.012), (0.6, 0.012), (1.5, 0.03)])
+def test_submovement_policy_is_the_plain_dynamic_programme_to_the_bit(
+    look_cost_s: float, noise_k_s: float
+) -> None:
+    """The planner keeps what does not change across its iterations; its table must equal the
+    programme written out plainly (the module docstring's formula), value for value."""
+    from arteleop.operator.submovements import _D, _Q, _X, _policy
+
+    durations = _D[None, :]
+    value = np.zeros_like(_X)
+    for _ in range(60):
+        left = (_X[:, None, None] * noise_k_s / durations[:, :, None]) * _Q[None, None, :]
+        future = np.interp(np.log(np.maximum(left, _X[0])), np.log(_X), value)
+        expected = np.where(left <= 1.0, 0.0, future).mean(axis=2)
+        total = durations + look_cost_s + expected
+        new, best = total.min(axis=1), _D[total.argmin(axis=1)]
+        if np.max(np.abs(new - value)) < 1e-6:
+            break
+        value = new
+    kept_value, kept_best = _policy.__wrapped__(look_cost_s, noise_k_s)
+    np.testing.assert_array_equal(kept_value, value)
+    np.testing.assert_array_equal(kept_best, best)
+    assert len(np.unique(best)) > 5, "premise: the durations vary with the distance"
+
+
 @pytest.mark.parametrize(
     ("build", "message"),
     [

@@ -4,6 +4,7 @@ import mink
 import numpy as np
 import pytest
 
+from arteleop.errors import ConfigurationError
 from arteleop.robot import (
     GRIPPER_FRAME,
     REST_POSE,
@@ -12,6 +13,7 @@ from arteleop.robot import (
     BaxterKinematics,
 )
 from arteleop.robot.ik import ArmIK
+from arteleop.robot.ik_limits import HingeConfigurationLimit, KeptVelocityLimit
 from arteleop.robot.mapping import R_DOWN
 from arteleop.scene import Workspace
 
@@ -61,12 +63,25 @@ def test_solves_grasp_poses_over_start_and_target(ik: ArmIK, kin: BaxterKinemati
 def test_daqp_on_minks_rows_gives_minks_joints_to_the_bit(
     ik: ArmIK, description: BaxterDescription, kin: BaxterKinematics
 ) -> None:
-    """The IK hands mink's rows to daqp itself; mink's own solve_ik (through qpsolvers) must
-    give the same joints, tick for tick, near the table (collision rows active) and out of
-    reach (velocity limits active)."""
+    """The IK hands its rows to daqp itself, keeping the joint limits' fixed rows between
+    steps; mink's own solve_ik (through qpsolvers) with mink's own limits must give the same
+    joints, tick for tick, near the table (collision rows active) and out of reach (velocity
+    limits active)."""
     table = Workspace().table_box()
-    reference = ArmIK(description.urdf_path, kin.limits(RIGHT_ARM_JOINTS), REST_POSE.right,
+    lim = kin.limits(RIGHT_ARM_JOINTS)
+    reference = ArmIK(description.urdf_path, lim, REST_POSE.right,
                       table.center_m, table.half_extents_m)  # fmt: skip
+    velocities = dict(zip(RIGHT_ARM_JOINTS, lim.velocity.tolist(), strict=True))
+    minks_limits = [
+        mink.ConfigurationLimit(reference.model),
+        mink.VelocityLimit(reference.model, velocities),
+        *[x for x in reference.limits if isinstance(x, mink.CollisionAvoidanceLimit)],
+    ]
+    assert [type(x) for x in ik.limits] == [
+        HingeConfigurationLimit,
+        KeptVelocityLimit,
+        mink.CollisionAvoidanceLimit,
+    ]
     low = _fk(kin, np.array([0.3, -0.3, 0.0, 1.0, 0.0, 0.8, 0.0]))
     low[2, 3] = table.center_m[2] + table.half_extents_m[2] - 0.02  # under the table top
     far = low.copy()
@@ -79,10 +94,42 @@ def test_daqp_on_minks_rows_gives_minks_joints_to_the_bit(
         for _ in range(60):
             q = ik.step(0.01).q_rad
             v = mink.solve_ik(reference.configuration, reference.tasks, 0.01, "daqp", 1e-6,
-                              limits=reference.limits)  # fmt: skip
+                              limits=minks_limits)  # fmt: skip
             reference.configuration.integrate_inplace(v, 0.01)
             np.testing.assert_array_equal(q, reference.configuration.q)
     assert ik.step(0.01).position_error_m > 0.3, "premise: the far target is out of reach"
+
+
+def test_kept_limit_rows_equal_minks_to_the_bit(ik: ArmIK, kin: BaxterKinematics) -> None:
+    """Inside, on and beyond the joint limits, and for two step durations."""
+    lim = kin.limits(RIGHT_ARM_JOINTS)
+    velocities = dict(zip(RIGHT_ARM_JOINTS, lim.velocity.tolist(), strict=True))
+    pairs = [
+        (ik.limits[0], mink.ConfigurationLimit(ik.model)),
+        (ik.limits[1], mink.VelocityLimit(ik.model, velocities)),
+    ]
+    rng = np.random.default_rng(3)
+    span = lim.upper - lim.lower
+    for q in (*rng.uniform(lim.lower - 0.1 * span, lim.upper + 0.1 * span, (50, 7)),
+              lim.lower, lim.upper):  # fmt: skip
+        ik.reset(q)
+        for dt in (0.01, 0.02, 0.01):
+            for kept, minks in pairs:
+                ours = kept.compute_qp_inequalities(ik.configuration, dt)
+                theirs = minks.compute_qp_inequalities(ik.configuration, dt)
+                np.testing.assert_array_equal(ours.G, theirs.G)
+                np.testing.assert_array_equal(ours.h, theirs.h)
+
+
+def test_hinge_limit_refuses_a_ball_joint() -> None:
+    import mujoco
+
+    model = mujoco.MjModel.from_xml_string(
+        "<mujoco><worldbody><body><joint type='ball'/><geom size='0.1'/></body></worldbody>"
+        "</mujoco>"
+    )
+    with pytest.raises(ConfigurationError, match="hinge or slide joints only"):
+        HingeConfigurationLimit(model)
 
 
 def test_each_step_respects_the_velocity_limits(ik: ArmIK, kin: BaxterKinematics) -> None:
