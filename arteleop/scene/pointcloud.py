@@ -59,11 +59,17 @@ def frame_to_point_cloud(
     ``T_base_camera`` places it (4x4, m); by default the pose the frame was stamped with.
     """
     depth = frame.depth_m[::stride, ::stride]
-    grid = depth_to_camera_points(depth, frame.intrinsics.strided(stride))
-    valid = depth > 0
-    rows, cols = np.nonzero(valid)
+    rows, cols = np.nonzero(depth > 0)
+    # depth_to_camera_points' arithmetic on the valid pixels alone (same numbers, a third of
+    # the work at 640x480, where the cloud is built 30 times a second).
+    K = frame.intrinsics.strided(stride)
+    z = depth[rows, cols].astype(np.float64)
+    camera = np.column_stack(
+        [(cols.astype(np.float64) - K.cx_px) / K.fx_px * z,
+         (rows.astype(np.float64) - K.cy_px) / K.fy_px * z, z]
+    )  # fmt: skip
     T = frame.T_base_camera if T_base_camera is None else T_base_camera
-    points = transform_points(T, grid[valid])
-    colors = frame.rgb[::stride, ::stride][valid]
+    points = transform_points(T, camera)
+    colors = frame.rgb[::stride, ::stride][rows, cols]
     pixels = np.column_stack([rows * stride, cols * stride])
     return PointCloud(points, colors, pixels, stride / frame.intrinsics.fx_px)

@@ -39,3 +39,24 @@ def test_strided_cloud_is_a_subset_of_the_full_cloud() -> None:
     index = {tuple(px): i for i, px in enumerate(full.pixels.tolist())}
     rows = [index[tuple(px)] for px in thin.pixels.tolist()]
     np.testing.assert_allclose(thin.points_m, full.points_m[rows], atol=1e-12)
+
+
+def test_cloud_is_the_grid_back_projection_at_the_valid_pixels_to_the_bit() -> None:
+    """The cloud back-projects only the valid pixels; the numbers are those of the whole grid."""
+    from arteleop.scene.pointcloud import depth_to_camera_points
+
+    rng = np.random.default_rng(1)
+    depth = rng.uniform(0.5, 4.0, size=(96, 128)).astype(np.float32)
+    depth[rng.random(depth.shape) < 0.3] = 0.0
+    T = pose_to_transform(
+        [0.3, 0.1, 1.2], [0.8, -0.2, 0.4, 0.4] / np.linalg.norm([0.8, -0.2, 0.4, 0.4])
+    )
+    frame = _frame(depth, T)
+    for stride in (1, 2, 3):
+        thin = depth[::stride, ::stride]
+        grid = depth_to_camera_points(thin, frame.intrinsics.strided(stride))
+        valid = thin > 0
+        cloud = frame_to_point_cloud(frame, stride)
+        np.testing.assert_array_equal(cloud.points_m, transform_points(T, grid[valid]))
+        np.testing.assert_array_equal(cloud.colors, frame.rgb[::stride, ::stride][valid])
+        np.testing.assert_array_equal(cloud.pixels, np.argwhere(valid) * stride)
