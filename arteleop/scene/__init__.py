@@ -23,7 +23,7 @@ from arteleop.scene.bowl import (
 )
 from arteleop.scene.bowl_sight import BowlSight, BowlSightConfig
 from arteleop.scene.bowl_tracking import BowlTrack, BowlTracker, BowlTrackerConfig
-from arteleop.scene.camera import DepthSensor, HeadCamera, RGBDFrame
+from arteleop.scene.camera import HeadCamera, RGBDFrame
 from arteleop.scene.camera_config import CameraIntrinsics, HeadCameraConfig
 from arteleop.scene.camera_geometry import CameraGeometry
 from arteleop.scene.depth_mesh import DepthMesh, MeshReconstructor, MeshReconstructorConfig
@@ -64,7 +64,6 @@ __all__ = [
     "CollisionBox",
     "DepthMesh",
     "DepthNoiseConfig",
-    "DepthSensor",
     "HeadCamera",
     "HeadCameraConfig",
     "MarkerBody",

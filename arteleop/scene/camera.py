@@ -96,43 +96,6 @@ def render(client: BulletClient, request: RenderRequest) -> RawImage:
     )
 
 
-@dataclass(frozen=True)
-class DepthSensor:
-    """What the Kinect makes of a rendered image: metric depth, its noise and range.
-
-    A frame's noise is drawn from ``seed`` and the frame's timestamp alone, not from the frames
-    made before it, so the same image gives the same frame in any process.
-
-    Attributes:
-        config: The camera's clip planes, range, intrinsics and noise model.
-        seed: Seed of the depth noise.
-        T_base_camera: The registered pose (4x4) the frames are stamped with.
-    """
-
-    config: HeadCameraConfig
-    seed: int
-    T_base_camera: NDArray[np.float64]
-
-    def frame(self, raw: RawImage, timestamp_s: float) -> RGBDFrame:
-        """The frame of a rendered image taken at ``timestamp_s`` (s)."""
-        c = self.config
-        intrinsics = c.intrinsics
-        rgb = raw.rgba[..., :3].copy()
-        zbuf = raw.zbuf.astype(np.float64)
-        n, f = c.near_clip_m, c.far_clip_m
-        depth = f * n / (f - (f - n) * zbuf)
-        depth[zbuf >= 1.0] = 0.0  # background: nothing rendered there
-        # The frame's instant in microseconds: distinct for any two camera ticks.
-        rng = np.random.default_rng((self.seed, round(timestamp_s * 1e6)))
-        depth = apply_depth_noise(depth.astype(np.float32), intrinsics.fx_px, c.noise, rng)
-        depth[(depth < c.min_depth_m) | (depth > c.max_depth_m)] = 0.0
-        segmentation = None
-        if raw.segmentation is not None:
-            segmentation = raw.segmentation & ((1 << 24) - 1)
-            segmentation[raw.segmentation < 0] = -1
-        return RGBDFrame(rgb, depth, intrinsics, self.T_base_camera, timestamp_s, segmentation)
-
-
 class HeadCamera:
     """Renders RGB-D frames of a PyBullet scene with the CPU TinyRenderer.
 
@@ -157,9 +120,7 @@ class HeadCamera:
         """The true pose (the simulator's): for rendering and for measuring errors."""
         self.registered = CameraGeometry(config, config.T_base_registered(self.T_base_camera))
         """The pose the remote system uses for the camera: its frames carry it."""
-        self.sensor = DepthSensor(config, seed, self.registered.T_base_camera)
-        """The sensor model that turns a rendered image into a frame (plain data: the render
-        process applies it too)."""
+        self._seed = seed
         self._projection = self.intrinsics.opengl_projection(config.near_clip_m, config.far_clip_m)
         view = invert_transform(self.T_base_camera @ _T_CV_GL)
         # PyBullet takes OpenGL matrices as 16 floats in column-major order.
@@ -179,7 +140,22 @@ class HeadCamera:
 
     def frame(self, raw: RawImage, timestamp_s: float) -> RGBDFrame:
         """Turn a rendered image into a frame: metric depth, the sensor's noise and range."""
-        return self.sensor.frame(raw, timestamp_s)
+        c = self.config
+        rgb = raw.rgba[..., :3].copy()
+        zbuf = raw.zbuf.astype(np.float64)
+        n, f = c.near_clip_m, c.far_clip_m
+        depth = f * n / (f - (f - n) * zbuf)
+        depth[zbuf >= 1.0] = 0.0  # background: nothing rendered there
+        # The frame's instant in microseconds: distinct for any two camera ticks.
+        rng = np.random.default_rng((self._seed, round(timestamp_s * 1e6)))
+        depth = apply_depth_noise(depth.astype(np.float32), self.intrinsics.fx_px, c.noise, rng)
+        depth[(depth < c.min_depth_m) | (depth > c.max_depth_m)] = 0.0
+        segmentation = None
+        if raw.segmentation is not None:
+            segmentation = raw.segmentation & ((1 << 24) - 1)
+            segmentation[raw.segmentation < 0] = -1
+        T = self.registered.T_base_camera
+        return RGBDFrame(rgb, depth, self.intrinsics, T, timestamp_s, segmentation)
 
     def check_sees(
         self, points_base_m: dict[str, NDArray[np.float64]], margin_px: int = 10

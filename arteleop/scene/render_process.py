@@ -3,9 +3,7 @@
 PyBullet's TinyRenderer is single-threaded and takes 20-30 ms for a 320x240 frame of this scene,
 most of a 33 ms camera period. Rendered in the loop's own thread, it leaves too little time for
 the 100 Hz control and the 240 Hz physics, and a real-time run falls behind the wall clock. Here
-the loop hands over the scene's state and goes on; the frame comes back when it is ready, the
-sensor model (metric depth and its noise) applied there too: at 640x480 it costs a third of the
-render, and the loop's core has the point cloud and the view to serve.
+the loop hands over the scene's state and goes on; the frame comes back when it is ready.
 
 The child is a fresh interpreter (``python -m arteleop.scene.render_child``), talking over a
 socket pair. Not ``fork``: the parent may run threads (viser's server) that a forked child would
@@ -23,7 +21,7 @@ from pathlib import Path
 
 from arteleop.errors import ArteleopError
 from arteleop.lifetime import Closeable
-from arteleop.scene.camera import DepthSensor, RenderRequest, RGBDFrame
+from arteleop.scene.camera import RawImage, RenderRequest
 from arteleop.scene.render_world import RenderWorld, SceneState
 from arteleop.scene.workspace import Workspace
 
@@ -71,17 +69,14 @@ class RenderProcess(Closeable):
         """A frame has been submitted and not yet collected."""
         return self._busy
 
-    def submit(
-        self, state: SceneState, request: RenderRequest, sensor: DepthSensor, timestamp_s: float
-    ) -> None:
-        """Render ``state`` as ``request`` says and make it a frame of ``sensor`` taken at
-        ``timestamp_s`` (s); collect the frame with :meth:`poll`."""
+    def submit(self, state: SceneState, request: RenderRequest) -> None:
+        """Render ``state`` as ``request`` says; collect the result with :meth:`poll`."""
         if self._busy:
             raise RenderProcessError("A frame is still being rendered: poll() it first.")
-        self._conn.send((state, request, sensor, timestamp_s))
+        self._conn.send((state, request))
         self._busy = True
 
-    def poll(self) -> RGBDFrame | None:
+    def poll(self) -> RawImage | None:
         """The submitted frame if it is ready, else None (never waits)."""
         if not self._busy or not self._conn.poll():
             return None
@@ -103,7 +98,7 @@ class RenderProcess(Closeable):
         self._conn.close()
 
     @staticmethod
-    def _check(message: RGBDFrame | BaseException) -> RGBDFrame:
+    def _check(message: RawImage | BaseException) -> RawImage:
         if isinstance(message, BaseException):
             raise RenderProcessError(f"The render process failed: {message!r}") from message
         return message
@@ -120,10 +115,10 @@ def serve(conn: Connection) -> None:
     conn.send("ready")
     try:
         while (message := conn.recv()) is not None:
-            state, request, sensor, timestamp_s = message
+            state, request = message
             try:
                 world.sync(state)
-                conn.send(sensor.frame(world.render(request), timestamp_s))
+                conn.send(world.render(request))
             except Exception as err:  # sent to the parent, which raises it
                 conn.send(err)
     except EOFError:

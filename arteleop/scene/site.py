@@ -213,6 +213,7 @@ class RemoteSite(Closeable):
         self._T_camera_base_true = invert_transform(self.camera.T_base_camera)
         self._steps = 0
         self._renderer: RenderProcess | None = None
+        self._requested_s = 0.0
 
     # -- time -----------------------------------------------------------------------------------
     @property
@@ -265,6 +266,7 @@ class RemoteSite(Closeable):
         self.robot.reset(self.config.rest_pose)
         self.place_bowl(self.config.workspace.start_xy_m)
         self._steps = 0
+        self._requested_s = 0.0
 
     def place_bowl(
         self,
@@ -370,9 +372,8 @@ class RemoteSite(Closeable):
         """Start rendering the current state in a render process of its own, so the loop goes on
         while another core renders; collect the frame with :meth:`poll_frame`. One frame at a
         time; the process starts on the first request unless already started."""
-        self.start_render_process().submit(
-            self.scene_state(), self.camera.request(), self.camera.sensor, self.time_s
-        )
+        self.start_render_process().submit(self.scene_state(), self.camera.request())
+        self._requested_s = self.time_s
 
     @property
     def frame_pending(self) -> bool:
@@ -381,7 +382,8 @@ class RemoteSite(Closeable):
 
     def poll_frame(self) -> RGBDFrame | None:
         """The requested frame if it is ready (stamped with the time it was requested)."""
-        return self._renderer.poll() if self._renderer is not None else None
+        raw = self._renderer.poll() if self._renderer is not None else None
+        return None if raw is None else self.camera.frame(raw, self._requested_s)
 
     # -- start-up checks ------------------------------------------------------------------------
     def _check_reach(self, ws: Workspace) -> None:
