@@ -53,13 +53,16 @@ class RGBDFrame:
 @dataclass(frozen=True)
 class RenderRequest:
     """One image to render: size (px), OpenGL view and projection matrices (16 floats each,
-    column-major, as PyBullet takes them), and whether to return the segmentation mask."""
+    column-major, as PyBullet takes them), whether to return the segmentation mask, and
+    ``stride``: return every stride-th row and column of the full-size image (a display that
+    shows a thinned cloud needs no more, and the rest need not be copied or noised)."""
 
     width_px: int
     height_px: int
     view_gl: list[float]
     projection_gl: list[float]
     with_segmentation: bool = False
+    stride: int = 1
 
 
 @dataclass(frozen=True)
@@ -70,11 +73,26 @@ class RawImage:
         rgba: (H, W, 4) uint8 colour.
         zbuf: (H, W) float32 OpenGL depth buffer, 0 (near clip) .. 1 (far clip or nothing).
         segmentation: (H, W) int32 PyBullet mask (body id + (link + 1) << 24, -1 background).
+        stride: The image keeps every stride-th row and column of the rendered one.
     """
 
     rgba: NDArray[np.uint8]
     zbuf: NDArray[np.float32]
     segmentation: NDArray[np.int32] | None = None
+    stride: int = 1
+
+    def thinned(self, stride: int) -> RawImage:
+        """Every ``stride``-th row and column of this image (pixel (0, 0) kept), contiguous."""
+        if stride == 1:
+            return self
+        keep = (slice(None, None, stride), slice(None, None, stride))
+        seg = self.segmentation
+        return RawImage(
+            np.ascontiguousarray(self.rgba[keep]),
+            np.ascontiguousarray(self.zbuf[keep]),
+            None if seg is None else np.ascontiguousarray(seg[keep]),
+            self.stride * stride,
+        )
 
 
 def render(client: BulletClient, request: RenderRequest) -> RawImage:
@@ -127,11 +145,12 @@ class HeadCamera:
         self._view_gl = view.T.ravel().tolist()
         self._proj_gl = self._projection.T.ravel().tolist()
 
-    def request(self, with_segmentation: bool = False) -> RenderRequest:
-        """What to render for one frame: image size and the camera's OpenGL matrices."""
+    def request(self, with_segmentation: bool = False, stride: int = 1) -> RenderRequest:
+        """What to render for one frame: image size and the camera's OpenGL matrices; the
+        frame keeps every ``stride``-th row and column."""
         c = self.config
         return RenderRequest(
-            c.width_px, c.height_px, self._view_gl, self._proj_gl, with_segmentation
+            c.width_px, c.height_px, self._view_gl, self._proj_gl, with_segmentation, stride
         )
 
     def capture(self, timestamp_s: float, with_segmentation: bool = False) -> RGBDFrame:
@@ -139,7 +158,12 @@ class HeadCamera:
         return self.frame(self._render(self.request(with_segmentation)), timestamp_s)
 
     def frame(self, raw: RawImage, timestamp_s: float) -> RGBDFrame:
-        """Turn a rendered image into a frame: metric depth, the sensor's noise and range."""
+        """Turn a rendered image into a frame: metric depth, the sensor's noise and range.
+
+        A thinned image (:attr:`RawImage.stride`) gives a frame of the thinned size with its
+        intrinsics; its pixels' noise has the full-size frame's distribution (drawn per pixel,
+        quantised at the sensor's own disparity steps), not the same draws.
+        """
         c = self.config
         rgb = raw.rgba[..., :3].copy()
         zbuf = raw.zbuf.astype(np.float64)
@@ -155,7 +179,8 @@ class HeadCamera:
             segmentation = raw.segmentation & ((1 << 24) - 1)
             segmentation[raw.segmentation < 0] = -1
         T = self.registered.T_base_camera
-        return RGBDFrame(rgb, depth, self.intrinsics, T, timestamp_s, segmentation)
+        K = self.intrinsics.strided(raw.stride)
+        return RGBDFrame(rgb, depth, K, T, timestamp_s, segmentation)
 
     def check_sees(
         self, points_base_m: dict[str, NDArray[np.float64]], margin_px: int = 10

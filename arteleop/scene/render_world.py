@@ -111,7 +111,11 @@ class RenderWorld:
         """Render ``request`` of the synced state. A world holding a body another module added
         (e.g. a calibration marker, printed with a texture) is drawn fully by TinyRenderer;
         otherwise with OpenGL, or in TinyRenderer's two layers when the world has them (fully
-        when segmentation is asked for)."""
+        when segmentation is asked for). The full-size image is drawn, then thinned as the
+        request says."""
+        return self._render_full(request).thinned(request.stride)
+
+    def _render_full(self, request: RenderRequest) -> RawImage:
         if self.client.getNumBodies() != len(self.body_ids):
             return render(self.client, request)
         if self._gl is not None:

@@ -368,11 +368,13 @@ class RemoteSite(Closeable):
             )  # fmt: skip
         return self._renderer
 
-    def request_frame(self) -> None:
+    def request_frame(self, stride: int = 1) -> None:
         """Start rendering the current state in a render process of its own, so the loop goes on
         while another core renders; collect the frame with :meth:`poll_frame`. One frame at a
-        time; the process starts on the first request unless already started."""
-        self.start_render_process().submit(self.scene_state(), self.camera.request())
+        time; the process starts on the first request unless already started. The frame keeps
+        every ``stride``-th row and column of the full-size image."""
+        request = self.camera.request(stride=stride)
+        self.start_render_process().submit(self.scene_state(), request)
         self._requested_s = self.time_s
 
     @property

@@ -49,11 +49,11 @@ CLOUD_STRIDE = 2
 """The display's cloud keeps every second row and column of the depth image."""
 
 
-def with_cloud(frame: DisplayFrame, rgbd: RGBDFrame) -> DisplayFrame:
-    """``frame`` with the point cloud of ``rgbd`` for the view: decimated by
-    :data:`CLOUD_STRIDE` and placed with the frame's camera pose (the graph's, as the layers
-    are)."""
-    cloud = frame_to_point_cloud(rgbd, CLOUD_STRIDE, frame.T_base_camera)
+def with_cloud(frame: DisplayFrame, rgbd: RGBDFrame, stride: int = CLOUD_STRIDE) -> DisplayFrame:
+    """``frame`` with the point cloud of ``rgbd`` for the view: decimated by ``stride`` (1 for
+    a frame rendered already thinned by :data:`CLOUD_STRIDE`) and placed with the frame's
+    camera pose (the graph's, as the layers are)."""
+    cloud = frame_to_point_cloud(rgbd, stride, frame.T_base_camera)
     return replace(
         frame,
         cloud_points_m=cloud.points_m,
@@ -210,7 +210,7 @@ class DisplayFeed:
             return
         requested_wall, applied, frame = finished
         self._timer.record("camera", requested_wall)
-        self._show(frame, rgbd, applied)
+        self._show(frame, rgbd, applied, stride=1)  # the render process thinned it already
 
     def deliver(self, t: float) -> None:
         """Show the rendered frames whose return trip is over at ``t`` (s), each with the newest
@@ -233,14 +233,23 @@ class DisplayFeed:
         return self._history[0]
 
     def _request(self, frame: DisplayFrame, applied_sample_time_s: float) -> None:
-        self._site.request_frame()
+        # Thinned in the render process: the display shows no more, and a quarter of the
+        # pixels is a quarter of the copying and the sensor model on the loop's core.
+        self._site.request_frame(CLOUD_STRIDE)
         self._requested = (time.perf_counter(), applied_sample_time_s, frame)
         self._owed = False
 
-    def _show(self, frame: DisplayFrame, rgbd: RGBDFrame, applied_sample_time_s: float) -> None:
-        """Point cloud of a frame showing samples up to ``applied``, sent back to the display
-        (:meth:`deliver` shows it once the return link's delay is over)."""
+    def _show(
+        self,
+        frame: DisplayFrame,
+        rgbd: RGBDFrame,
+        applied_sample_time_s: float,
+        stride: int = CLOUD_STRIDE,
+    ) -> None:
+        """Point cloud of a frame showing samples up to ``applied`` (``rgbd`` thinned by
+        ``stride``), sent back to the display (:meth:`deliver` shows it once the return link's
+        delay is over)."""
         with self._timer.stage("point_cloud"):
-            shown = with_cloud(frame, rgbd)
+            shown = with_cloud(frame, rgbd, stride)
         # Through the return link with or without a display: the wall-clock latency counts it.
         self._in_flight.append((shown, applied_sample_time_s))

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from arteleop.robot import RIGHT_ARM_JOINTS
-from arteleop.scene import RemoteSite
+from arteleop.scene import RemoteSite, frame_to_point_cloud
 from arteleop.scene.render_process import RenderProcess, RenderProcessError
 
 
@@ -41,6 +41,41 @@ def test_frames_from_the_render_process_equal_frames_rendered_in_place(
         assert remote.timestamp_s == here.timestamp_s
         np.testing.assert_array_equal(remote.rgb, here.rgb)
         np.testing.assert_array_equal(remote.depth_m, here.depth_m)
+
+
+def test_a_thinned_frame_is_the_full_frame_every_second_pixel_and_gives_its_cloud(
+    noiseless_site: RemoteSite,
+) -> None:
+    site = noiseless_site
+    site.step(3)
+    site.request_frame(stride=2)
+    thinned = _wait(site)
+    full = site.capture()
+    h, w = full.depth_m.shape
+    assert thinned.depth_m.shape == (h // 2, w // 2)
+    assert thinned.intrinsics == full.intrinsics.strided(2)
+    np.testing.assert_array_equal(thinned.rgb, full.rgb[::2, ::2])
+    np.testing.assert_array_equal(thinned.depth_m, full.depth_m[::2, ::2])
+    # The display's cloud from either: the same points, colours and spacing.
+    a, b = frame_to_point_cloud(thinned, 1), frame_to_point_cloud(full, 2)
+    assert a.spacing_rad == b.spacing_rad
+    np.testing.assert_array_equal(a.points_m, b.points_m)
+    np.testing.assert_array_equal(a.colors, b.colors)
+
+
+def test_a_thinned_frame_is_quantised_at_the_sensors_own_disparity_steps(
+    site: RemoteSite,
+) -> None:
+    """The sensor's disparity steps are 1/8 px of the full-size image: a thinned frame's
+    depths fall on them, odd eighths included (at half the focal length, only even ones)."""
+    site.step(3)
+    site.request_frame(stride=2)
+    depth = _wait(site).depth_m
+    z = depth[depth > 0].astype(np.float64)
+    noise = site.config.camera.noise
+    eighths = noise.baseline_m * site.camera.intrinsics.fx_px / z / noise.subpixel
+    np.testing.assert_allclose(eighths, np.round(eighths), atol=1e-3)
+    assert 0.3 < np.mean(np.round(eighths) % 2) < 0.7
 
 
 def test_one_frame_at_a_time(site: RemoteSite) -> None:
