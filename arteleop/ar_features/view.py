@@ -100,7 +100,7 @@ class OperatorView(Closeable):
         # Docked beside the scene, the panel hides none of the camera image (floating, it
         # covered the right arm at rest and the bowl's start).
         server.gui.main_panel.dock_right()
-        self.layers: list[Layer] = [CloudLayer(server.scene, config.point_overlap)]
+        self.layers: list[Layer] = [CloudLayer(server, config.point_overlap)]
         if assets is not None:
             self.layers += [
                 GhostLayer(server, assets),

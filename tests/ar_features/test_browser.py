@@ -216,3 +216,33 @@ def test_the_predictive_ghost_shows_in_its_colour_under_predictive_only(
     amber = {name: int(_amber(shot, scene_px).sum()) for name, shot in shots.items()}
     assert amber["none"] < 50 and amber["embodiment"] < 50, amber
     assert amber["predictive"] > 2000, amber
+
+
+def test_each_frame_replaces_the_cloud_in_the_browser(
+    moment: tuple[DisplayFrame, ViewAssets], tmp_path: Path
+) -> None:
+    """The cloud's nodes outlive a frame: a frame of other colours, then one of fewer points,
+    redraw them in the browser, colours and points together."""
+    frame, assets, _ = moment
+    assert frame.cloud_colors is not None and frame.cloud_points_m is not None
+    magenta = np.zeros_like(frame.cloud_colors)
+    magenta[:] = (255, 0, 255)
+    # The nearer half of the cloud's rows (its points run row by row down the image).
+    half = len(frame.cloud_points_m) // 2
+    fewer = replace(
+        frame, cloud_points_m=frame.cloud_points_m[half:], cloud_colors=frame.cloud_colors[half:]
+    )
+    shares = []
+    with OperatorView(ViewConfig(port=0), assets) as view:
+        view.show(replace(frame, cues=MODALITIES["none"]))
+        with browser_page(view.url) as page:
+            for name, shown in (("grey", frame), ("magenta", replace(frame, cloud_colors=magenta)),
+                                ("fewer", fewer)):  # fmt: skip
+                view.show(replace(shown, cues=MODALITIES["none"]))
+                shot = page.screenshot(tmp_path / f"{name}.png")
+                r, g, b = (shot[..., k].astype(int) for k in range(3))
+                pink = (r > 200) & (g < 60) & (b > 200)
+                shares.append((pink.mean(), (shot > 250).all(axis=2).mean()))
+    (grey, white), (pink, _), (after, white_after) = shares
+    assert grey == 0 and pink > 0.3, shares
+    assert after == 0 and white_after > white + 0.1, shares

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import time
 
 import numpy as np
@@ -81,45 +82,71 @@ def test_bad_view_settings_are_refused() -> None:
         ViewConfig(point_overlap=0.1)
 
 
-class _Scene:
-    """Records the point clouds a layer adds, as viser's scene would draw them."""
+class _Server:
+    """Records the point clouds a layer draws, as viser's server would send them."""
 
     def __init__(self) -> None:
-        self.clouds: dict[str, tuple[int, float]] = {}
+        self.scene = self
+        self.clouds: dict[str, _Cloud] = {}
+        self.added = 0
+        self.in_atomic = False
 
     def add_point_cloud(self, name: str, points, colors, point_size: float, **_) -> _Cloud:
-        self.clouds[name] = (len(points), point_size)
-        return _Cloud(self, name)
+        assert self.in_atomic
+        self.added += 1
+        self.clouds[name] = _Cloud(self, name, points, colors, point_size)
+        return self.clouds[name]
+
+    @contextlib.contextmanager
+    def atomic(self):
+        self.in_atomic = True
+        yield
+        self.in_atomic = False
 
 
 class _Cloud:
-    def __init__(self, scene: _Scene, name: str) -> None:
-        self.scene, self.name, self.visible = scene, name, True
+    def __init__(self, server: _Server, name: str, points, colors, point_size: float) -> None:
+        self.server, self.name, self.visible = server, name, True
+        self.points, self.colors, self.point_size = points, colors, point_size
+
+    def __setattr__(self, name: str, value) -> None:
+        if name in ("points", "colors") and hasattr(self, name):
+            assert self.server.in_atomic, "a band's points and colours must change together"
+        object.__setattr__(self, name, value)
 
     def remove(self) -> None:
-        del self.scene.clouds[self.name]
+        del self.server.clouds[self.name]
+
+    @property
+    def drawn(self) -> tuple[int, float]:
+        assert len(self.points) == len(self.colors)
+        return len(self.points), self.point_size
 
 
 def test_each_point_is_as_wide_as_its_footprint_at_its_distance() -> None:
-    """Points 1.0-1.05 m and 2.0-2.1 m from the camera: two bands, each drawn as wide as a
-    point's footprint at the band's far edge (the nearest point times 1.25 per band) times the
-    overlap; a band a later frame lacks is removed."""
+    """Points 1.01-1.05 m and 2.0-2.1 m from the camera: bands 0 (1-1.25 m) and 3 (1.95-2.44 m),
+    each drawn as wide as a point's footprint at the band's far edge times the overlap. A later
+    frame replaces a band's points in its node and removes a band it lacks."""
     rng = np.random.default_rng(1)
-    points = np.vstack([_shell(rng, 300, 1.0, 1.05), _shell(rng, 200, 2.0, 2.1)])
-    colors = np.zeros_like(points, dtype=np.uint8)
-    scene = _Scene()
-    layer = CloudLayer(scene, overlap=1.5)  # type: ignore[arg-type]
+    points = np.vstack([_shell(rng, 300, 1.01, 1.05), _shell(rng, 200, 2.0, 2.1)])
+    colors = rng.integers(0, 256, points.shape, dtype=np.uint8)
+    server = _Server()
+    layer = CloudLayer(server, overlap=1.5)  # type: ignore[arg-type]
     layer.draw(display_frame(cloud_points_m=points, cloud_colors=colors, cloud_spacing_rad=0.01))
-    near = float(np.linalg.norm(points - CAMERA_M, axis=1).min())
-    assert near == pytest.approx(1.0, abs=0.01)
-    # 2.0 m is 1.25^3.1 times the nearest: band 3.
-    assert scene.clouds == {
-        "/camera/cloud/0": (300, pytest.approx(1.5 * 0.01 * near * 1.25)),
-        "/camera/cloud/3": (200, pytest.approx(1.5 * 0.01 * near * 1.25**4)),
+    assert {name: cloud.drawn for name, cloud in server.clouds.items()} == {
+        "/camera/cloud/0": (300, pytest.approx(1.5 * 0.01 * 1.25)),
+        "/camera/cloud/3": (200, pytest.approx(1.5 * 0.01 * 1.25**4)),
     }
-    layer.draw(display_frame(cloud_points_m=points[:300], cloud_colors=colors[:300],
+    far = server.clouds["/camera/cloud/3"]
+    # Each point with its own colour, whatever the order within a band.
+    got = {tuple(p) + tuple(c) for p, c in zip(far.points, far.colors, strict=True)}
+    assert got == {tuple(p) + tuple(c) for p, c in zip(points[300:], colors[300:], strict=True)}
+    layer.draw(display_frame(cloud_points_m=points[:250], cloud_colors=colors[:250],
                              cloud_spacing_rad=0.01))  # fmt: skip
-    assert list(scene.clouds) == ["/camera/cloud/0"]
+    assert {name: cloud.drawn for name, cloud in server.clouds.items()} == {
+        "/camera/cloud/0": (250, pytest.approx(1.5 * 0.01 * 1.25)),
+    }
+    assert server.added == 2
 
 
 class _CountingDisplay:
