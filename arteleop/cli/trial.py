@@ -193,7 +193,8 @@ class TeleopCommand:
     """simulated time after which a trial ends as a timeout (s)"""
     width_px: int = 640
     """camera image width (px); the Kinect's 640x480 shows 30 frames/s, 47 ms from a sample to
-    the view with OpenGL on two cores (320x240: 27 ms)"""
+    the view with OpenGL on two idle cores (fewer frames on a loaded machine, where 320x240
+    keeps 30 frames/s, 27 ms)"""
     height_px: int = 480
     """camera image height (px)"""
     renderer: Renderer = "auto"

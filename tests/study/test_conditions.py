@@ -115,7 +115,7 @@ def test_a_crossed_study_runs_to_its_files_and_answers(tmp_path) -> None:
         "[[conditions]]\ncues = []\nround_trip_ms = 0\n"
         '[[conditions]]\ncues = ["predictive"]\nround_trip_ms = 500\njitter_ms = 10\n'
     )
-    run = run_study(parse_study(text), tmp_path / "run", workers=1)
+    run = run_study(parse_study(text), tmp_path / "run", workers=2)
     trials = pd.read_csv(run.folder / "trials.csv")
     cells = trials[["modality", "round_trip_ms", "jitter_ms"]].itertuples(index=False)
     assert sorted(map(tuple, cells)) == [
