@@ -16,7 +16,7 @@ import pybullet as p
 from numpy.typing import NDArray
 from pybullet_utils.bullet_client import BulletClient
 
-from arteleop.errors import CameraConfigError
+from arteleop.errors import CameraConfigError, ConfigurationError
 from arteleop.scene.camera_config import CameraIntrinsics, HeadCameraConfig
 from arteleop.scene.camera_geometry import CameraGeometry
 from arteleop.scene.depth_noise import apply_depth_noise
@@ -63,6 +63,12 @@ class RenderRequest:
     projection_gl: list[float]
     with_segmentation: bool = False
     stride: int = 1
+
+    def __post_init__(self) -> None:
+        if not (isinstance(self.stride, int) and self.stride >= 1):
+            raise ConfigurationError(
+                f"RenderRequest.stride={self.stride!r}: expected a whole number, 1 or more"
+            )
 
 
 @dataclass(frozen=True)

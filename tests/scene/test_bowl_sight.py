@@ -5,6 +5,7 @@ import pytest
 
 from arteleop.scene import BowlTracker, HeadCameraConfig, RemoteSite, SiteConfig
 from arteleop.teleop import TrialConfig, TrialProgress, run_trial, trial_operator
+from tests.parallel import run_each
 
 UNTIL_S = 60.0
 """Seeds 0 and 1 under ``none`` reach, grasp, lift, carry and lower the bowl by then; the arm
@@ -17,7 +18,8 @@ EVERY_S = 0.5
 def looks(site_config: SiteConfig) -> np.ndarray:
     """(time, model found, tracker found, tracker's error to the truth (m), gripper's distance
     from the bowl's rim in the table's plane (m)) every 0.5 s."""
-    return np.array([row for seed in SEEDS for row in _looks(site_config, seed)], dtype=float)
+    runs = run_each(_looks, [(site_config, seed) for seed in SEEDS])
+    return np.array([row for rows in runs for row in rows], dtype=float)
 
 
 def _looks(site_config: SiteConfig, seed: int) -> list[tuple[float, bool, bool, float, float]]:

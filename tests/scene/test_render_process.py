@@ -6,6 +6,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from arteleop.errors import ConfigurationError
 from arteleop.robot import RIGHT_ARM_JOINTS
 from arteleop.scene import RemoteSite, frame_to_point_cloud
 from arteleop.scene.render_process import RenderProcess, RenderProcessError
@@ -76,6 +77,12 @@ def test_a_thinned_frame_is_quantised_at_the_sensors_own_disparity_steps(
     eighths = noise.baseline_m * site.camera.intrinsics.fx_px / z / noise.subpixel
     np.testing.assert_allclose(eighths, np.round(eighths), atol=1e-3)
     assert 0.3 < np.mean(np.round(eighths) % 2) < 0.7
+
+
+def test_a_stride_below_one_is_refused(site: RemoteSite) -> None:
+    with pytest.raises(ConfigurationError, match=r"RenderRequest.stride=0: expected a whole"):
+        site.request_frame(stride=0)
+    assert not site.frame_pending
 
 
 def test_one_frame_at_a_time(site: RemoteSite) -> None:

@@ -2,14 +2,12 @@
 
 from __future__ import annotations
 
-import multiprocessing
-from concurrent.futures import ProcessPoolExecutor
-
 import numpy as np
 import pytest
 
 from arteleop.operator import Expertise, TraitDistribution
 from arteleop.teleop.pointing import run_pointing_trial
+from tests.parallel import run_each
 
 PEOPLE = [TraitDistribution().draw(0, f"F{k:02d}", Expertise()) for k in range(6)]
 
@@ -19,19 +17,14 @@ def times() -> dict[tuple[float, float, float], list[float]]:
     """Movement times (s) per cell (distance m, width m, round-trip lag s): two people at the
     hard target, six under lag (a trial's time varies by a factor of two between people)."""
     cells = {(0.1, 0.04, 0.0): 6, (0.4, 0.01, 0.0): 2, (0.1, 0.04, 0.6): 6}
-    # Seeded and independent: on the machine's cores at once (the suite's slowest set-up).
-    with ProcessPoolExecutor(2, mp_context=multiprocessing.get_context("fork")) as pool:
-        runs = {
-            (d, w, lag): [pool.submit(run_pointing_trial, d, w, person, seed=k,
-                                      round_trip_lag_s=lag)
-                          for k, person in enumerate(PEOPLE[:n])]
-            for (d, w, lag), n in cells.items()
-        }  # fmt: skip
-        out: dict[tuple[float, float, float], list[float]] = {}
-        for cell, futures in runs.items():
-            results = [f.result() for f in futures]
-            assert all(r.selected for r in results), cell
-            out[cell] = [r.movement_time_s for r in results]
+    calls = [(d, w, person, k, lag) for (d, w, lag), n in cells.items()
+             for k, person in enumerate(PEOPLE[:n])]  # fmt: skip
+    results = iter(run_each(run_pointing_trial, calls))
+    out: dict[tuple[float, float, float], list[float]] = {}
+    for cell, n in cells.items():
+        runs = [next(results) for _ in range(n)]
+        assert all(r.selected for r in runs), cell
+        out[cell] = [r.movement_time_s for r in runs]
     return out
 
 

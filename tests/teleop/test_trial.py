@@ -16,19 +16,24 @@ from arteleop.teleop import (
     NetworkLink,
     Outcome,
     TrialConfig,
+    TrialResult,
     run_trial,
     trial_operator,
 )
 from tests.operator.motions import reach_and_return
+from tests.parallel import run_each
+
+
+def _full_trial(site_config: SiteConfig, seed: int) -> TrialResult:
+    config = TrialConfig(modality="full", seed=seed, site=site_config)
+    with RemoteSite(config.site) as site:
+        return run_trial(trial_operator(site, config), config, site)
 
 
 def test_full_ar_places_the_bowl_within_5_cm_in_5_of_6_trials(site_config: SiteConfig) -> None:
     """Six seeds keep the suite short; benchmarks/bench_trials.py runs more."""
     errors, outcomes = [], []
-    for seed in range(6):
-        config = TrialConfig(modality="full", seed=seed, site=site_config)
-        with RemoteSite(config.site) as site:
-            result = run_trial(trial_operator(site, config), config, site)
+    for result in run_each(_full_trial, [(site_config, seed) for seed in range(6)]):
         outcomes.append(result.outcome.value)
         assert result.to_row()["colocation_error_px"] == 0.0  # a perfect registration
         errors.append(result.placement_error_true_m if result.placed else np.inf)
