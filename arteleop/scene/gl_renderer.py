@@ -303,11 +303,23 @@ def _shape_triangles(
 ) -> NDArray[np.float32] | None:
     """(3T, 6) vertices and normals of a visual shape's triangles, in its own frame, with
     TinyRenderer's normals; None for a shape with nothing to draw."""
-    kind, dims, filename = shape[2], np.asarray(shape[3], dtype=np.float64), shape[4]
+    kind, dims, filename = shape[2], tuple(float(d) for d in shape[3]), shape[4]
+    if kind == p.GEOM_MESH and not filename:
+        return None if memory_mesh is None else _memory_triangles(memory_mesh, dims)
+    return _described_triangles(kind, dims, filename)
+
+
+@functools.cache
+def _described_triangles(
+    kind: int, dims_m: tuple[float, ...], filename: bytes
+) -> NDArray[np.float32] | None:
+    """The triangles of a shape that its kind, dimensions and file describe, built once per
+    process (read-only): every site of a study's worker draws the same robot and table."""
+    dims = np.asarray(dims_m, dtype=np.float64)
     if kind == p.GEOM_BOX:
         corners = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
-        return _flat(_convex(corners * dims / 2.0)[:, :3].reshape(-1, 3, 3).astype(np.float64))
-    if kind == p.GEOM_CYLINDER:
+        triangles = _flat(_convex(corners * dims / 2.0)[:, :3].reshape(-1, 3, 3).astype(np.float64))
+    elif kind == p.GEOM_CYLINDER:
         # About z and centred, with TinyRenderer's 32 sides.
         length, radius = dims[0], dims[1]
         a = 2 * np.pi * np.arange(CYLINDER_STEPS) / CYLINDER_STEPS
@@ -315,23 +327,29 @@ def _shape_triangles(
         ends = [
             np.column_stack([ring, np.full(CYLINDER_STEPS, z)]) for z in (-length / 2, length / 2)
         ]
-        return _convex(np.vstack(ends))
-    if kind == p.GEOM_SPHERE:
+        triangles = _convex(np.vstack(ends))
+    elif kind == p.GEOM_SPHERE:
         # 42 points spread on the sphere (a Fibonacci lattice).
         k = np.arange(42) + 0.5
         polar, azimuth = np.arccos(1 - 2 * k / 42), np.pi * (1 + 5**0.5) * k
-        return _convex(dims[0] * np.column_stack(
+        triangles = _convex(dims[0] * np.column_stack(
             [np.sin(polar) * np.cos(azimuth), np.sin(polar) * np.sin(azimuth), np.cos(polar)]
         ))  # fmt: skip
-    if kind != p.GEOM_MESH:
-        return None
-    if filename:
+    elif kind == p.GEOM_MESH:
         vertices, faces = _mesh_file(filename.decode())
-        return _flat((vertices * dims)[faces])
-    if memory_mesh is None:
+        triangles = _flat((vertices * dims)[faces])
+    else:
         return None
+    triangles.flags.writeable = False
+    return triangles
+
+
+def _memory_triangles(
+    memory_mesh: tuple[NDArray[np.float64], NDArray[np.int32]], dims_m: tuple[float, ...]
+) -> NDArray[np.float32]:
+    """A mesh given from memory (the bowl), scaled by ``dims_m``, with TinyRenderer's normals."""
     vertices, triangles = memory_mesh
-    vertices = np.asarray(vertices, dtype=np.float64) * dims
+    vertices = np.asarray(vertices, dtype=np.float64) * np.asarray(dims_m, dtype=np.float64)
     # TinyRenderer's normal for a vertex given without one: its position, normalised (or x).
     length = np.linalg.norm(vertices, axis=1, keepdims=True)
     normals = np.where(length > 1e-9, vertices / np.maximum(length, 1e-9), [1.0, 0.0, 0.0])
