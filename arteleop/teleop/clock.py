@@ -67,20 +67,9 @@ class Tick:
 
 
 class LoopClock:
-    """Yields ticks; in real time, waits for the wall clock before each one.
+    """Yields ticks; in real time, waits for the wall clock before each one."""
 
-    With ``skip_idle`` (batch runs that deliver nothing between ticks), base ticks at which no
-    stage fires are not yielded, except the first one past ``end_s``: the loop's events, their
-    times and the time it stops at are those of the full sequence, without the three ticks in
-    four that would only advance time.
-    """
-
-    def __init__(
-        self, rates: LoopRates, realtime: bool = False, skip_idle: bool = False,
-        end_s: float = math.inf,
-    ) -> None:  # fmt: skip
-        if skip_idle and realtime:
-            raise ConfigurationError("LoopClock: skip_idle is for batch runs, not real time")
+    def __init__(self, rates: LoopRates, realtime: bool = False) -> None:
         self.rates = rates
         self.realtime = realtime
         base = rates.base_hz
@@ -88,28 +77,10 @@ class LoopClock:
         self._base = base
         self._k = 0
         self._wall0: float | None = None
-        self._period = math.lcm(*self._every) if skip_idle else 1
-        # Offsets within one period from each base tick to the next one at which a stage fires.
-        self._to_next = [
-            next(d for d in range(self._period) if any((k + d) % e == 0 for e in self._every))
-            for k in range(self._period)
-        ] if skip_idle else [0]  # fmt: skip
-        self._end_k = self._first_after(end_s) if skip_idle else None
-
-    def _first_after(self, end_s: float) -> int | None:
-        """The first base tick whose time (as :meth:`next` computes it) exceeds ``end_s``."""
-        if not math.isfinite(end_s):
-            return None
-        k = max(0, math.floor(end_s * self._base) - 2)
-        while k / self._base <= end_s:
-            k += 1
-        return k
 
     def next(self) -> Tick:
-        k = self._k + self._to_next[self._k % self._period]
-        if self._end_k is not None and self._k <= self._end_k < k:
-            k = self._end_k
-        self._k = k + 1
+        k = self._k
+        self._k += 1
         t = k / self._base
         if self.realtime:
             if self._wall0 is None:

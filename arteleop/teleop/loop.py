@@ -125,12 +125,7 @@ class _Loop:
         background = config.realtime and config.render_camera
         if background:
             site.start_render_process()  # before the clock starts: it takes a few seconds
-        # Between ticks only the display's deliveries (frames back from the site) need time to
-        # pass; without them the clock skips the base ticks at which nothing fires.
-        self.clock = LoopClock(
-            config.rates, config.realtime, skip_idle=not (config.realtime or config.render_camera),
-            end_s=config.timeout_s,
-        )  # fmt: skip
+        self.clock = LoopClock(config.rates, config.realtime)
         self.timer = StageTimer()
         cues = modality_cues(config.modality)
 

@@ -15,7 +15,6 @@ from arteleop.teleop import (
     NetworkConfig,
     NetworkLink,
     Outcome,
-    Tick,
     TrialConfig,
     TrialResult,
     run_trial,
@@ -43,8 +42,8 @@ def test_full_ar_places_the_bowl_within_5_cm_in_5_of_6_trials(site_config: SiteC
 
 
 def test_same_seed_same_motion_in_batch_and_real_time(site_config: SiteConfig) -> None:
-    # Batch skips the clock's idle ticks, real time waits at each: the same events, the same
-    # motion, and the same end, at the first base tick past the timeout (an idle one).
+    # The same events, the same motion, and the same end, at the first base tick past the
+    # timeout, whether the clock waits for the wall clock or not.
     results, arms = [], []
     for realtime in (False, True):
         config = TrialConfig(
@@ -129,21 +128,6 @@ def test_clock_fires_each_stage_at_its_rate() -> None:
     assert sum(t.camera for t in ticks) == 30
     with pytest.raises(ConfigurationError, match="physics_hz=100: use at least 240 Hz"):
         LoopRates(physics_hz=100)
-
-
-def test_clock_skipping_idle_ticks_yields_the_same_events_and_end() -> None:
-    full = LoopClock(LoopRates())
-    firing = [t for t in (full.next() for _ in range(2400)) if t.control or t.physics or t.camera]
-    end_s = 1.2345  # the first base tick after it, 1482, is an idle one
-    skipping = LoopClock(LoopRates(), skip_idle=True, end_s=end_s)
-    ticks = [skipping.next() for _ in range(len(firing) + 1)]
-    before_end = [t for t in firing if t.index < 1482]
-    assert ticks[: len(before_end)] == before_end
-    assert ticks[len(before_end)] == Tick(1482, 1482 / 1200, False, False, False)
-    assert ticks[len(before_end) + 1 :] == firing[len(before_end) :]
-    assert len(firing) == 2 * 320  # 32 of every 120 base ticks fire something
-    with pytest.raises(ConfigurationError, match="skip_idle is for batch runs, not real time"):
-        LoopClock(LoopRates(), realtime=True, skip_idle=True)
 
 
 def test_unknown_modality_is_refused() -> None:
