@@ -161,7 +161,8 @@ class HeadCameraConfig:
             )
         if self.width_px < 8 or self.height_px < 8:
             raise ConfigurationError(
-                f"camera image {self.width_px}x{self.height_px} px is too small"
+                f"camera image {self.width_px}x{self.height_px} px is too small: --width-px and "
+                "--height-px must each be at least 8 (the Kinect's is 640x480)"
             )
         if not 0 < self.min_depth_m < self.max_depth_m:
             raise ConfigurationError(

@@ -5,6 +5,7 @@ import pybullet as p
 import pytest
 from pybullet_utils.bullet_client import BulletClient
 
+from arteleop.errors import ConfigurationError
 from arteleop.robot import (
     LEFT_ARM_JOINTS,
     RIGHT_ARM_JOINTS,
@@ -28,6 +29,19 @@ def test_kinect_like_field_of_view() -> None:
     h, v = HeadCameraConfig().intrinsics.fov_deg
     assert h == pytest.approx(57.0)
     assert 42.0 < v < 45.0
+
+
+@pytest.mark.parametrize(("width_px", "height_px"), [(0, 480), (640, 7)])
+def test_an_image_too_small_is_refused_with_the_options_to_change(
+    width_px: int, height_px: int
+) -> None:
+    with pytest.raises(ConfigurationError) as error:
+        HeadCameraConfig(width_px=width_px, height_px=height_px)
+    assert str(error.value) == (
+        f"camera image {width_px}x{height_px} px is too small: --width-px and --height-px must "
+        "each be at least 8 (the Kinect's is 640x480)"
+    )
+    assert HeadCameraConfig(width_px=8, height_px=8).intrinsics.width_px == 8
 
 
 def test_frame_carries_intrinsics_pose_and_timestamp(site: RemoteSite) -> None:
