@@ -357,17 +357,13 @@ def _memory_triangles(
     return np.hstack([vertices[corners], normals[corners]]).astype(np.float32)
 
 
-@functools.cache
 def _mesh_file(path: str) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
-    """A mesh file's vertices (V, 3) and faces (F, 3), read once per process: every site of
-    a study's worker draws the same robot."""
+    """A mesh file's vertices (V, 3) and faces (F, 3); read once per process through
+    :func:`_described_triangles`' cache."""
     import trimesh
 
     mesh = trimesh.load(Path(path), force="mesh", process=False)
-    vertices = np.asarray(mesh.vertices, dtype=np.float64)
-    faces = np.asarray(mesh.faces, dtype=np.int64)
-    vertices.flags.writeable = faces.flags.writeable = False
-    return vertices, faces
+    return np.asarray(mesh.vertices, dtype=np.float64), np.asarray(mesh.faces, dtype=np.int64)
 
 
 def _convex(points: NDArray[np.float64]) -> NDArray[np.float32]:
