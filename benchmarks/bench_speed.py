@@ -231,6 +231,12 @@ def print_budget(rows: list[dict]) -> None:
     for stage in sorted(per_s[0], key=lambda k: -np.median([d.get(k, 0.0) for d in per_s])):
         ms = np.median([d.get(stage, 0.0) for d in per_s])
         print(f"| {stage} | {ms:.1f} | {ms / whole:.0%} |")
+    # The machine's speed changes by up to 1.7x from one hour to the next; this ratio does not.
+    alone = np.median([d["physics alone (replay)"] for d in per_s])
+    print(
+        f"\nLoop to PyBullet alone (medians): {alone / whole:.2f}; the loop's own work costs "
+        f"{(whole - alone) / alone:.1f} times the physics."
+    )
 
 
 if __name__ == "__main__":
