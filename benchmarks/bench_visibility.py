@@ -1,7 +1,7 @@
 """What the head camera shows during a trial: the bowl and the gripper, per phase.
 
 Runs seeded synthetic trials and, at every camera frame, asks whether the camera sees the bowl
-(the tracker's model, ``RemoteSite.sight_bowl``, which agrees with the tracker on about 90 % of
+(the tracker's model, ``RemoteSite.sight_bowl``, which agrees with the tracker on 99 % of
 frames, tests/scene/test_bowl_sight.py) and the gripper (in the image and the sensor's depth
 range). Prints, per phase of the task, the fraction of frames in which each is visible, and the
 trials' outcomes. ``--start X Y`` and ``--target X Y`` try other points (base frame, m).

@@ -5,7 +5,7 @@ example-robot-data ships no importable module: its wheel installs data under
 the installed distribution's file list, never through a hard-coded path, and the repository holds
 no copy of the robot.
 
-The URDF we load differs from the installed one in three documented ways:
+The URDF we load differs from the installed one in five documented ways:
 
 1. ``package://`` mesh paths are resolved to the installed share folder.
 2. Visual meshes are replaced by decimated copies (see :mod:`arteleop.robot.render_meshes`),
@@ -19,6 +19,12 @@ The URDF we load differs from the installed one in three documented ways:
    The two blocks overlap at every opening, so they carry no contact the simulation uses, but
    once PyBullet merges the pads into the fingers (see :func:`freeze_joints`) they would hide
    the pad gap.
+5. The head loses its two collision spheres (``collision_head_link_1`` and ``_2``, 22 cm
+   bubbles that Rethink's controller keeps the arms out of). Nothing in the simulation touches
+   them (PyBullet checks no self-collision, and the IK keeps the arm off the table only), but
+   the head camera sits 9 mm outside them: the rays of the tracker's model
+   (:meth:`~arteleop.scene.RemoteSite.sight_bowl`) stopped on them over the lower third of the
+   image, which the camera sees.
 """
 
 from __future__ import annotations
@@ -41,7 +47,7 @@ from arteleop.robot.render_meshes import decimated_mesh
 DISTRIBUTION = "example-robot-data"
 BAXTER_URDF_SUFFIX = "example-robot-data/robots/baxter_description/urdf/baxter.urdf"
 PACKAGE_PREFIX = "package://"
-REWRITE_VERSION = 3
+REWRITE_VERSION = 4
 """Bump whenever :func:`_rewrite_urdf` changes, so cached URDFs from older code are not reused."""
 
 FINGER_BLOCK_MIN_WIDTH_M = 0.03
@@ -55,6 +61,9 @@ _FINGER_JOINTS = {
     "l_gripper_r_finger_joint": +1.0,
 }
 
+
+HEAD_COLLISION_SPHERES = ("collision_head_link_1", "collision_head_link_2")
+"""Links whose only geometry is a collision sphere around the head: they lose it (point 5)."""
 
 HEAD_CAMERA_BLIND_LINKS: tuple[str, ...] = (
     "torso",
@@ -249,6 +258,9 @@ def _rewrite_urdf(source: Path, share: Path, config: BaxterDescriptionConfig, ou
     root = ET.parse(source).getroot()
     _hide_visuals(root, config.hidden_links)
     for link in root.findall("link"):
+        if link.attrib["name"] in HEAD_COLLISION_SPHERES:
+            for collision in link.findall("collision"):
+                link.remove(collision)
         if not link.attrib["name"].endswith(("_gripper_l_finger", "_gripper_r_finger")):
             continue
         for collision in link.findall("collision"):

@@ -99,5 +99,5 @@ class StudySite:
     ) -> str | None:
         problem = self.problem(start_xy_m, target_xy_m)
         if problem is None and not self.seen_at_rest(start_xy_m):
-            return f"the arm at rest hides the bowl at {start_xy_m} from the head camera"
+            return f"the head camera does not see the bowl at {start_xy_m} while the arm rests"
         return problem

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from arteleop.scene import BowlTracker, HeadCameraConfig, RemoteSite, SiteConfig
+from arteleop.scene import BowlSight, BowlTracker, HeadCameraConfig, RemoteSite, SiteConfig
 from arteleop.teleop import TrialConfig, TrialProgress, run_trial, trial_operator
 from tests.parallel import run_each
 
@@ -53,21 +53,42 @@ def test_the_trial_hides_and_shows_the_bowl(looks: np.ndarray) -> None:
 
 def test_the_model_finds_the_bowl_when_the_tracker_does(looks: np.ndarray) -> None:
     model, tracker = looks[:, 1].astype(bool), looks[:, 2].astype(bool)
-    # 78-92 % in the versions of this trial so far (a change anywhere in the loop gives another
-    # trial), 89 % over two whole trials: the model also finds a partly hidden bowl, which the
-    # tracker refuses (bowl_sight.py).
-    assert (model == tracker).mean() >= 0.75
-    # It hides a bowl the tracker finds only while the gripper hovers over the rim before the
-    # grasp, the bowl partly behind it (the tracker still fits the arc it sees): 3 and 6 of
-    # some 60 finds in one trial of 0.1, 11 of 82 in three trials of 0.2's operator, which
-    # looks there glance by glance. Nowhere else.
+    # 98.6 % here (215 looks), 99.0 % over 30 whole trials (benchmarks/bench_bowl_sight.py,
+    # which fitted the threshold); a change anywhere in the loop gives other trials. What
+    # disagreement is left is the model finding a partly hidden bowl, which the tracker
+    # refuses (bowl_sight.py).
+    assert (model == tracker).mean() >= 0.95
+    # It may hide a bowl the tracker finds only while the gripper hovers over the rim before
+    # the grasp, the bowl partly behind it (the tracker still fits the arc it sees): none of
+    # 74 finds here, 1 of 760 over the 30 trials. Nowhere else.
     hidden = tracker & ~model
     over_rim = np.abs(looks[:, 4]) < 0.05
     assert not (hidden & ~over_rim).any()
-    assert hidden.sum() <= tracker.sum() / 6
+    assert hidden.sum() <= tracker.sum() / 20
 
 
 def test_the_models_position_is_within_the_trackers_error(looks: np.ndarray) -> None:
     # The model reports the true position: its error against the tracker is the tracker's.
     errors = looks[:, 3][looks[:, 1].astype(bool) & looks[:, 2].astype(bool)]
     assert np.median(errors) <= 0.005
+
+
+@pytest.mark.parametrize("xy_m", [(0.5, 0.0), (0.55, -0.45), (0.6, -0.3), (0.68, -0.45)])
+def test_with_the_arm_at_rest_the_model_sees_what_the_tracker_sees(
+    site_config: SiteConfig, xy_m: tuple[float, float]
+) -> None:
+    # Nothing hides the bowl here: the tracker finds it, and the model's rays reach most of
+    # its points (the inside and the near wall; the far wall's outside faces away). Before
+    # the head's collision spheres left the URDF, the first three saw none, their rays
+    # stopped 4-6 cm from the camera.
+    small = HeadCameraConfig(width_px=320, height_px=240)
+    with RemoteSite(SiteConfig(robot=site_config.robot, camera=small)) as site:
+        site.place_bowl(xy_m)
+        model = site.sight_bowl()
+        track = BowlTracker(site.config.workspace.bowl).track(
+            site.capture(), site.config.workspace.table_top_z_m
+        )
+        n_points = BowlSight(site.config.workspace.bowl).n_surface_points
+    assert track.found
+    assert model.found
+    assert model.n_points >= n_points / 2

@@ -54,8 +54,8 @@ def test_the_plan_counterbalances_and_seeds_every_trial(study_site: StudySite) -
     for s in practice:  # the site would accept every practice position, and the camera sees it
         assert study_site.problem(s.start_xy_m, s.target_xy_m) is None
         assert study_site.seen_at_rest(s.start_xy_m)
-    # Where the resting arm stands between the head camera and the table, the bowl is hidden.
-    assert not study_site.seen_at_rest((0.60, -0.43))
+    # The table's near left corner is out of the head camera's image.
+    assert not study_site.seen_at_rest((0.45, 0.30))
     assert study_site.seen_at_rest(study.start_xy_m)
     again = plan_study(study, study_site.practice_points(study.start_xy_m, study.target_xy_m))
     assert again == plan
