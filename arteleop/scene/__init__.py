@@ -25,7 +25,7 @@ from arteleop.scene.bowl_sight import BowlSight, BowlSightConfig
 from arteleop.scene.bowl_tracking import BowlTrack, BowlTracker, BowlTrackerConfig
 from arteleop.scene.camera import HeadCamera, RGBDFrame
 from arteleop.scene.camera_config import CameraIntrinsics, HeadCameraConfig
-from arteleop.scene.camera_geometry import CameraGeometry
+from arteleop.scene.camera_geometry import CameraGeometry, landmark_problem
 from arteleop.scene.depth_mesh import DepthMesh, MeshReconstructor, MeshReconstructorConfig
 from arteleop.scene.depth_noise import DepthNoiseConfig, apply_depth_noise
 from arteleop.scene.marker_body import MarkerBody, PrintedSquare
@@ -83,6 +83,7 @@ __all__ = [
     "bowl_mesh",
     "depth_to_camera_points",
     "frame_to_point_cloud",
+    "landmark_problem",
     "reach_problem",
     "write_snapshot",
 ]

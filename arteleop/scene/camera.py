@@ -16,7 +16,7 @@ import pybullet as p
 from numpy.typing import NDArray
 from pybullet_utils.bullet_client import BulletClient
 
-from arteleop.errors import CameraConfigError, ConfigurationError
+from arteleop.errors import ConfigurationError
 from arteleop.scene.camera_config import CameraIntrinsics, HeadCameraConfig
 from arteleop.scene.camera_geometry import CameraGeometry
 from arteleop.scene.depth_noise import apply_depth_noise
@@ -187,26 +187,3 @@ class HeadCamera:
         T = self.registered.T_base_camera
         K = self.intrinsics.strided(raw.stride)
         return RGBDFrame(rgb, depth, K, T, timestamp_s, segmentation)
-
-    def check_sees(
-        self, points_base_m: dict[str, NDArray[np.float64]], margin_px: int = 10
-    ) -> None:
-        """Raise :class:`CameraConfigError` unless every named point is in view and in range."""
-        c = self.config
-        for name, point in points_base_m.items():
-            if self.geometry.sees(point, margin_px):
-                continue
-            u, v, z = self.geometry.locate(point)
-            where = np.round(point, 3).tolist()
-            if not c.min_depth_m <= z <= c.max_depth_m:
-                raise CameraConfigError(
-                    f"The head camera can't see the {name} at {where} m: it lies {z:.2f} m along "
-                    f"the optical axis, outside the depth range [{c.min_depth_m}, "
-                    f"{c.max_depth_m}] m. Adjust HeadCameraConfig.pitch_down_deg, yaw_deg or "
-                    "mount_xyz_m."
-                )
-            raise CameraConfigError(
-                f"The head camera can't see the {name} at {where} m: it projects to pixel "
-                f"({u:.0f}, {v:.0f}), outside the {c.width_px}x{c.height_px} image. Adjust "
-                "HeadCameraConfig.pitch_down_deg, yaw_deg or mount_xyz_m."
-            )

@@ -7,6 +7,7 @@ depth range, from the camera's pose and its configuration alone.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -14,6 +15,10 @@ from numpy.typing import ArrayLike, NDArray
 
 from arteleop.scene.camera_config import CameraIntrinsics, HeadCameraConfig
 from arteleop.transforms import invert_transform, transform_points
+
+LANDMARK_MARGIN_PX = 10
+"""How far inside the image's edge (px) the task's landmarks must project
+(:func:`landmark_problem`)."""
 
 
 @dataclass(frozen=True)
@@ -69,6 +74,28 @@ class CameraGeometry:
             & (margin_px <= uv[:, 0]) & (uv[:, 0] <= c.width_px - 1 - margin_px)
             & (margin_px <= uv[:, 1]) & (uv[:, 1] <= c.height_px - 1 - margin_px)
         )  # fmt: skip
+
+
+def landmark_problem(geometry: CameraGeometry, landmarks_m: Mapping[str, ArrayLike]) -> str | None:
+    """Why the camera cannot see the first of the named base-frame points (m) that it misses
+    (out of its depth range, or projecting outside the image less :data:`LANDMARK_MARGIN_PX`),
+    in words naming the point; None when it sees them all."""
+    c = geometry.config
+    for name, point in landmarks_m.items():
+        if geometry.sees(point, LANDMARK_MARGIN_PX):
+            continue
+        u, v, z = geometry.locate(point)
+        where = f"The head camera can't see the {name} at {np.round(point, 3).tolist()} m"
+        if not c.min_depth_m <= z <= c.max_depth_m:
+            return (
+                f"{where}: it lies {z:.2f} m along the optical axis, outside the depth range "
+                f"[{c.min_depth_m}, {c.max_depth_m}] m"
+            )
+        return (
+            f"{where}: it projects to pixel ({u:.0f}, {v:.0f}), outside the "
+            f"{c.width_px}x{c.height_px} image (less {LANDMARK_MARGIN_PX} px at its edges)"
+        )
+    return None
 
 
 def colocation_errors(

@@ -14,7 +14,7 @@ import pybullet as p
 from numpy.typing import ArrayLike, NDArray
 from pybullet_utils.bullet_client import BulletClient
 
-from arteleop.errors import ConfigurationError, WorkspaceError
+from arteleop.errors import CameraConfigError, ConfigurationError, WorkspaceError
 from arteleop.lifetime import Closeable
 from arteleop.robot import (
     GRIPPER_FRAME,
@@ -37,7 +37,7 @@ from arteleop.scene.bowl_sight import BowlSight, BowlSightConfig
 from arteleop.scene.bowl_tracking import BowlTrack
 from arteleop.scene.camera import HeadCamera, RGBDFrame
 from arteleop.scene.camera_config import HeadCameraConfig
-from arteleop.scene.camera_geometry import colocation_errors
+from arteleop.scene.camera_geometry import colocation_errors, landmark_problem
 from arteleop.scene.gl_renderer import resolve_renderer
 from arteleop.scene.render_process import RenderProcess
 from arteleop.scene.render_world import RenderWorld, SceneState
@@ -187,15 +187,11 @@ class RemoteSite(Closeable):
                 self.robot.link_transform(config.camera.mount_link),
                 config.seed,
             )
-            rim = np.array([0.0, 0.0, ws.bowl.height_m])
-            self.camera.check_sees(
-                {
-                    "start marker": ws.start_m,
-                    "target marker": ws.target_m,
-                    "bowl rim at the start": ws.start_m + rim,
-                    "bowl rim at the target": ws.target_m + rim,
-                }
-            )
+            problem = landmark_problem(self.camera.geometry, ws.camera_landmarks_m())
+            if problem is not None:
+                raise CameraConfigError(
+                    f"{problem}. Adjust HeadCameraConfig.pitch_down_deg, yaw_deg or mount_xyz_m."
+                )
         except BaseException:
             if hasattr(self, "render_world"):
                 self.render_world.close()

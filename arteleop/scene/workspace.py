@@ -105,3 +105,14 @@ class Workspace:
     def target_m(self) -> NDArray[np.float64]:
         """Target point on the table top (x, y, z)."""
         return self.on_table(self.target_xy_m)
+
+    def camera_landmarks_m(self) -> dict[str, NDArray[np.float64]]:
+        """What the head camera must see of the task, by name (base frame, m): the start and
+        target markers and the bowl's rim above each."""
+        rim = np.array([0.0, 0.0, self.bowl.height_m])
+        return {
+            "start marker": self.start_m,
+            "target marker": self.target_m,
+            "bowl rim at the start": self.start_m + rim,
+            "bowl rim at the target": self.target_m + rim,
+        }

@@ -11,7 +11,14 @@ import numpy as np
 
 from arteleop.errors import WorkspaceError
 from arteleop.robot import BaxterKinematics, TopDownReach, load_baxter_description
-from arteleop.scene import RemoteSite, SiteConfig, Workspace, reach_problem
+from arteleop.scene import (
+    CameraGeometry,
+    RemoteSite,
+    SiteConfig,
+    Workspace,
+    landmark_problem,
+    reach_problem,
+)
 from arteleop.study.plan import PracticePoints, TrialSpec
 
 PRACTICE_MARGIN_M = 0.10
@@ -30,7 +37,14 @@ class StudySite:
     def __init__(self, base: SiteConfig | None = None) -> None:
         self.base = base or SiteConfig()
         description = load_baxter_description(self.base.robot)
-        self._reach = TopDownReach.from_kinematics(BaxterKinematics(description.urdf_path))
+        kinematics = BaxterKinematics(description.urdf_path)
+        self._reach = TopDownReach.from_kinematics(kinematics)
+        camera = self.base.camera
+        # The head never pans: its pose, and so the camera's, is the same in every configuration.
+        self.camera = CameraGeometry(
+            camera, kinematics.frame_transform({}, camera.mount_link) @ camera.T_mount_camera()
+        )
+        """The head camera's true pose and field of view, as every trial's site has it."""
         self._probe: RemoteSite | None = None
 
     def seen_at_rest(self, xy_m: tuple[float, float]) -> bool:
@@ -58,12 +72,21 @@ class StudySite:
     def problem(
         self, start_xy_m: tuple[float, float], target_xy_m: tuple[float, float]
     ) -> str | None:
-        """Why the site would refuse this start and target (table, reach), or None."""
+        """Why the site would refuse this start and target (table, reach, the head camera's
+        view), or None."""
         try:
             ws = self.workspace(start_xy_m, target_xy_m)
         except WorkspaceError as err:
             return str(err)
-        return reach_problem(ws, self._reach, self.base.reach_margin)
+        problem = reach_problem(ws, self._reach, self.base.reach_margin)
+        if problem is not None:
+            return problem
+        for name, point in ws.camera_landmarks_m().items():
+            unseen = landmark_problem(self.camera, {name: point})
+            if unseen is not None:
+                key = "start_xy_m" if "start" in name else "target_xy_m"
+                return f"{unseen}. Move Workspace.{key} into the camera's view."
+        return None
 
     def site_config(
         self, spec: TrialSpec, camera_registration: Mapping[str, Any] | None = None

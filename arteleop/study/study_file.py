@@ -56,7 +56,8 @@ def _check_points(study: StudyConfig, text: str, source: str) -> None:
 
     problem = StudySite().problem(study.start_xy_m, study.target_xy_m)
     if problem is not None:
-        key = "target_xy_m" if "target" in problem.split(" m", 1)[0] else "start_xy_m"
+        # Every problem names the point to move as Workspace.start_xy_m or .target_xy_m.
+        key = "target_xy_m" if "Workspace.target_xy_m" in problem else "start_xy_m"
         raise StudyDefinitionError(f"{_Locator(text, source).at('', key)}: {key}: {problem}")
 
 

@@ -75,3 +75,25 @@ def test_listed_orders_are_taken_in_turn(study_site: StudySite) -> None:
 def test_out_of_reach_points_are_named(study_site: StudySite) -> None:
     problem = study_site.problem((0.68, -0.45), (0.95, -0.10))
     assert problem is not None and problem.startswith("The target point (0.95, -0.1) m is out of")
+
+
+def test_practice_points_are_where_every_trials_site_sees_its_landmarks(
+    study_site: StudySite,
+) -> None:
+    import numpy as np
+
+    from arteleop.scene import RemoteSite, SiteConfig
+
+    # The study's camera pose comes from pinocchio, a trial site's from PyBullet.
+    with RemoteSite(SiteConfig()) as site:
+        T_site = site.camera.geometry.T_base_camera
+    assert np.abs(study_site.camera.T_base_camera - T_site).max() <= 1e-9
+    # The tracker's model finds a bowl at the image's bottom edge, but its start marker lies
+    # outside the image less its margin, where a trial's site stops the run: practice skips it.
+    edge = (0.433, 0.038)
+    assert study_site.seen_at_rest(edge)
+    assert study_site.problem(edge, (0.68, -0.1)) == (
+        "The head camera can't see the start marker at [0.433, 0.038, -0.2] m: it projects to "
+        "pixel (257, 480), outside the 640x480 image (less 10 px at its edges). Move "
+        "Workspace.start_xy_m into the camera's view."
+    )

@@ -129,15 +129,28 @@ def test_bad_definitions_are_refused_naming_line_and_key(text: str, message: str
     assert str(err.value) == message
 
 
-def test_a_start_or_target_the_site_would_refuse_is_named_with_its_line(tmp_path: Path) -> None:
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        ("seed = 1\nstart_xy_m = [0.68, 0.55]\n",
+         "line 2: start_xy_m: Workspace.start_xy_m=(0.68, 0.55): a bowl of radius 0.08 m there "
+         "overhangs the table, which spans x in [0.350, 1.150] and y in [-0.750, 0.450] m."),
+        # On the table and in reach, but below the head camera's image: refused before a run
+        # starts, where a trial's site would stop the run at its first trial.
+        ("target_xy_m = [0.433, 0.038]\n",
+         "line 1: target_xy_m: The head camera can't see the target marker at [0.433, 0.038, "
+         "-0.2] m: it projects to pixel (257, 480), outside the 640x480 image (less 10 px at its "
+         "edges). Move Workspace.target_xy_m into the camera's view."),
+    ],
+)  # fmt: skip
+def test_a_start_or_target_the_site_would_refuse_is_named_with_its_line(
+    tmp_path: Path, text: str, message: str
+) -> None:
     path = tmp_path / "s.toml"
-    path.write_text("seed = 1\nstart_xy_m = [0.68, 0.55]\n")
+    path.write_text(text)
     with pytest.raises(StudyDefinitionError) as err:
         load_study_file(path)
-    assert str(err.value) == (
-        f"{path} line 2: start_xy_m: Workspace.start_xy_m=(0.68, 0.55): a bowl of radius 0.08 m "
-        "there overhangs the table, which spans x in [0.350, 1.150] and y in [-0.750, 0.450] m."
-    )
+    assert str(err.value) == f"{path} {message}"
 
 
 def test_a_missing_file_says_how_to_make_one(tmp_path: Path) -> None:
