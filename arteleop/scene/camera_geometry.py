@@ -16,9 +16,10 @@ from numpy.typing import ArrayLike, NDArray
 from arteleop.scene.camera_config import CameraIntrinsics, HeadCameraConfig
 from arteleop.transforms import invert_transform, transform_points
 
-LANDMARK_MARGIN_PX = 10
-"""How far inside the image's edge (px) the task's landmarks must project
-(:func:`landmark_problem`)."""
+LANDMARK_MARGIN_FRACTION = 10 / 640
+"""How far inside the image's edge the task's landmarks must project, as a fraction of the
+image's width (:func:`landmark_problem`): 10 px of the Kinect's 640, the same angle at any
+resolution."""
 
 
 @dataclass(frozen=True)
@@ -78,11 +79,12 @@ class CameraGeometry:
 
 def landmark_problem(geometry: CameraGeometry, landmarks_m: Mapping[str, ArrayLike]) -> str | None:
     """Why the camera cannot see the first of the named base-frame points (m) that it misses
-    (out of its depth range, or projecting outside the image less :data:`LANDMARK_MARGIN_PX`),
-    in words naming the point; None when it sees them all."""
+    (out of its depth range, or projecting outside the image less
+    :data:`LANDMARK_MARGIN_FRACTION`), in words naming the point; None when it sees them all."""
     c = geometry.config
+    margin_px = LANDMARK_MARGIN_FRACTION * c.width_px
     for name, point in landmarks_m.items():
-        if geometry.sees(point, LANDMARK_MARGIN_PX):
+        if geometry.sees(point, margin_px):
             continue
         u, v, z = geometry.locate(point)
         where = f"The head camera can't see the {name} at {np.round(point, 3).tolist()} m"
@@ -93,7 +95,7 @@ def landmark_problem(geometry: CameraGeometry, landmarks_m: Mapping[str, ArrayLi
             )
         return (
             f"{where}: it projects to pixel ({u:.0f}, {v:.0f}), outside the "
-            f"{c.width_px}x{c.height_px} image (less {LANDMARK_MARGIN_PX} px at its edges)"
+            f"{c.width_px}x{c.height_px} image (less {margin_px:.3g} px at its edges)"
         )
     return None
 

@@ -15,12 +15,14 @@ from arteleop.robot import (
 )
 from arteleop.robot.description import HEAD_CAMERA_BLIND_LINKS
 from arteleop.scene import (
+    CameraGeometry,
     DepthNoiseConfig,
     HeadCameraConfig,
     RemoteSite,
     SiteConfig,
     apply_depth_noise,
     frame_to_point_cloud,
+    landmark_problem,
 )
 from arteleop.transforms import invert_transform, transform_points
 
@@ -42,6 +44,27 @@ def test_an_image_too_small_is_refused_with_the_options_to_change(
         "each be at least 8 (the Kinect's is 640x480)"
     )
     assert HeadCameraConfig(width_px=8, height_px=8).intrinsics.width_px == 8
+
+
+@pytest.mark.parametrize(("width_px", "height_px"), [(640, 480), (320, 240), (160, 120)])
+def test_the_landmarks_margin_is_the_same_angle_at_any_resolution(
+    width_px: int, height_px: int
+) -> None:
+    kinect = HeadCameraConfig().intrinsics
+    config = HeadCameraConfig(width_px=width_px, height_px=height_px)
+    geometry = CameraGeometry(config, np.eye(4))  # the base frame is the optical frame
+
+    def inside_kinects_edge(px: float) -> dict[str, list[float]]:
+        # 1 m ahead, on the image's middle row, px inside the left edge of the 640 px image.
+        return {"marker": [(px - kinect.cx_px) / kinect.fx_px, 0.0, 1.0]}
+
+    assert landmark_problem(geometry, inside_kinects_edge(15.0)) is None
+    problem = landmark_problem(geometry, inside_kinects_edge(5.0))
+    assert problem is not None
+    assert problem.startswith("The head camera can't see the marker at [-0.")
+    assert problem.endswith(
+        f"outside the {width_px}x{height_px} image (less {10 * width_px / 640:.3g} px at its edges)"
+    )
 
 
 def test_frame_carries_intrinsics_pose_and_timestamp(site: RemoteSite) -> None:

@@ -41,6 +41,13 @@ def test_camera_that_does_not_see_the_table(site_config: SiteConfig) -> None:
         RemoteSite(replace(site_config, camera=cam))
 
 
+def test_the_smallest_image_allowed_starts_a_site(site_config: SiteConfig) -> None:
+    # The landmarks' margin is a share of the image (10 px of 640), not 10 px of every image.
+    cam = HeadCameraConfig(width_px=8, height_px=8)
+    with RemoteSite(replace(site_config, camera=cam)) as site:
+        assert site.camera.geometry.sees(site.config.workspace.start_m)
+
+
 def test_camera_too_close_for_its_depth_range(site_config: SiteConfig) -> None:
     cam = HeadCameraConfig(min_depth_m=1.6, max_depth_m=4.0)
     with pytest.raises(CameraConfigError, match=r"outside the depth range \[1.6, 4.0\] m"):
