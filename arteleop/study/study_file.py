@@ -276,7 +276,8 @@ _COMMENTS = {
     "conditions.round_trip_ms": "round-trip delay between operator and robot (ms), half each way",
     "conditions.jitter_ms": "SD of each one-way delay (ms)",
     "conditions.loss": "chance that an operator sample is lost, in [0, 1)",
-    "start_xy_m": "where the bowl starts, Baxter's base frame (m)",
+    "start_xy_m": "where the bowl starts, Baxter's base frame (m); on the table, in the right "
+    "arm's reach and in the head camera's view, as is the target",
     "target_xy_m": "where it must go (m)",
     "familiarization.trials": "practice trials per participant, random start and target",
     "familiarization.modality": "AR modality of the practice trials",
