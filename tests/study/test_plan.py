@@ -5,8 +5,10 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Iterator
 
+import numpy as np
 import pytest
 
+from arteleop.scene import RemoteSite, SiteConfig
 from arteleop.study import (
     MODALITY_NAMES,
     StudyConfig,
@@ -80,10 +82,6 @@ def test_out_of_reach_points_are_named(study_site: StudySite) -> None:
 def test_practice_points_are_where_every_trials_site_sees_its_landmarks(
     study_site: StudySite,
 ) -> None:
-    import numpy as np
-
-    from arteleop.scene import RemoteSite, SiteConfig
-
     # The study's camera pose comes from pinocchio, a trial site's from PyBullet.
     with RemoteSite(SiteConfig()) as site:
         T_site = site.camera.geometry.T_base_camera
