@@ -141,6 +141,17 @@ class ArmIK:
                 )
             )  # fmt: skip
         self._gripper_body = self.model.body(GRIPPER_FRAME).id
+        # The QP's arrays, kept across ticks (see _velocity): 6 frame-task rows and nv posture
+        # rows; each limit's rows, whose count does not change (mink's collision limit always
+        # gives one per geom pair, with an infinite bound for pairs out of range).
+        nv = self.model.nv
+        self._eye = np.eye(nv)
+        self._W, self._e = np.empty((6 + nv, nv)), np.empty(6 + nv)
+        m = sum(
+            limit.compute_qp_inequalities(self.configuration, 0.01).h.size for limit in self.limits
+        )
+        self._G, self._h = np.empty((m, nv)), np.empty(m)
+        self._h_lower, self._bound_types = np.full(m, -1e30), np.zeros(m, dtype=c_int)
         self._last_error = np.inf
         self._target = np.eye(4)
 
@@ -209,25 +220,51 @@ class ArmIK:
     def _velocity(self, dt: float) -> NDArray[np.float64]:
         """mink's QP of this tick, solved: the joint velocity (rad/s).
 
-        With daqp, the rows go to daqp as qpsolvers hands them over (inequalities only, no
-        bounds or equalities), without qpsolvers' wrapper: the wrapper and mink's limit check
-        (which only logs, at debug level) cost more than daqp's solve of these seven unknowns.
-        The joints are the same to the bit.
+        With daqp, the QP is assembled here as mink's ``build_ik`` assembles it, with the same
+        operations in the same order, into arrays kept across ticks: mink rebuilds the posture
+        task's constant rows and re-checks every matrix through qpsolvers at each tick, which
+        cost more than daqp's solve of these seven unknowns. The rows go to daqp without
+        qpsolvers' wrapper (inequalities only, no bounds or equalities). The joints are the
+        same to the bit (tests compare them with mink's ``build_ik`` and ``solve_ik``).
         """
-        problem = build_ik(self.configuration, self.tasks, dt, _DAMPING, self.limits)
-        if self.config.solver == "daqp":
-            m = problem.h.size
-            x, _, exitflag, _ = daqp.solve(
-                problem.P, problem.q, problem.G, problem.h, np.full(m, -1e30),
-                np.zeros(m, dtype=c_int),
-            )  # fmt: skip
-            found = exitflag > 0
-        else:
+        if self.config.solver != "daqp":
+            problem = build_ik(self.configuration, self.tasks, dt, _DAMPING, self.limits)
             solution = qpsolvers.solve_problem(problem, solver=self.config.solver)
-            x, found = solution.x, solution.found
-        if not found:
+            if not solution.found:
+                raise mink.NoSolutionFound(self.config.solver)
+            return solution.x / dt
+        H, c = self._objective()
+        G, h = self._G, self._h
+        row = 0
+        for limit in self.limits:
+            rows = limit.compute_qp_inequalities(self.configuration, dt)
+            n = rows.h.size
+            G[row : row + n] = rows.G
+            h[row : row + n] = rows.h
+            row += n
+        x, _, exitflag, _ = daqp.solve(H, c, G, h, self._h_lower, self._bound_types)
+        if exitflag <= 0:
             raise mink.NoSolutionFound(self.config.solver)
         return x / dt
+
+    def _objective(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """``(H, c)`` of the frame and posture tasks, as mink's ``_compute_qp_objective``
+        stacks their weighted residuals: ``H = W^T W`` plus the damping on the diagonal,
+        ``c = -e^T W``."""
+        configuration, posture, W, e = self.configuration, self.posture_task, self._W, self._e
+        W[:6], e[:6], mu_frame = self.frame_task.compute_qp_residual(configuration)
+        # The posture task's Jacobian is the identity and, for hinge joints, its error is
+        # q - q*, which is what mj_differentiatePos gives mink.
+        W[6:] = posture.cost[:, None] * self._eye
+        e[6:] = posture.cost * (-posture.gain * (configuration.q - posture.target_q))
+        mu_posture = posture.lm_damping * float(e[6:] @ e[6:])
+        mu_total = 0.0
+        mu_total += mu_frame
+        mu_total += mu_posture
+        H = W.T @ W
+        c = -(e @ W)
+        H.flat[:: H.shape[0] + 1] += _DAMPING + mu_total
+        return H, c
 
     def _result(self, iterations: int, speed: float) -> IKResult:
         T = self.gripper_transform()
