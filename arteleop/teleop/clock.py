@@ -67,9 +67,26 @@ class Tick:
 
 
 class LoopClock:
-    """Yields ticks; in real time, waits for the wall clock before each one."""
+    """Yields ticks; in real time, waits for the wall clock before each one.
 
-    def __init__(self, rates: LoopRates, realtime: bool = False) -> None:
+    Args:
+        rates: The stages' rates.
+        realtime: Keep pace with the wall clock.
+        idle_ticks: Also yield the base ticks at which no stage fires (most of them: 880 of
+            1200 a second at the default rates), at which a real-time loop polls its render
+            process and delivers frames. False skips them, for a loop with nothing to do
+            between its stages.
+        stop_s: Without idle ticks, the first base tick after this time (s) is yielded all the
+            same, so that a loop that stops there (its timeout) stops at the same instant.
+    """
+
+    def __init__(
+        self,
+        rates: LoopRates,
+        realtime: bool = False,
+        idle_ticks: bool = True,
+        stop_s: float = math.inf,
+    ) -> None:
         self.rates = rates
         self.realtime = realtime
         base = rates.base_hz
@@ -77,10 +94,22 @@ class LoopClock:
         self._base = base
         self._k = 0
         self._wall0: float | None = None
+        self._idle = idle_ticks
+        self._stop_k = math.inf
+        if math.isfinite(stop_s):
+            k = max(0, math.floor(stop_s * base))
+            while k / base <= stop_s:
+                k += 1
+            self._stop_k = k
 
     def next(self) -> Tick:
         k = self._k
-        self._k += 1
+        if not self._idle:
+            c, p, cam = self._every
+            k = min((k + c - 1) // c * c, (k + p - 1) // p * p, (k + cam - 1) // cam * cam)
+            if self._k <= self._stop_k < k:
+                k = self._stop_k
+        self._k = k + 1
         t = k / self._base
         if self.realtime:
             if self._wall0 is None:

@@ -125,7 +125,11 @@ class _Loop:
         background = config.realtime and config.render_camera
         if background:
             site.start_render_process()  # before the clock starts: it takes a few seconds
-        self.clock = LoopClock(config.rates, config.realtime)
+        # A batch loop that renders nothing has nothing to do between its stages' ticks.
+        delivering = config.render_camera
+        self.clock = LoopClock(
+            config.rates, config.realtime, idle_ticks=delivering, stop_s=config.timeout_s
+        )
         self.timer = StageTimer()
         cues = modality_cues(config.modality)
 
@@ -163,7 +167,7 @@ class _Loop:
             track_every=config.rates.frames_per_track,
         )
         self._background = background
-        self._delivering = config.render_camera
+        self._delivering = delivering
         self._gate_tracker = config.skip_hidden_tracker_renders
         self.hand_t: list[float] = []
         self.hand_p: list[NDArray[np.float64]] = []

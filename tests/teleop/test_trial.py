@@ -130,6 +130,18 @@ def test_clock_fires_each_stage_at_its_rate() -> None:
         LoopRates(physics_hz=100)
 
 
+def test_clock_without_idle_ticks_yields_the_firing_ticks_and_the_first_past_its_stop() -> None:
+    every = LoopClock(LoopRates())
+    firing = [t for t in (every.next() for _ in range(2400)) if t.control or t.physics or t.camera]
+    assert len(firing) == 2 * 320  # 100 + 240 + 30 a second, less the ticks they share
+    skipping = LoopClock(LoopRates(), idle_ticks=False, stop_s=1.0)
+    ticks = [skipping.next() for _ in range(len(firing) + 1)]
+    past_stop = next(i for i, t in enumerate(ticks) if t.time_s > 1.0)
+    assert ticks[past_stop].index == 1201  # no stage fires at it: it is there for the stop
+    del ticks[past_stop]
+    assert ticks == firing
+
+
 def test_unknown_modality_is_refused() -> None:
     with pytest.raises(
         ConfigurationError, match=r"Unknown modality 'ar'. Valid modalities: \['none'"
