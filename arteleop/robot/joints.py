@@ -49,6 +49,9 @@ class JointLimits:
                 )
             arr.setflags(write=False)
             object.__setattr__(self, field, arr)
+        # check() runs on every physics step: its bounds, with their tolerance, are made once.
+        object.__setattr__(self, "_checked_lower", self.lower - 1e-9)
+        object.__setattr__(self, "_checked_upper", self.upper + 1e-9)
 
     def check(
         self,
@@ -62,7 +65,7 @@ class JointLimits:
         if q.shape != (len(self.names),):
             raise error(f"{what} has shape {q.shape}, expected ({len(self.names)},)")
         # Runs on every physics step (each arm command): one vector test, names only on failure.
-        outside = ~((self.lower - 1e-9 <= q) & (q <= self.upper + 1e-9))  # NaN counts as outside
+        outside = ~((self._checked_lower <= q) & (q <= self._checked_upper))  # NaN: outside
         if outside.any():
             i = int(np.argmax(outside))
             raise error(

@@ -12,7 +12,6 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import pybullet as p
 from numpy.typing import ArrayLike, NDArray
-from pybullet_utils.bullet_client import BulletClient
 
 from arteleop.errors import CameraConfigError, ConfigurationError, WorkspaceError
 from arteleop.lifetime import Closeable
@@ -31,6 +30,7 @@ from arteleop.robot import (
     TopDownReach,
     load_baxter_description,
 )
+from arteleop.robot.bullet_client import KeptBulletClient
 from arteleop.robot.native_output import native_stdout_silenced
 from arteleop.scene.bodies import add_bowl, add_start_cross, add_table, add_target_circle
 from arteleop.scene.bowl_sight import BowlSight, BowlSightConfig
@@ -150,7 +150,7 @@ class RemoteSite(Closeable):
         self._check_reach(ws)
 
         with native_stdout_silenced():
-            self._client = BulletClient(connection_mode=p.DIRECT)
+            self._client = KeptBulletClient(connection_mode=p.DIRECT)
         try:
             self._client.setGravity(0.0, 0.0, -9.81)
             self._client.setTimeStep(1.0 / config.physics_rate_hz)
