@@ -18,6 +18,7 @@ from arteleop.scene import (
     SiteConfig,
     frame_to_point_cloud,
 )
+from arteleop.scene.camera_geometry import colocation_errors
 from arteleop.teleop import TrialConfig, display_frame, run_trial, trial_operator
 from arteleop.transforms import make_transform, transform_points
 
@@ -89,6 +90,20 @@ def test_colocation_errors_of_a_translated_registration(site_config: SiteConfig)
         )
         np.testing.assert_allclose(m, np.linalg.norm(t), rtol=1e-12)
         np.testing.assert_allclose(px, expected, rtol=1e-9)
+
+
+def test_a_perfect_registration_gives_what_projecting_gives(site_config: SiteConfig) -> None:
+    """The site skips the projections when the registration is the camera's true pose: the
+    result must be theirs, a non-finite point included."""
+    with RemoteSite(site_config) as site:
+        assert site.T_cloud_true is None, "premise: the default registration is perfect"
+        points = np.array([[0.7, -0.3, -0.1], [0.6, 0.0, 0.1], [np.nan, 0.0, 0.0]])
+        camera = site.camera
+        expected = colocation_errors(
+            camera.T_base_camera, camera.T_base_camera, camera.intrinsics, points
+        )
+        for ours, theirs in zip(site.colocation_errors(points), expected, strict=True):
+            np.testing.assert_array_equal(ours, theirs)
 
 
 def test_a_trial_records_the_colocation_error_of_its_registration(
