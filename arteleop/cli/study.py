@@ -139,7 +139,14 @@ def _study_done(run: Any) -> int:
         print(f"{modality:<14}{len(group):>7}{len(ok):>9}"
               f"{ok['completion_time_s'].median():>17.1f}"
               f"{1000 * ok['placement_error_m'].median():>19.1f}")  # fmt: skip
-    return analyze(AnalyzeCommand(source=run.folder, out=run.folder / "report"))
+    report = run.folder / "report"
+    try:
+        return analyze(AnalyzeCommand(source=run.folder, out=report))
+    except KeyboardInterrupt:
+        raise KeyboardInterrupt(
+            f"the trials are all in {run.folder}; 'arteleop analyze {run.folder} --out {report}' "
+            "writes the report"
+        ) from None
 
 
 @dataclass(frozen=True)
