@@ -258,12 +258,9 @@ class ArmIK:
         W[6:] = posture.cost[:, None] * self._eye
         e[6:] = posture.cost * (-posture.gain * (configuration.q - posture.target_q))
         mu_posture = posture.lm_damping * float(e[6:] @ e[6:])
-        mu_total = 0.0
-        mu_total += mu_frame
-        mu_total += mu_posture
         H = W.T @ W
         c = -(e @ W)
-        H.flat[:: H.shape[0] + 1] += _DAMPING + mu_total
+        H.flat[:: H.shape[0] + 1] += _DAMPING + (mu_frame + mu_posture)
         return H, c
 
     def _result(self, iterations: int, speed: float) -> IKResult:
