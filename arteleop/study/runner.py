@@ -22,6 +22,7 @@ from pathlib import Path
 import pandas as pd
 
 from arteleop.analysis.data import PARTICIPANT_COLUMNS, QUESTIONNAIRE_COLUMNS
+from arteleop.blas_kernel import blas_description
 from arteleop.errors import RunFolderError, StudyDefinitionError
 from arteleop.scene.gl_renderer import renderer_description, resolve_renderer
 from arteleop.study.cohort import participants
@@ -96,6 +97,8 @@ def run_study(
         "participants": len(people),
         "packages": _versions(),
         "python": platform.python_version(),
+        # OpenBLAS's kernels round in their own way: trials differ between them.
+        "blas": blas_description(),
         # The final tracker looks are rendered: a GPU and Mesa may differ in a pixel's last bit.
         "head_camera": renderer_description(resolve_renderer("auto")),
         "started": _now(),

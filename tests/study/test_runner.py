@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import os
 import signal
 import subprocess
@@ -12,6 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from arteleop.blas_kernel import blas_description
 from arteleop.cli import main
 from arteleop.errors import RunFolderError
 from arteleop.study import (
@@ -170,6 +172,9 @@ def test_a_replay_shows_the_recorded_states_with_the_modalitys_layers(tmp_path: 
                       cohort=CohortConfig(size=1, avr_experts=0, games_experts=0,
                                           both_experts=0))  # fmt: skip
     run_study(one, tmp_path / "run", workers=1)
+    # The manifest names the BLAS kernel that the recorded states were computed with.
+    manifest = json.loads((tmp_path / "run" / "manifest.json").read_text())
+    assert manifest["blas"] == blas_description()
     source = load_replay(tmp_path / "run", "P01", 1)
     shown = []
 

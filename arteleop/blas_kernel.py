@@ -1,0 +1,88 @@
+"""One OpenBLAS kernel on every x86-64 machine, so that a seed gives the same trial on each.
+
+numpy and scipy bundle OpenBLAS, which picks its kernels by the CPU as it loads: the SkylakeX
+kernels on a CPU with AVX-512, the Haswell kernels on other recent x86-64 CPUs (AMD's Zen shares
+them). The two round the loop's small matrix products differently in the last bit, and a trial
+is chaotic, so the same seed gave a different trial on each: 3 of 3 seeded trials differed, by
+up to 9.5 mm of placement error and 3.9 s of time (and three tests failed on an AVX-512 machine).
+Importing :mod:`arteleop` before numpy asks OpenBLAS for the Haswell kernels wherever the CPU
+runs them (AVX2 and FMA, Linux), through ``OPENBLAS_CORETYPE``, which OpenBLAS reads as it loads
+and which the processes a run starts (study workers, the render process) inherit.
+
+A user's own ``OPENBLAS_CORETYPE`` is left alone. Where numpy was imported first, OpenBLAS has
+already chosen: the variable is set to that choice, so that the processes a run starts compute
+as this one does. Elsewhere (another system or CPU) nothing is set: trials are then the same
+from run to run on one machine, not necessarily across machines.
+"""
+
+from __future__ import annotations
+
+import os
+import platform
+import sys
+from collections.abc import MutableMapping
+from pathlib import Path
+
+BLAS_KERNEL_VARIABLE = "OPENBLAS_CORETYPE"
+PINNED_KERNEL = "Haswell"
+"""OpenBLAS's name for the kernels every x86-64 CPU with AVX2 and FMA runs (2013 onwards)."""
+
+_CPU_INFO = Path("/proc/cpuinfo")
+
+
+def choose_blas_kernel(
+    environ: MutableMapping[str, str] = os.environ, cpu_info: Path = _CPU_INFO
+) -> str | None:
+    """Set ``OPENBLAS_CORETYPE`` in ``environ`` as the module describes; return what it holds
+    afterwards (None where it is unset). Imports nothing that loads OpenBLAS."""
+    if BLAS_KERNEL_VARIABLE in environ:
+        return environ[BLAS_KERNEL_VARIABLE]
+    if "numpy" in sys.modules:
+        kernel = running_blas_kernel()
+    elif cpu_runs_pinned_kernel(cpu_info):
+        kernel = PINNED_KERNEL
+    else:
+        kernel = None
+    if kernel is not None:
+        environ[BLAS_KERNEL_VARIABLE] = kernel
+    return kernel
+
+
+def running_blas_kernel() -> str | None:
+    """The kernel numpy's OpenBLAS runs in this process (e.g. ``Haswell``), loading numpy if it
+    is not loaded; None where numpy uses another BLAS."""
+    import numpy as np  # noqa: F401  (loads its BLAS)
+    from threadpoolctl import threadpool_info
+
+    for library in threadpool_info():
+        if library.get("internal_api") == "openblas" and "numpy" in library["filepath"]:
+            return library.get("architecture") or None
+    return None
+
+
+def blas_description() -> str:
+    """numpy's BLAS as a run's manifest records it, e.g. ``openblas 0.3.31 Haswell``."""
+    import numpy as np  # noqa: F401
+    from threadpoolctl import threadpool_info
+
+    for library in threadpool_info():
+        if library.get("user_api") == "blas" and "numpy" in library["filepath"]:
+            parts = (library.get("internal_api"), library.get("version"),
+                     library.get("architecture"))  # fmt: skip
+            return " ".join(str(p) for p in parts if p)
+    return "unknown"
+
+
+def cpu_runs_pinned_kernel(cpu_info: Path = _CPU_INFO) -> bool:
+    """Whether this is x86-64 Linux on a CPU with AVX2 and FMA, by ``cpu_info``'s flags."""
+    if platform.machine().lower() not in ("x86_64", "amd64"):
+        return False
+    try:
+        text = cpu_info.read_text(encoding="ascii", errors="replace")
+    except OSError:
+        return False
+    for line in text.splitlines():
+        if line.startswith("flags"):
+            flags = set(line.partition(":")[2].split())
+            return {"avx2", "fma"} <= flags
+    return False
