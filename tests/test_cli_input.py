@@ -7,6 +7,8 @@ traceback or a hang.
 from __future__ import annotations
 
 import os
+import re
+import select
 import signal
 import socket
 import subprocess
@@ -192,17 +194,24 @@ def test_pybullet_prints_no_banner() -> None:
 
 def test_ctrl_c_ends_a_trial_cleanly() -> None:
     proc = subprocess.Popen(
-        [*ARTELEOP, "trial", "--quiet"],
+        [*ARTELEOP, "trial"],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
-        text=True,
         preexec_fn=_ctrl_c_reaches_it,
     )
-    time.sleep(6.0)  # into the trial
+    # Into the trial, whatever the machine's speed: its progress shows a simulated second or
+    # more (a whole trial takes 4 s of wall on a fast machine, so a fixed wait may be too late).
+    progress = b""
+    deadline = time.monotonic() + 60
+    while not re.search(rb"\| *[1-9][0-9]*/120 ", progress) and time.monotonic() < deadline:
+        if select.select([proc.stderr], [], [], 1.0)[0]:
+            progress += os.read(proc.stderr.fileno(), 4096)
+    assert re.search(rb"\| *[1-9][0-9]*/120 ", progress), progress
     proc.send_signal(signal.SIGINT)
-    _, err = proc.communicate(timeout=30)
+    _, rest = proc.communicate(timeout=30)
+    err = (progress + rest).decode()
     assert proc.returncode == 130, err
-    assert err.strip() == "arteleop: interrupted", err
+    assert err.splitlines()[-1] == "arteleop: interrupted", err
 
 
 def test_ctrl_c_stops_a_parallel_study_at_once_and_resume_finishes_it(tmp_path) -> None:
