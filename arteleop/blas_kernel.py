@@ -11,8 +11,9 @@ and which the processes a run starts (study workers, the render process) inherit
 
 A user's own ``OPENBLAS_CORETYPE`` is left alone. Where numpy was imported first, OpenBLAS has
 already chosen: the variable is set to that choice, so that the processes a run starts compute
-as this one does. Elsewhere (another system or CPU) nothing is set: trials are then the same
-from run to run on one machine, not necessarily across machines.
+as this one does, with a :class:`~arteleop.errors.BlasKernelWarning` where the choice is not
+the pinned kernel on a CPU that runs it. Elsewhere (another system or CPU) nothing is set:
+trials are then the same from run to run on one machine, not necessarily across machines.
 """
 
 from __future__ import annotations
@@ -20,8 +21,11 @@ from __future__ import annotations
 import os
 import platform
 import sys
+import warnings
 from collections.abc import MutableMapping
 from pathlib import Path
+
+from arteleop.errors import BlasKernelWarning
 
 BLAS_KERNEL_VARIABLE = "OPENBLAS_CORETYPE"
 PINNED_KERNEL = "Haswell"
@@ -39,6 +43,14 @@ def choose_blas_kernel(
         return environ[BLAS_KERNEL_VARIABLE]
     if "numpy" in sys.modules:
         kernel = running_blas_kernel()
+        if kernel not in (None, PINNED_KERNEL) and cpu_runs_pinned_kernel(cpu_info):
+            warnings.warn(
+                f"numpy was imported before arteleop and its OpenBLAS runs the {kernel} "
+                f"kernels, not {PINNED_KERNEL}: seeded trials will differ from other machines'. "
+                f"Import arteleop before numpy, or set {BLAS_KERNEL_VARIABLE}={PINNED_KERNEL}.",
+                BlasKernelWarning,
+                stacklevel=2,
+            )
     elif cpu_runs_pinned_kernel(cpu_info):
         kernel = PINNED_KERNEL
     else:

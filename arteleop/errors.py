@@ -7,6 +7,11 @@ class ArteleopError(Exception):
     """Root of every error arteleop raises on purpose."""
 
 
+class BlasKernelWarning(UserWarning):
+    """numpy was loaded before arteleop with another BLAS kernel than the one arteleop pins:
+    seeded trials will differ from those of other machines (:mod:`arteleop.blas_kernel`)."""
+
+
 class RobotDataNotFoundError(ArteleopError):
     """The robot description (URDF, meshes) could not be found in the installed packages."""
 

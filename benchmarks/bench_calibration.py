@@ -15,6 +15,9 @@ Targets (issue): at most 5 mm and 0.5 deg with 10 poses; co-location under 3 px.
 
 from __future__ import annotations
 
+from arteleop import blas_kernel  # noqa: F401  (first: it picks numpy's BLAS kernel)
+
+# isort: split
 import argparse
 from collections import defaultdict
 

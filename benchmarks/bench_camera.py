@@ -12,6 +12,9 @@ evenly over it, so the arm is seen at rest, reaching, carrying and returning.
 
 from __future__ import annotations
 
+from arteleop import blas_kernel  # noqa: F401  (first: it picks numpy's BLAS kernel)
+
+# isort: split
 import os
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")  # before numpy/open3d load their thread pools

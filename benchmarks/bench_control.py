@@ -13,6 +13,9 @@
 
 from __future__ import annotations
 
+from arteleop import blas_kernel  # noqa: F401  (first: it picks numpy's BLAS kernel)
+
+# isort: split
 import os
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")

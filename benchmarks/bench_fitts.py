@@ -21,6 +21,9 @@ What it prints is what the model predicts: no constant of the operator is fitted
 
 from __future__ import annotations
 
+from arteleop import blas_kernel  # noqa: F401  (first: it picks numpy's BLAS kernel)
+
+# isort: split
 import argparse
 import json
 import os

@@ -12,6 +12,9 @@ in the same process.
 
 from __future__ import annotations
 
+from arteleop import blas_kernel  # noqa: F401  (first: it picks numpy's BLAS kernel)
+
+# isort: split
 import argparse
 import itertools
 import time

@@ -20,6 +20,9 @@ lag; the grid below shows both. The default is the first row after "off".
 
 from __future__ import annotations
 
+from arteleop import blas_kernel  # noqa: F401  (first: it picks numpy's BLAS kernel)
+
+# isort: split
 import argparse
 import sys
 

@@ -14,6 +14,9 @@ median placement errors differ by less than 1 mm.
 
 from __future__ import annotations
 
+from arteleop import blas_kernel  # noqa: F401  (first: it picks numpy's BLAS kernel)
+
+# isort: split
 import argparse
 import json
 import os

@@ -18,6 +18,9 @@ A run folder that is already complete is read again rather than re-run.
 
 from __future__ import annotations
 
+from arteleop import blas_kernel  # noqa: F401  (first: it picks numpy's BLAS kernel)
+
+# isort: split
 import argparse
 import json
 from pathlib import Path

@@ -9,6 +9,9 @@ visible and every joint simulated (``render_triangles_per_mesh=None, hidden_link
 
 from __future__ import annotations
 
+from arteleop import blas_kernel  # noqa: F401  (first: it picks numpy's BLAS kernel)
+
+# isort: split
 import os
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")  # before numpy/open3d load their thread pools

@@ -23,6 +23,9 @@ many end with the same outcome, time and placement error to the bit.
 
 from __future__ import annotations
 
+import arteleop  # first: it picks numpy's BLAS kernel (arteleop/blas_kernel.py)
+
+# isort: split
 import argparse
 import json
 import os
@@ -45,7 +48,6 @@ def worker(modalities: list[str], seeds: range, replay: bool) -> None:
     that replays them does so after its last trial, not between trials (replaying between
     them made an identical checkout look 13 % slower than itself).
     """
-    import arteleop
     from arteleop.scene import RemoteSite
     from arteleop.teleop import TrialConfig, run_trial, trial_operator
 

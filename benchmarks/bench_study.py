@@ -14,6 +14,9 @@ with ``--workers`` processes, then its analysis, and prints:
 
 from __future__ import annotations
 
+from arteleop import blas_kernel  # noqa: F401  (first: it picks numpy's BLAS kernel)
+
+# isort: split
 import os
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")

@@ -12,6 +12,9 @@ trials' outcomes. ``--start X Y`` and ``--target X Y`` try other points (base fr
 
 from __future__ import annotations
 
+from arteleop import blas_kernel  # noqa: F401  (first: it picks numpy's BLAS kernel)
+
+# isort: split
 import os
 
 os.environ.setdefault("OMP_NUM_THREADS", "1")

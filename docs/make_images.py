@@ -11,6 +11,9 @@ chromium``). The predictive ghost: the same seed under the ghost and the predict
 
 from __future__ import annotations
 
+from arteleop import blas_kernel  # noqa: F401  (first: it picks numpy's BLAS kernel)
+
+# isort: split
 import argparse
 import tempfile
 from dataclasses import replace
