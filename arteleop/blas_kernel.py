@@ -29,7 +29,7 @@ from arteleop.errors import BlasKernelWarning
 
 BLAS_KERNEL_VARIABLE = "OPENBLAS_CORETYPE"
 PINNED_KERNEL = "Haswell"
-"""OpenBLAS's name for the kernels every x86-64 CPU with AVX2 and FMA runs (2013 onwards)."""
+"""OpenBLAS's name for the kernels every x86-64 CPU with AVX2 and FMA runs."""
 
 _CPU_INFO = Path("/proc/cpuinfo")
 
@@ -63,26 +63,31 @@ def choose_blas_kernel(
 def running_blas_kernel() -> str | None:
     """The kernel numpy's OpenBLAS runs in this process (e.g. ``Haswell``), loading numpy if it
     is not loaded; None where numpy uses another BLAS."""
-    import numpy as np  # noqa: F401  (loads its BLAS)
-    from threadpoolctl import threadpool_info
-
-    for library in threadpool_info():
-        if library.get("internal_api") == "openblas" and "numpy" in library["filepath"]:
-            return library.get("architecture") or None
-    return None
+    library = _numpy_blas()
+    if library is None or library.get("internal_api") != "openblas":
+        return None
+    return library.get("architecture") or None
 
 
 def blas_description() -> str:
     """numpy's BLAS as a run's manifest records it, e.g. ``openblas 0.3.31 Haswell``."""
-    import numpy as np  # noqa: F401
+    library = _numpy_blas()
+    if library is None:
+        return "unknown"
+    parts = (library.get("internal_api"), library.get("version"), library.get("architecture"))
+    return " ".join(str(p) for p in parts if p)
+
+
+def _numpy_blas() -> dict[str, object] | None:
+    """threadpoolctl's record of the BLAS that numpy loaded."""
+    import numpy as np  # noqa: F401  (loads its BLAS)
     from threadpoolctl import threadpool_info
 
-    for library in threadpool_info():
-        if library.get("user_api") == "blas" and "numpy" in library["filepath"]:
-            parts = (library.get("internal_api"), library.get("version"),
-                     library.get("architecture"))  # fmt: skip
-            return " ".join(str(p) for p in parts if p)
-    return "unknown"
+    return next(
+        (lib for lib in threadpool_info()
+         if lib.get("user_api") == "blas" and "numpy" in str(lib.get("filepath"))),
+        None,
+    )  # fmt: skip
 
 
 def cpu_runs_pinned_kernel(cpu_info: Path = _CPU_INFO) -> bool:
@@ -90,11 +95,9 @@ def cpu_runs_pinned_kernel(cpu_info: Path = _CPU_INFO) -> bool:
     if platform.machine().lower() not in ("x86_64", "amd64"):
         return False
     try:
-        text = cpu_info.read_text(encoding="ascii", errors="replace")
+        with cpu_info.open(encoding="ascii", errors="replace") as lines:
+            # The first processor's flags: every core of a machine has the same.
+            flags = next((line for line in lines if line.startswith("flags")), "")
     except OSError:
         return False
-    for line in text.splitlines():
-        if line.startswith("flags"):
-            flags = set(line.partition(":")[2].split())
-            return {"avx2", "fma"} <= flags
-    return False
+    return {"avx2", "fma"} <= set(flags.partition(":")[2].split())
