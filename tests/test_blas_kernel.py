@@ -13,6 +13,7 @@ import pytest
 from arteleop.blas_kernel import (
     BLAS_KERNEL_VARIABLE,
     PINNED_KERNEL,
+    SAME_AS_PINNED,
     blas_description,
     choose_blas_kernel,
     cpu_runs_pinned_kernel,
@@ -73,8 +74,23 @@ def test_numpy_imported_first_keeps_its_kernel_and_hands_it_to_children() -> Non
     ).stdout.strip()  # fmt: skip
     seen = _report("import numpy, arteleop")
     # It says so where the kernel is not the one other machines run.
-    warned = own != PINNED_KERNEL and cpu_runs_pinned_kernel()
+    warned = own not in SAME_AS_PINNED and cpu_runs_pinned_kernel()
     assert seen == {"variable": own, "kernel": own, "child": own, "warned": warned}
+
+
+@pytest.mark.parametrize(("loaded", "same"), [("Zen", True), ("Sandybridge", False)])
+def test_numpy_loaded_first_warns_unless_its_kernel_computes_as_the_pinned_one(
+    pinned_cpu: None, loaded: str, same: bool
+) -> None:
+    """Zen's kernels are Haswell's (asked for Zen, this OpenBLAS reports Haswell); Sandybridge's
+    round otherwise. Any CPU with AVX2 runs both."""
+    seen = _report(
+        f"os.environ['OPENBLAS_CORETYPE'] = '{loaded}'; import numpy; "
+        "del os.environ['OPENBLAS_CORETYPE']; import arteleop"
+    )
+    assert seen["variable"] == seen["kernel"] == seen["child"]
+    assert (seen["kernel"] in SAME_AS_PINNED) == same
+    assert seen["warned"] == (not same)
 
 
 def test_a_users_own_kernel_is_kept(pinned_cpu: None) -> None:
