@@ -9,10 +9,11 @@ Importing :mod:`arteleop` before numpy asks OpenBLAS for the Haswell kernels whe
 runs them (AVX2 and FMA, Linux), through ``OPENBLAS_CORETYPE``, which OpenBLAS reads as it loads
 and which the processes a run starts (study workers, the render process) inherit.
 
-A user's own ``OPENBLAS_CORETYPE`` is left alone. Where numpy was imported first, OpenBLAS has
-already chosen: the variable is set to that choice, so that the processes a run starts compute
-as this one does, with a :class:`~arteleop.errors.BlasKernelWarning` where the choice is not
-the pinned kernel on a CPU that runs it. Elsewhere (another system or CPU) nothing is set:
+A user's own ``OPENBLAS_CORETYPE`` is left alone (an empty one counts as unset, as for
+OpenBLAS). Where numpy was imported first, OpenBLAS has already chosen: the variable is set to
+that choice, so that the processes a run starts compute as this one does, with a
+:class:`~arteleop.errors.BlasKernelWarning` where that choice computes otherwise than the
+pinned kernel on a CPU that runs it. Elsewhere (another system or CPU) nothing is set:
 trials are then the same from run to run on one machine, not necessarily across machines.
 """
 
@@ -42,7 +43,7 @@ def choose_blas_kernel(
 ) -> str | None:
     """Set ``OPENBLAS_CORETYPE`` in ``environ`` as the module describes; return what it holds
     afterwards (None where it is unset). Imports nothing that loads OpenBLAS."""
-    if BLAS_KERNEL_VARIABLE in environ:
+    if environ.get(BLAS_KERNEL_VARIABLE):  # empty: OpenBLAS picks by the CPU, as if unset
         return environ[BLAS_KERNEL_VARIABLE]
     if "numpy" in sys.modules:
         kernel = running_blas_kernel()

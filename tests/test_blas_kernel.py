@@ -108,6 +108,12 @@ def test_the_cpu_must_run_avx2_and_fma(tmp_path: Path) -> None:
     assert not cpu_runs_pinned_kernel(tmp_path / "missing")
 
 
+def test_an_empty_variable_counts_as_unset(pinned_cpu: None) -> None:
+    seen = _report("import arteleop", OPENBLAS_CORETYPE="")
+    assert seen == {"variable": PINNED_KERNEL, "kernel": PINNED_KERNEL, "child": PINNED_KERNEL,
+                    "warned": False}  # fmt: skip
+
+
 def test_a_variable_already_set_is_returned_unchanged() -> None:
     environ = {BLAS_KERNEL_VARIABLE: "Zen"}
     assert choose_blas_kernel(environ) == "Zen"
