@@ -4,9 +4,12 @@ Subpackages follow the data flow: ``operator`` -> ``robot`` -> ``scene`` -> ``ar
 ``study`` drives trials and ``analysis`` reads only the files a study writes.
 """
 
+from importlib.metadata import version as _version
+
 from arteleop.blas_kernel import choose_blas_kernel as _choose_blas_kernel
 
-__version__ = "0.1.0"
+__version__ = _version("arteleop")
+"""The installed package's version, as ``pyproject.toml`` gives it."""
 
 # Before anything loads numpy: the same seed gives the same trial on every x86-64 machine.
 _choose_blas_kernel()

@@ -78,3 +78,14 @@ def test_a_name_that_moved_out_of_the_scene_is_found_there_with_a_warning(
     assert moved is getattr(importlib.import_module(home), name)
     with pytest.raises(AttributeError, match="has no attribute 'NoSuchName'"):
         arteleop.scene.NoSuchName  # noqa: B018
+
+
+def test_the_version_is_the_one_pyproject_gives() -> None:
+    import tomllib
+    from pathlib import Path
+
+    import arteleop
+
+    pyproject = Path(__file__).resolve().parent.parent / "pyproject.toml"
+    with pyproject.open("rb") as f:
+        assert arteleop.__version__ == tomllib.load(f)["project"]["version"]
