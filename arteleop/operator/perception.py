@@ -31,7 +31,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from arteleop.ar_features import DisplayFrame
-from arteleop.errors import ConfigurationError
+from arteleop.checks import Bounds, check_fields
 
 
 @dataclass(frozen=True)
@@ -61,10 +61,7 @@ class PerceptionParams:
     bias_share: float = 0.5
 
     def __post_init__(self) -> None:
-        if not 0.0 <= self.bias_share <= 1.0:
-            raise ConfigurationError(
-                f"PerceptionParams.bias_share = {self.bias_share!r}: expected 0-1."
-            )
+        check_fields(self, {"bias_share": Bounds(0, 1)})
 
     def belief_scale(self, glances: int) -> float:
         """The variance of a judgement averaged over ``glances`` glances, as a share of one

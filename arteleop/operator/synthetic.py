@@ -23,7 +23,6 @@ torso frame and a grip value; the loop turns them into IMU signals through the a
 
 from __future__ import annotations
 
-import math
 from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -34,7 +33,7 @@ from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation, Slerp
 
 from arteleop.ar_features import DisplayFrame
-from arteleop.errors import ConfigurationError
+from arteleop.checks import Bounds, check_fields
 from arteleop.operator.arm_model import ArmModel, hand_pose, segment_rotations
 from arteleop.operator.belief import averaging_saturated, probability_within
 from arteleop.operator.minimum_jerk import minimum_jerk_profile
@@ -110,18 +109,14 @@ class OperatorParams:
     perception: PerceptionParams = field(default_factory=PerceptionParams)
 
     def __post_init__(self) -> None:
-        positive = (
-            "noise_k_s", "peak_speed_m_s", "arrival_window_s", "arrival_speed_m_s",
-            "arrival_timeout_s", "gross_criterion_m", "max_look_s", "grip_ramp_s",
-        )  # fmt: skip
-        for name in positive:
-            value = getattr(self, name)
-            if not (math.isfinite(value) and value > 0):
-                raise ConfigurationError(f"OperatorParams.{name} = {value!r}: expected > 0.")
-        for name in ("noise_floor_m", "motor_delay_s", "visuomotor_delay_s", "familiar_lag_s"):
-            value = getattr(self, name)
-            if not (math.isfinite(value) and value >= 0):
-                raise ConfigurationError(f"OperatorParams.{name} = {value!r}: expected >= 0.")
+        positive, non_negative = Bounds(0, above=True), Bounds(0)
+        check_fields(self, {
+            **dict.fromkeys(("noise_k_s", "peak_speed_m_s", "arrival_window_s",
+                             "arrival_speed_m_s", "arrival_timeout_s", "gross_criterion_m",
+                             "max_look_s", "grip_ramp_s"), positive),
+            **dict.fromkeys(("noise_floor_m", "motor_delay_s", "visuomotor_delay_s",
+                             "familiar_lag_s"), non_negative),
+        })  # fmt: skip
 
 
 class Phase(Enum):

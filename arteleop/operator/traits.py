@@ -7,13 +7,12 @@ every display.
 
 from __future__ import annotations
 
-import math
 import zlib
 from dataclasses import dataclass, replace
 
 import numpy as np
 
-from arteleop.errors import ConfigurationError
+from arteleop.checks import Bounds, check_fields
 
 
 @dataclass(frozen=True)
@@ -66,21 +65,15 @@ class OperatorTraits:
     bias_seed: int = 0
 
     def __post_init__(self) -> None:
-        checks = {
-            "confidence": (0.5, 0.999, "a probability"),
-            "grasp_criterion_scale": (0.1, 3.0, "a share of the clearance"),
-            "placement_criterion_m": (0.001, 0.1, "m"),
-            "urgency_s": (0.5, 120.0, "s"),
-            "glance_s": (0.02, 1.0, "s"),
-            "movement_time_factor": (0.25, 4.0, "a factor"),
-            "depth_factor": (0.1, 3.0, "a factor"),
-        }
-        for name, (low, high, what) in checks.items():
-            value = getattr(self, name)
-            if not (math.isfinite(value) and low <= value <= high):
-                raise ConfigurationError(
-                    f"OperatorTraits.{name} = {value!r}: expected {low}-{high} ({what})."
-                )
+        check_fields(self, {
+            "confidence": Bounds(0.5, 0.999, "a probability"),
+            "grasp_criterion_scale": Bounds(0.1, 3.0, "a share of the clearance"),
+            "placement_criterion_m": Bounds(0.001, 0.1, "m"),
+            "urgency_s": Bounds(0.5, 120.0, "s"),
+            "glance_s": Bounds(0.02, 1.0, "s"),
+            "movement_time_factor": Bounds(0.25, 4.0, "a factor"),
+            "depth_factor": Bounds(0.1, 3.0, "a factor"),
+        })  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -115,23 +108,17 @@ class TraitDistribution:
     games_speed_factor: float = 0.88
 
     def __post_init__(self) -> None:
-        checks = {
-            "miss_rate": (0.005, 0.2, "a probability: 1 - the confidence"),
-            "placement_criterion_m": (0.002, 0.05, "m"),
-            "urgency_s": (1.0, 60.0, "s"),
-            "glance_s": (0.05, 0.3, "s"),
-            "avr_depth_factor": (0.1, 3.0, "a factor"),
-            "games_speed_factor": (0.25, 4.0, "a factor"),
-        }
-        for sd in ("miss_rate_sd", "grasp_criterion_sd", "placement_criterion_sd", "urgency_sd",
-                   "glance_sd"):  # fmt: skip
-            checks[sd] = (0.0, 1.0, "the SD of a log")
-        for name, (low, high, what) in checks.items():
-            value = getattr(self, name)
-            if not (math.isfinite(value) and low <= value <= high):
-                raise ConfigurationError(
-                    f"TraitDistribution.{name} = {value!r}: expected {low}-{high} ({what})."
-                )
+        log_sd = Bounds(0.0, 1.0, "the SD of a log")
+        check_fields(self, {
+            "miss_rate": Bounds(0.005, 0.2, "a probability: 1 - the confidence"),
+            "placement_criterion_m": Bounds(0.002, 0.05, "m"),
+            "urgency_s": Bounds(1.0, 60.0, "s"),
+            "glance_s": Bounds(0.05, 0.3, "s"),
+            "avr_depth_factor": Bounds(0.1, 3.0, "a factor"),
+            "games_speed_factor": Bounds(0.25, 4.0, "a factor"),
+            **dict.fromkeys(("miss_rate_sd", "grasp_criterion_sd", "placement_criterion_sd",
+                             "urgency_sd", "glance_sd"), log_sd),
+        })  # fmt: skip
 
     def draw(
         self, seed: int, person: str, expertise: Expertise, movement_time_factor: float = 1.0

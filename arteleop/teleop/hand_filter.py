@@ -10,14 +10,13 @@ implementation (PyPI ``OneEuroFilter``) filters each coordinate.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 from OneEuroFilter import OneEuroFilter
 
-from arteleop.errors import ConfigurationError
+from arteleop.checks import Bounds, check_fields
 
 
 @dataclass(frozen=True)
@@ -42,17 +41,13 @@ class HandFilterConfig:
     derivative_cutoff_hz: float = 1.0
 
     def __post_init__(self) -> None:
-        for name, low in (("min_cutoff_hz", 0.01), ("derivative_cutoff_hz", 0.01)):
-            value = getattr(self, name)
-            if not (math.isfinite(value) and low <= value <= 100.0):
-                raise ConfigurationError(
-                    f"HandFilterConfig.{name} = {value!r}: expected a cutoff of {low}-100 Hz."
-                )
-        if not (math.isfinite(self.beta_per_m) and 0.0 <= self.beta_per_m <= 1000.0):
-            raise ConfigurationError(
-                f"HandFilterConfig.beta_per_m = {self.beta_per_m!r}: expected 0-1000 "
-                "(Hz per m/s; 0 is a plain low-pass filter)."
-            )
+        cutoff = Bounds(0.01, 100.0, text="a cutoff of 0.01-100 Hz")
+        check_fields(self, {
+            "min_cutoff_hz": cutoff,
+            "derivative_cutoff_hz": cutoff,
+            "beta_per_m": Bounds(0.0, 1000.0,
+                                 text="0-1000 (Hz per m/s; 0 is a plain low-pass filter)"),
+        })  # fmt: skip
 
 
 class HandFilter:
