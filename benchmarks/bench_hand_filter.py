@@ -29,14 +29,8 @@ import sys
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from arteleop.operator import (
-    RecordingInfo,
-    WearableConfig,
-    minimum_jerk,
-    reconstruct,
-    record_hand_motion,
-)
-from arteleop.teleop import HandFilterConfig, filter_hand_path
+from arteleop.operator import RecordingInfo, WearableConfig, minimum_jerk, record_hand_motion
+from arteleop.teleop import HandFilterConfig, filter_hand_path, reconstruct
 
 RATE_HZ = 100.0
 START = np.array([0.30, -0.22, -0.28])

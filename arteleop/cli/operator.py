@@ -21,7 +21,8 @@ class OperatorCheckCommand:
 
 def operator_check(cmd: OperatorCheckCommand) -> int:
     from arteleop.analysis import path_length
-    from arteleop.operator import load_recording, reconstruct
+    from arteleop.operator import load_recording
+    from arteleop.teleop import reconstruct
 
     rec = load_recording(cmd.file)
     traj = reconstruct(rec)

@@ -1,6 +1,12 @@
-"""The operator: a wearable IMU model of the right arm, recordings and their reconstruction,
-the synthetic operator and the sources that feed the loop."""
+"""The operator: the person and what the person wears. A model of the right arm and the posture
+held to calibrate the wearable, the wearable's IMUs and their recordings, the synthetic
+participant and what it perceives, and the sources that feed the loop.
 
+The robot side's reading of the wearable (its calibration, the hand's reconstruction) moved to
+:mod:`arteleop.teleop` in 0.3; the old names are found here, with a warning, through 0.3.
+"""
+
+from arteleop.moved import moved_names
 from arteleop.operator.arm_model import (
     SEGMENTS,
     ArmAngles,
@@ -11,7 +17,6 @@ from arteleop.operator.arm_model import (
     segments_for_hand_pose,
 )
 from arteleop.operator.belief import probability_within
-from arteleop.operator.calibration import SensorMounting, calibrate
 from arteleop.operator.live import HandTarget, LiveOperator
 from arteleop.operator.minimum_jerk import minimum_jerk, minimum_jerk_profile
 from arteleop.operator.perception import (
@@ -21,24 +26,15 @@ from arteleop.operator.perception import (
     PerceptualErrors,
     perceive,
 )
-from arteleop.operator.reconstruction import (
-    HandSample,
-    HandTrajectory,
-    SampleStatus,
-    StreamingReconstructor,
-    reconstruct,
-)
+from arteleop.operator.posture import CalibrationPosture, hand_from_calibration
 from arteleop.operator.recording import (
     COLUMNS,
-    CalibrationPosture,
     LoaderConfig,
     LoadReport,
     Recording,
     RecordingInfo,
-    load_recording,
-    sidecar_path,
-    write_recording,
 )
+from arteleop.operator.recording_file import load_recording, sidecar_path, write_recording
 from arteleop.operator.sources import (
     HandModel,
     OperatorSource,
@@ -75,9 +71,7 @@ __all__ = [
     "CalibrationPosture",
     "Expertise",
     "HandModel",
-    "HandSample",
     "HandTarget",
-    "HandTrajectory",
     "ImuErrorConfig",
     "LiveOperator",
     "LoadReport",
@@ -92,9 +86,6 @@ __all__ = [
     "Recording",
     "RecordingInfo",
     "RecordingSource",
-    "SampleStatus",
-    "SensorMounting",
-    "StreamingReconstructor",
     "SynthesizedRecording",
     "SyntheticOperator",
     "SyntheticSource",
@@ -104,9 +95,9 @@ __all__ = [
     "WearableSample",
     "WearableSignals",
     "WornSource",
-    "calibrate",
     "check_operator",
     "expected_time_s",
+    "hand_from_calibration",
     "hand_pose",
     "joint_positions",
     "live_source",
@@ -115,7 +106,6 @@ __all__ = [
     "minimum_jerk_profile",
     "perceive",
     "probability_within",
-    "reconstruct",
     "record_hand_motion",
     "segment_rotations",
     "segments_for_hand_pose",
@@ -125,3 +115,13 @@ __all__ = [
     "synthetic_source",
     "write_recording",
 ]
+
+__getattr__ = moved_names(
+    "arteleop.operator",
+    dict.fromkeys(
+        ("HandSample", "HandTrajectory", "SampleStatus", "SensorMounting",
+         "StreamingReconstructor", "calibrate", "reconstruct"),
+        "arteleop.teleop",
+    ),
+    until="0.3",
+)  # fmt: skip

@@ -21,7 +21,7 @@ from numpy.typing import NDArray
 from arteleop.ar_features import DisplayFrame
 from arteleop.operator.arm_model import ArmModel
 from arteleop.operator.perception import Perceived
-from arteleop.operator.recording import CalibrationPosture
+from arteleop.operator.posture import CalibrationPosture
 from arteleop.operator.sources import WearableSample, WornSource
 from arteleop.operator.synthetic import (
     OperatorParams,

@@ -14,7 +14,8 @@ from arteleop.ar_features import DisplayFrame
 from arteleop.errors import ConfigurationError
 from arteleop.operator.arm_model import ArmModel, segment_rotations, segments_for_hand_pose
 from arteleop.operator.live import HandTarget, LiveOperator
-from arteleop.operator.recording import CalibrationPosture, Recording, RecordingInfo
+from arteleop.operator.posture import CalibrationPosture
+from arteleop.operator.recording import Recording, RecordingInfo
 from arteleop.operator.synthetic import (
     OperatorOutput,
     OperatorParams,

@@ -30,11 +30,11 @@ from enum import Enum
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.spatial.transform import Rotation, Slerp
+from scipy.spatial.transform import Rotation
 
 from arteleop.ar_features import DisplayFrame
 from arteleop.checks import Bounds, check_fields
-from arteleop.operator.arm_model import ArmModel, hand_pose, segment_rotations
+from arteleop.operator.arm_model import ArmModel
 from arteleop.operator.belief import averaging_saturated, probability_within
 from arteleop.operator.minimum_jerk import minimum_jerk_profile
 from arteleop.operator.perception import (
@@ -45,7 +45,7 @@ from arteleop.operator.perception import (
     perceive,
     shown_gripper_m,
 )
-from arteleop.operator.recording import CalibrationPosture
+from arteleop.operator.posture import CalibrationPosture, hand_from_calibration
 from arteleop.operator.submovements import submovement_duration_s
 from arteleop.operator.traits import OperatorTraits
 
@@ -183,17 +183,6 @@ class _Submovement:
     def done_at(self, t: float) -> NDArray[np.float64]:
         """The share of ``delta_m`` covered at ``t`` (s)."""
         return self.delta_m * float(minimum_jerk_profile((t - self.start_s) / self.duration_s))
-
-
-def hand_from_calibration(
-    arm: ArmModel, calibration: CalibrationPosture, hand_pitch_rad: float
-) -> tuple[NDArray[np.float64], Slerp]:
-    """The hand's position in the calibration posture (torso frame, m), and the path of its
-    rotation from that posture (0) to the working one, pitched ``hand_pitch_rad`` about the
-    torso's y (1)."""
-    position, R_hand = hand_pose(arm, segment_rotations(calibration.angles))
-    path = [Rotation.from_matrix(R_hand), Rotation.from_euler("y", hand_pitch_rad)]
-    return position, Slerp([0.0, 1.0], Rotation.concatenate(path))
 
 
 class SyntheticOperator:

@@ -6,9 +6,7 @@ and the ArUco markers in :mod:`arteleop.calibration`. Their names are still foun
 ``DeprecationWarning``, through 0.2 (they moved in 0.2).
 """
 
-import importlib
-import warnings
-from typing import Any
+from arteleop.moved import moved_names
 
 # First: it loads PyBullet without the banner PyBullet prints on import.
 from arteleop.robot import native_output  # noqa: F401
@@ -106,15 +104,4 @@ _MOVED = {
 """Names that moved out of this package in 0.2, and where they are now."""
 
 
-def __getattr__(name: str) -> Any:
-    """The moved names, for one release, with a warning that says where they are now."""
-    if name not in _MOVED:
-        raise AttributeError(f"module 'arteleop.scene' has no attribute {name!r}")
-    home = _MOVED[name]
-    warnings.warn(
-        f"arteleop.scene.{name} has moved: import it from {home} (arteleop.scene re-exports it "
-        "through 0.2 only)",
-        DeprecationWarning,
-        stacklevel=2,
-    )
-    return getattr(importlib.import_module(home), name)
+__getattr__ = moved_names("arteleop.scene", _MOVED, until="0.2")

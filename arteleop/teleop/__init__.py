@@ -1,5 +1,6 @@
-"""The teleoperation loop: clock, network link, robot-side controller, task monitor, display
-feed, timing and trials; the live application.
+"""The teleoperation loop: clock, network link, the robot side (the wearable's calibration, the
+hand's reconstruction and filter, the controller), task monitor, display feed, timing and
+trials; the live application.
 
 The live application, which pulls in viser's server, is imported on first use.
 """
@@ -22,6 +23,14 @@ from arteleop.teleop.hand_speed import HandSpeed
 from arteleop.teleop.latency import LatencyAccount
 from arteleop.teleop.loop import display_frame_at, run_trial, trial_operator
 from arteleop.teleop.network import NetworkConfig, NetworkLink
+from arteleop.teleop.reconstruction import (
+    HandSample,
+    HandTrajectory,
+    SampleStatus,
+    StreamingReconstructor,
+    reconstruct,
+)
+from arteleop.teleop.sensor_calibration import SensorMounting, calibrate, calibrate_from_hold
 from arteleop.teleop.task_monitor import TaskMonitor
 from arteleop.teleop.timing import StageStats, StageTimer
 from arteleop.teleop.trace import TRACE_COLUMNS, TrialTrace
@@ -43,7 +52,9 @@ __all__ = [
     "DisplayFeed",
     "HandFilter",
     "HandFilterConfig",
+    "HandSample",
     "HandSpeed",
+    "HandTrajectory",
     "LatencyAccount",
     "LoopClock",
     "LoopRates",
@@ -51,8 +62,11 @@ __all__ = [
     "NetworkLink",
     "OperatorBody",
     "Outcome",
+    "SampleStatus",
+    "SensorMounting",
     "StageStats",
     "StageTimer",
+    "StreamingReconstructor",
     "TaskMonitor",
     "TeleopApp",
     "TeleopAppConfig",
@@ -63,9 +77,12 @@ __all__ = [
     "TrialProgress",
     "TrialResult",
     "TrialTrace",
+    "calibrate",
+    "calibrate_from_hold",
     "display_frame",
     "display_frame_at",
     "filter_hand_path",
+    "reconstruct",
     "run_trial",
     "trial_operator",
     "view_assets",

@@ -15,14 +15,7 @@ from typing import Protocol
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from arteleop.operator import (
-    ArmModel,
-    CalibrationPosture,
-    HandSample,
-    SampleStatus,
-    StreamingReconstructor,
-)
-from arteleop.operator.calibration import calibrate_from_hold
+from arteleop.operator import ArmModel, CalibrationPosture
 from arteleop.robot import WORK_POSTURE, ArmCommand, JointLimits
 from arteleop.robot.grip_control import GripCommand, GripHysteresis
 from arteleop.robot.ik import ArmIK, IKConfig, IKResult
@@ -32,6 +25,8 @@ from arteleop.scene import Box
 from arteleop.teleop.clock import LoopRates
 from arteleop.teleop.hand_filter import HandFilter, HandFilterConfig
 from arteleop.teleop.hand_speed import HandSpeed
+from arteleop.teleop.reconstruction import HandSample, SampleStatus, StreamingReconstructor
+from arteleop.teleop.sensor_calibration import calibrate_from_hold
 from arteleop.teleop.timing import StageTimer
 
 

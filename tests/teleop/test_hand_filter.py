@@ -7,8 +7,8 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from arteleop.errors import ConfigurationError
-from arteleop.operator import RecordingInfo, WearableConfig, reconstruct, record_hand_motion
-from arteleop.teleop import HandFilter, HandFilterConfig, filter_hand_path
+from arteleop.operator import RecordingInfo, WearableConfig, record_hand_motion
+from arteleop.teleop import HandFilter, HandFilterConfig, filter_hand_path, reconstruct
 from tests.operator.motions import FAR, START
 
 

@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from arteleop.errors import ConfigurationError
-from arteleop.operator import ImuErrorConfig, reconstruct
-from arteleop.teleop import HandSpeed
+from arteleop.operator import ImuErrorConfig
+from arteleop.teleop import HandSpeed, reconstruct
 from tests.operator.motions import reach_and_return
 
 
