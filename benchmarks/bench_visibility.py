@@ -25,17 +25,17 @@ from dataclasses import replace
 
 import pandas as pd
 
-from arteleop.operator import Phase, SyntheticSource
+from arteleop.operator import SyntheticSource
 from arteleop.scene import RemoteSite, SiteConfig, Workspace
 from arteleop.teleop import TrialConfig, TrialProgress, run_trial, trial_operator
 
 PHASES = {
-    Phase.REACH: "reach", Phase.DESCEND: "reach",
-    Phase.CLOSE: "grasp", Phase.LIFT: "grasp",
-    Phase.TRANSPORT: "transport",
-    Phase.LOWER: "place", Phase.OPEN: "place",
+    "reach": "reach", "descend": "reach",
+    "close": "grasp", "lift": "grasp",
+    "transport": "transport",
+    "lower": "place", "open": "place",
 }  # fmt: skip
-"""The task's phases, from the synthetic operator's movements."""
+"""The pick-and-place's phases (the synthetic operator's), grouped as the original's."""
 
 
 def _looker(

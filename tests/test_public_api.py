@@ -79,8 +79,7 @@ def test_a_name_that_moved_is_found_at_its_old_home_with_a_warning(
     """Scripts written for the release before keep working, told where the name went."""
     module = importlib.import_module(old)
     message = (
-        f"{old}.{name} has moved: import it from {home} ({old} re-exports it through {until} "
-        "only)"
+        f"{old}.{name} has moved: import it from {home} ({old} re-exports it through {until} only)"
     )
     with pytest.warns(DeprecationWarning) as caught:
         moved = getattr(module, name)

@@ -19,6 +19,7 @@ from arteleop.operator.arm_model import (
 from arteleop.operator.belief import probability_within
 from arteleop.operator.live import HandTarget, LiveOperator
 from arteleop.operator.minimum_jerk import minimum_jerk, minimum_jerk_profile
+from arteleop.operator.params import OperatorParams
 from arteleop.operator.perception import (
     BowlMemory,
     Perceived,
@@ -26,6 +27,7 @@ from arteleop.operator.perception import (
     PerceptualErrors,
     perceive,
 )
+from arteleop.operator.phase_log import PhaseRecord
 from arteleop.operator.posture import CalibrationPosture, hand_from_calibration
 from arteleop.operator.recording import (
     COLUMNS,
@@ -48,11 +50,14 @@ from arteleop.operator.sources import (
 )
 from arteleop.operator.submovements import expected_time_s, submovement_duration_s
 from arteleop.operator.synthesis import SynthesizedRecording, record_hand_motion
-from arteleop.operator.synthetic import (
-    OperatorParams,
-    Phase,
-    SyntheticOperator,
-    TaskGeometry,
+from arteleop.operator.synthetic import OperatorOutput, SyntheticOperator
+from arteleop.operator.tasks import (
+    Action,
+    Goal,
+    PickAndPlace,
+    PointingTask,
+    Task,
+    TaskPhase,
 )
 from arteleop.operator.traits import Expertise, OperatorTraits, TraitDistribution
 from arteleop.operator.wearable import (
@@ -65,31 +70,37 @@ from arteleop.operator.wearable import (
 __all__ = [
     "COLUMNS",
     "SEGMENTS",
+    "Action",
     "ArmAngles",
     "ArmModel",
     "BowlMemory",
     "CalibrationPosture",
     "Expertise",
+    "Goal",
     "HandModel",
     "HandTarget",
     "ImuErrorConfig",
     "LiveOperator",
     "LoadReport",
     "LoaderConfig",
+    "OperatorOutput",
     "OperatorParams",
     "OperatorSource",
     "OperatorTraits",
     "Perceived",
     "PerceptionParams",
     "PerceptualErrors",
-    "Phase",
+    "PhaseRecord",
+    "PickAndPlace",
+    "PointingTask",
     "Recording",
     "RecordingInfo",
     "RecordingSource",
     "SynthesizedRecording",
     "SyntheticOperator",
     "SyntheticSource",
-    "TaskGeometry",
+    "Task",
+    "TaskPhase",
     "TraitDistribution",
     "WearableConfig",
     "WearableSample",
@@ -118,10 +129,13 @@ __all__ = [
 
 __getattr__ = moved_names(
     "arteleop.operator",
-    dict.fromkeys(
-        ("HandSample", "HandTrajectory", "SampleStatus", "SensorMounting",
-         "StreamingReconstructor", "calibrate", "reconstruct"),
-        "arteleop.teleop",
-    ),
+    {
+        **dict.fromkeys(
+            ("HandSample", "HandTrajectory", "SampleStatus", "SensorMounting",
+             "StreamingReconstructor", "calibrate", "reconstruct"),
+            "arteleop.teleop",
+        ),
+        "TaskGeometry": "arteleop.operator.tasks:PickAndPlace",
+    },
     until="0.3",
 )  # fmt: skip

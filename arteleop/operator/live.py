@@ -18,12 +18,14 @@ from arteleop.ar_features import DisplayFrame
 from arteleop.operator.arm_model import ArmModel
 from arteleop.operator.minimum_jerk import minimum_jerk_profile
 from arteleop.operator.posture import CalibrationPosture, hand_from_calibration
-from arteleop.operator.synthetic import OperatorOutput, Phase
+from arteleop.operator.synthetic import ALIGN, CALIBRATE, OperatorOutput
 
 ALIGN_S = 1.5
 """Time to bring the hand from the calibration posture to the target (s)."""
 FOLLOW_TIME_CONSTANT_S = 0.15
 """The hand follows the target with this lag (s): a drag in the browser jumps, a hand does not."""
+FOLLOW = "follow"
+"""The live operator's phase once its hand follows the target."""
 
 
 class HandTarget:
@@ -66,7 +68,7 @@ class LiveOperator:
         self._hand = calib_pos
         self._from = calib_pos
         self._last_t: float | None = None
-        self.phase = Phase.CALIBRATE
+        self.phase = CALIBRATE
 
     def step(self, time_s: float, view: DisplayFrame) -> OperatorOutput:
         """The hand at ``time_s`` (s); ``view`` is not needed: the person looks for themselves."""
@@ -74,18 +76,18 @@ class LiveOperator:
         goal = self._to_hand(gripper_m)
         hold_s = self._calibration.hold_s
         if time_s < hold_s:
-            self.phase = Phase.CALIBRATE
+            self.phase = CALIBRATE
             return OperatorOutput(
                 time_s, self._hand.copy(), self._rot_path(0.0).as_matrix(), 0.0, self.phase
             )
         s = (time_s - hold_s) / ALIGN_S
         if s < 1.0:
-            self.phase = Phase.ALIGN
+            self.phase = ALIGN
             k = float(minimum_jerk_profile(s))
             self._hand = self._from + k * (goal - self._from)
             rotation = self._rot_path(k).as_matrix()
         else:
-            self.phase = Phase.REACH
+            self.phase = FOLLOW
             dt = 0.0 if self._last_t is None else time_s - self._last_t
             follow = 1.0 - np.exp(-dt / FOLLOW_TIME_CONSTANT_S)
             self._hand = self._hand + (goal - self._hand) * follow

@@ -14,15 +14,11 @@ from arteleop.ar_features import DisplayFrame
 from arteleop.errors import ConfigurationError
 from arteleop.operator.arm_model import ArmModel, segment_rotations, segments_for_hand_pose
 from arteleop.operator.live import HandTarget, LiveOperator
+from arteleop.operator.params import OperatorParams
 from arteleop.operator.posture import CalibrationPosture
 from arteleop.operator.recording import Recording, RecordingInfo
-from arteleop.operator.synthetic import (
-    OperatorOutput,
-    OperatorParams,
-    Phase,
-    SyntheticOperator,
-    TaskGeometry,
-)
+from arteleop.operator.synthetic import CALIBRATE, OperatorOutput, SyntheticOperator
+from arteleop.operator.tasks import PickAndPlace, Task
 from arteleop.operator.traits import OperatorTraits
 from arteleop.operator.wearable import WearableConfig, WearableSimulator
 
@@ -79,7 +75,7 @@ class WornSource:
 
     def sample(self, time_s: float, view: DisplayFrame) -> WearableSample | None:
         out = self.operator.step(time_s, view)
-        if out.phase is Phase.CALIBRATE:
+        if out.phase == CALIBRATE:
             segments = self._calibration_segments
         else:
             segments = segments_for_hand_pose(self.arm, out.hand_m, out.R_torso_hand)
@@ -103,13 +99,14 @@ class WornSource:
 
 
 class SyntheticSource(WornSource):
-    """A :class:`SyntheticOperator` wearing the simulated wearable."""
+    """A :class:`SyntheticOperator` doing ``task``, wearing the simulated wearable; it stops
+    (None) once the operator has finished a task whose last phase ends the trial."""
 
     operator: SyntheticOperator
 
     def __init__(
         self,
-        task: TaskGeometry,
+        task: Task,
         hand_for_gripper: Callable[[NDArray[np.float64]], NDArray[np.float64]],
         rng: np.random.Generator,
         arm: ArmModel | None = None,
@@ -122,6 +119,11 @@ class SyntheticSource(WornSource):
         calibration = calibration or CalibrationPosture()
         operator = SyntheticOperator(task, hand_for_gripper, arm, calibration, rng, params, traits)
         super().__init__(operator, rng, arm, calibration, wearable)
+
+    def sample(self, time_s: float, view: DisplayFrame) -> WearableSample | None:
+        if self.operator.stopped(time_s):
+            return None
+        return super().sample(time_s, view)
 
 
 def check_operator(operator: str, live: bool) -> None:
@@ -189,9 +191,7 @@ def synthetic_source(
     # alone (recordings, reconstruction) has no need of.
     from arteleop.robot.mapping import HandToGripper
 
-    task = TaskGeometry(
-        bowl.grasp_offset_m(), np.asarray(rest_gripper_m, dtype=np.float64), grasp_clearance_m
-    )
+    task = PickAndPlace(bowl.grasp_offset_m(), rest_gripper_m, grasp_clearance_m)
     rng = np.random.default_rng([seed, 1])
     return SyntheticSource(
         task,

@@ -24,6 +24,9 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.stats import chi
 
+from arteleop.operator.hand import MIN_JERK_PEAK, Submovement
+from arteleop.operator.params import OperatorParams
+
 LOOK_COST_STEP_S = 0.05
 """Resolution of the look cost's tables (s)."""
 _X = np.geomspace(0.05, 2000.0, 160)  # amplitude / criterion
@@ -79,3 +82,26 @@ def expected_time_s(
     value, _ = _policy(cost, noise_k_s)
     x = np.clip(amplitude_m / max(criterion_m, 1e-6), _X[0], _X[-1])
     return float(np.interp(np.log(x), np.log(_X), value))
+
+
+def planned_submovement(
+    hand_delta_m: NDArray[np.float64],
+    start_s: float,
+    criterion_m: float,
+    look_cost_s: float,
+    params: OperatorParams,
+    movement_time_factor: float,
+    rng: np.random.Generator,
+) -> Submovement:
+    """A submovement of the hand by ``hand_delta_m`` (m) from ``start_s`` (s): its duration
+    the optimal one (scaled by the person's ``movement_time_factor``, no faster than the hand's
+    peak speed allows, at least 0.1 s), its endpoint scattered by its mean speed."""
+    amplitude = float(np.linalg.norm(hand_delta_m))
+    duration = submovement_duration_s(amplitude, criterion_m, look_cost_s, params.noise_k_s)
+    duration = max(
+        duration * movement_time_factor,
+        MIN_JERK_PEAK * amplitude / params.peak_speed_m_s,
+        0.1,
+    )
+    sd = params.noise_floor_m + params.noise_k_s * amplitude / duration
+    return Submovement(start_s, hand_delta_m + rng.normal(0.0, sd, 3), duration)

@@ -13,8 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from arteleop.errors import SimulationError
-from arteleop.operator import ArmModel, CalibrationPosture, OperatorTraits
-from arteleop.operator.pointing import PointingOperator, PointingSource, PointingTask
+from arteleop.operator import OperatorTraits, PointingTask, SyntheticSource
 from arteleop.robot.mapping import HandToGripper
 from arteleop.scene import RemoteSite, SiteConfig, Workspace
 from arteleop.teleop.loop import run_trial
@@ -65,14 +64,13 @@ def run_pointing_trial(
                          network=NetworkConfig(delay_s=round_trip_lag_s / 2),
                          site=SiteConfig(workspace=ws), record_trace=True)  # fmt: skip
     with RemoteSite(config.site) as site:
-        task = PointingTask(ws.on_table(POINTING_START_XY_M), ws.target_m, width_m)
-        arm, calibration = ArmModel(), CalibrationPosture()
-        rng = np.random.default_rng([seed, 1])
+        task = PointingTask(ws.on_table(POINTING_START_XY_M), ws.target_m, width_m,
+                            site.observe().gripper_m)  # fmt: skip
         to_hand = HandToGripper(config.controller.mapping).hand_position_for
-        operator = PointingOperator(task, site.observe().gripper_m, to_hand, arm, calibration,
-                                    rng, traits=traits)  # fmt: skip
-        result = run_trial(PointingSource(operator, rng, arm, calibration), config, site)
-    if operator.selected_s is None or operator.pointing_start_s is None:
+        source = SyntheticSource(task, to_hand, np.random.default_rng([seed, 1]), traits=traits)
+        result = run_trial(source, config, site)
+    pointing = [r for r in source.operator.history if r.name == "point"]
+    if not pointing or pointing[0].first_move_s is None or pointing[0].end_s is None:
         return PointingResult(float("nan"), float("nan"), False)
     # The selection is where the gripper starts to close: the click.
     trace = result.trace
@@ -83,7 +81,7 @@ def run_pointing_trial(
     end = np.array([trace["gripper_x_m"][k], trace["gripper_y_m"][k]])
     off = end - ws.target_m[:2]
     return PointingResult(
-        operator.selected_s - operator.pointing_start_s,
+        pointing[0].end_s - pointing[0].first_move_s,
         float(off[1]),
         bool(np.linalg.norm(off) <= width_m / 2),
     )

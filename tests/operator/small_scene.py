@@ -9,8 +9,14 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from arteleop.ar_features import ArCues
-from arteleop.operator import ArmModel, CalibrationPosture, OperatorParams, OperatorTraits
-from arteleop.operator.synthetic import Phase, SyntheticOperator, TaskGeometry, _Mode
+from arteleop.operator import (
+    ArmModel,
+    CalibrationPosture,
+    OperatorParams,
+    OperatorTraits,
+    PickAndPlace,
+    SyntheticOperator,
+)
 from arteleop.transforms import make_transform
 from tests.ar_features.frames import display_frame
 
@@ -42,18 +48,16 @@ def descend(
     """The operator's descent from ``start_above_m`` over the grasp point until it accepts, the
     display showing the gripper ``lag_s`` (s) late, at 30 frames/s."""
     params = params or OperatorParams(familiar_lag_s=lag_s)
-    task = TaskGeometry(GRASP_OFFSET_M, np.array([0.3, -0.56, 0.0]))
+    task = PickAndPlace(GRASP_OFFSET_M, np.array([0.3, -0.56, 0.0]))
     rng = np.random.default_rng(seed)
     traits = replace(traits or OperatorTraits(), bias_seed=seed)
     op = SyntheticOperator(task, lambda p: p, ArmModel(), CalibrationPosture(), rng, params,
                            traits)  # fmt: skip
     start = GRASP_M + [0.0, 0.0, start_above_m]
-    op._base, op._hand = start.copy(), start.copy()
-    op._enter(Phase.DESCEND, 0.0)
-    op._mode, op._wait_until = _Mode.WAIT, 0.0
+    op.start_phase("descend", start, 0.0)
     history: deque[tuple[float, np.ndarray]] = deque([(-1.0, start.copy())])
     view, lowest, t = None, start[2], 0.0
-    while op.phase is Phase.DESCEND and t < limit_s:
+    while op.phase == "descend" and t < limit_s:
         shown = next(h for ts, h in reversed(history) if ts <= t - lag_s)
         if view is None or t - view.time_s >= 1 / 30 - 1e-9:
             view = display_frame(
@@ -62,14 +66,14 @@ def descend(
                 bowl_m=BOWL_M,
                 T_base_gripper=make_transform(np.diag([1.0, -1.0, -1.0]), shown),
             )
-        lowest = min(lowest, float(op._hand[2]))
+        lowest = min(lowest, float(op.hand.position_m[2]))
         op.step(t, view)
-        history.append((t, op._hand.copy()))
+        history.append((t, op.hand.position_m.copy()))
         t = round(t + 0.01, 10)
     return Descent(
         t,
         op.looks_total,
         op.corrections_total,
-        float(np.linalg.norm(op._hand - GRASP_M)),
+        float(np.linalg.norm(op.hand.position_m - GRASP_M)),
         max(GRASP_M[2] - lowest, 0.0),
     )

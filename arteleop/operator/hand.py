@@ -1,0 +1,88 @@
+"""The synthetic operator's hand: the submovements that move it and the path it took."""
+
+from __future__ import annotations
+
+from collections import deque
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from arteleop.operator.minimum_jerk import minimum_jerk_profile
+
+MIN_JERK_PEAK = 1.875
+"""Peak speed of a minimum-jerk movement, in units of its mean speed."""
+PATH_S = 2.0
+"""How long the hand's own path is remembered (s): longer than any lag the operator believes."""
+
+
+@dataclass(frozen=True)
+class Submovement:
+    """A minimum-jerk displacement of the hand (torso frame, m) from ``start_s`` (s) over
+    ``duration_s`` (s); submovements under way at once superpose."""
+
+    start_s: float
+    delta_m: NDArray[np.float64]
+    duration_s: float
+
+    def done_at(self, t: float) -> NDArray[np.float64]:
+        """The share of ``delta_m`` covered at ``t`` (s)."""
+        return self.delta_m * float(minimum_jerk_profile((t - self.start_s) / self.duration_s))
+
+
+class Hand:
+    """The hand's position (torso frame, m): where every finished submovement left it plus what
+    those under way have covered, and its recent path."""
+
+    def __init__(self, position_m: NDArray[np.float64]) -> None:
+        self.position_m = position_m.copy()
+        self._base = position_m.copy()
+        self.moves: list[Submovement] = []
+        self._path: deque[tuple[float, NDArray[np.float64]]] = deque()
+
+    @property
+    def moving(self) -> bool:
+        return bool(self.moves)
+
+    def add(self, move: Submovement) -> None:
+        self.moves.append(move)
+
+    def advance(self, t: float) -> None:
+        """Move the hand to where its submovements have it at ``t`` (s)."""
+        done = [m for m in self.moves if t >= m.start_s + m.duration_s]
+        for m in done:
+            self._base = self._base + m.delta_m
+            self.moves.remove(m)
+        self.position_m = self._base + sum((m.done_at(t) for m in self.moves), np.zeros(3))
+
+    def remember(self, t: float) -> None:
+        """Keep the hand's position at ``t`` (s) in its recent path."""
+        self._path.append((t, self.position_m.copy()))
+        while self._path[0][0] < t - PATH_S:
+            self._path.popleft()
+
+    def moved_since(self, since_s: float) -> NDArray[np.float64]:
+        """How far the hand has moved since ``since_s`` (m), from its recent path."""
+        before = next((h for ts, h in reversed(self._path) if ts <= since_s), None)
+        if before is None:  # the lag reaches back before what it remembers: the oldest
+            before = self._path[0][1] if self._path else self.position_m
+        return self.position_m - before
+
+    def remaining_m(self, t: float) -> NDArray[np.float64]:
+        """The displacement still to come from the submovements under way at ``t`` (s; m)."""
+        return sum((m.delta_m - m.done_at(t) for m in self.moves), np.zeros(3))
+
+
+class Tremor:
+    """Physiological tremor: two sinusoids per axis (torso frame, m), their phases drawn once."""
+
+    def __init__(
+        self, amplitude_m: float, frequencies_hz: tuple[float, float], rng: np.random.Generator
+    ) -> None:
+        self.amplitude_m = amplitude_m
+        self._w = 2 * np.pi * np.asarray(frequencies_hz)
+        self._phase = rng.uniform(0, 2 * np.pi, (2, 3))
+
+    def at(self, t: float) -> NDArray[np.float64]:
+        """The tremor's displacement at ``t`` (s; m)."""
+        return self.amplitude_m * np.sin(self._w[:, None] * t + self._phase).sum(axis=0) / 2

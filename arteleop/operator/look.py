@@ -1,0 +1,50 @@
+"""One look of the synthetic operator: glance after glance at an error until it is sure either
+way (:mod:`arteleop.operator.belief`)."""
+
+from __future__ import annotations
+
+from arteleop.operator.belief import averaging_saturated
+from arteleop.operator.traits import OperatorTraits
+
+
+class Look:
+    """A look's glances and what looks have come to cost the person (s).
+
+    Glances go on until the probability that the error is within the criterion reaches the
+    person's confidence (accept) or falls to ``1 - confidence`` (correct), or looking longer no
+    longer helps (the averaged noise is small beside what lasts: correct anyway), or the look
+    has lasted ``max_look_s``.
+    """
+
+    def __init__(self, traits: OperatorTraits, max_look_s: float) -> None:
+        self.traits = traits
+        self.max_look_s = max_look_s
+        self.cost_s = 3 * traits.glance_s
+        """What a look costs, from experience (s)."""
+        self.start_s = 0.0
+        self.next_glance_s = 0.0
+        """When the next glance is due (s), in a look or during a movement."""
+        self._first_variance_m2 = 0.0  # the believed variance at the look's first glance
+
+    def start(self, time_s: float) -> None:
+        self.start_s = self.next_glance_s = time_s
+
+    def glanced(self, time_s: float) -> None:
+        """A glance at ``time_s`` (s): the next is a glance's time later."""
+        self.next_glance_s = time_s + self.traits.glance_s
+
+    def verdict(self, time_s: float, sure: float, variance_m2: float) -> bool | None:
+        """After a glance at ``time_s`` (s) that leaves the person ``sure`` (a probability) that
+        the error is within the criterion, believing its judgement's variance ``variance_m2``:
+        True to accept, False to correct, None to look again."""
+        confidence = self.traits.confidence
+        looked = time_s - self.start_s
+        glances = round(looked / self.traits.glance_s) + 1
+        if glances == 1:
+            self._first_variance_m2 = variance_m2
+        saturated = averaging_saturated(self._first_variance_m2, variance_m2, glances)
+        accept = sure >= confidence
+        if not (accept or sure <= 1.0 - confidence or saturated or looked >= self.max_look_s):
+            return None
+        self.cost_s = 0.5 * self.cost_s + 0.5 * (looked + self.traits.glance_s)
+        return accept

@@ -1,0 +1,73 @@
+"""The synthetic operator's constants: the same for every person and every task."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from arteleop.checks import Bounds, check_fields
+from arteleop.operator.perception import PerceptionParams
+
+
+@dataclass(frozen=True)
+class OperatorParams:
+    """The synthetic operator's constants, the same for every person (docs/operator-model.md
+    gives each one's value and source).
+
+    Attributes:
+        noise_k_s: Endpoint SD per axis per unit of mean speed (s): SD = k A / D.
+        noise_floor_m: Endpoint SD per axis of the slowest movement (m).
+        peak_speed_m_s: Fastest peak speed of the hand (m/s).
+        tremor_amplitude_m: Physiological tremor per axis (m).
+        tremor_hz: Its two components (Hz).
+        motor_delay_s: From a decision to the start of the movement (s).
+        visuomotor_delay_s: From a glance during a movement to the correction it starts (s).
+        arrival_window_s: The display must show the gripper still this long (s)...
+        arrival_speed_m_s: ...moving at most this fast (m/s), for it to have arrived.
+        arrival_timeout_s: After the hand stops, the operator looks anyway after this (s).
+        familiar_lag_s: The display's lag the operator knows from practice on the system
+            (s): its first estimate of the lag, before a trial shows it another.
+        move_and_wait_lag_s: Above this display lag (s) the operator no longer corrects in
+            flight; it moves and waits.
+        gross_criterion_m: Criterion of the movements without a precision demand (in the
+            pick-and-place: lift, retract, home; m).
+        max_look_s: A look ends by then, sure or not (s).
+        max_setbacks: Times the operator goes back in a task when a look shows it went wrong
+            (in the pick-and-place: for a bowl a missed grasp left behind).
+        grip_ramp_s: Time to squeeze or release the pinch sensor (s).
+        grip_wait_known_s: Wait after squeezing or releasing when the display shows the
+            gripper's closure (s).
+        grip_wait_unknown_s: Wait when it does not: the operator must infer it (s).
+        hand_pitch_rad: Pitch of the hand (about torso y) while working (rad).
+        perception: Perception's constants.
+    """
+
+    noise_k_s: float = 0.012
+    noise_floor_m: float = 0.0021
+    peak_speed_m_s: float = 0.5
+    tremor_amplitude_m: float = 0.0003
+    tremor_hz: tuple[float, float] = (9.0, 11.0)
+    motor_delay_s: float = 0.07
+    visuomotor_delay_s: float = 0.12
+    arrival_window_s: float = 0.25
+    arrival_speed_m_s: float = 0.02
+    arrival_timeout_s: float = 3.0
+    familiar_lag_s: float = 0.3
+    move_and_wait_lag_s: float = 0.6
+    gross_criterion_m: float = 0.05
+    max_look_s: float = 1.5
+    max_setbacks: int = 2
+    grip_ramp_s: float = 0.3
+    grip_wait_known_s: float = 0.4
+    grip_wait_unknown_s: float = 1.0
+    hand_pitch_rad: float = 0.4
+    perception: PerceptionParams = field(default_factory=PerceptionParams)
+
+    def __post_init__(self) -> None:
+        positive, non_negative = Bounds(0, above=True), Bounds(0)
+        check_fields(self, {
+            **dict.fromkeys(("noise_k_s", "peak_speed_m_s", "arrival_window_s",
+                             "arrival_speed_m_s", "arrival_timeout_s", "gross_criterion_m",
+                             "max_look_s", "grip_ramp_s"), positive),
+            **dict.fromkeys(("noise_floor_m", "motor_delay_s", "visuomotor_delay_s",
+                             "familiar_lag_s", "max_setbacks"), non_negative),
+        })  # fmt: skip

@@ -1,0 +1,80 @@
+"""A Fitts pointing task: the simulated participant's calibration task (docs/operator-model.md,
+``benchmarks/bench_fitts.py``).
+
+The person brings the gripper over a start point, then over a target circle drawn on the table
+(its diameter the target's width), and selects it by closing the gripper, which ends the trial.
+The pointing movement is judged as the placement without the target mesh is: the circle as a
+point of the cloud, centred on by eye, against one more point of the cloud (the bowl's or, where
+the bowl is not in view, the gripper's); its criterion is half the target's width (the person
+aims to end inside the circle).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from arteleop.operator.perception import Perceived
+from arteleop.operator.tasks.task import (
+    Action,
+    Goal,
+    TaskPhase,
+    planar_goal,
+    relative_goal,
+)
+from arteleop.operator.traits import OperatorTraits
+
+TO_START = TaskPhase("reach")  # over the start point
+POINT = TaskPhase("point")  # the pointing movement, over the target
+SELECT = TaskPhase("select", Action.CLOSE)
+
+
+class PointingTask:
+    """One pointing trial (base frame, m).
+
+    Args:
+        start_m: Where the gripper waits before the movement (over the start point).
+        target_m: The target's centre on the table.
+        width_m: The target's width: the circle's diameter (m).
+        rest_gripper_m: Where the gripper waits at rest, to align the hand before engaging.
+        height_m: How high over the table the gripper points (m).
+        start_clearance_m: How near the start point is near enough (m), as the grasp's
+            clearance is: times the person's share of it.
+    """
+
+    phases = (TO_START, POINT, SELECT)
+    ends_trial = True
+
+    def __init__(
+        self,
+        start_m: ArrayLike,
+        target_m: ArrayLike,
+        width_m: float,
+        rest_gripper_m: ArrayLike,
+        height_m: float = 0.05,
+        start_clearance_m: float = 0.019,
+    ) -> None:
+        self.start_m = np.asarray(start_m, dtype=np.float64)
+        self.target_m = np.asarray(target_m, dtype=np.float64)
+        self.width_m = width_m
+        self.rest_gripper_m = np.asarray(rest_gripper_m, dtype=np.float64)
+        self.height_m = height_m
+        self.start_clearance_m = start_clearance_m
+
+    def criterion_m(self, phase: TaskPhase, traits: OperatorTraits) -> float | None:
+        if phase is TO_START:
+            return self.start_clearance_m * traits.grasp_criterion_scale
+        return self.width_m / 2 if phase is POINT else None
+
+    def goal(self, phase: TaskPhase, seen: Perceived) -> Goal | None:
+        up = np.array([0.0, 0.0, self.height_m])
+        if phase is POINT:
+            # The circle as the cloud shows it, centred on by eye.
+            return planar_goal(seen.target_m + up, seen, None)
+        return relative_goal(self.start_m + up, seen)
+
+    def gripped(self, phase: TaskPhase, seen: Perceived) -> None:
+        """Nothing to remember: the selection ends the task."""
+
+    def setback(self, phase: TaskPhase, seen: Perceived) -> str | None:
+        return None
