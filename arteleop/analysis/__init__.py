@@ -26,6 +26,13 @@ from arteleop.analysis.smoothness import (
 )
 
 if TYPE_CHECKING:
+    from arteleop.analysis.cohorts import (
+        cohort_medians,
+        expert_gaps,
+        pool_cohorts,
+        pooled_effects,
+        write_cohort_report,
+    )
     from arteleop.analysis.report import write_report
     from arteleop.analysis.statistics import (
         AnalysisOptions,
@@ -55,6 +62,11 @@ _LAZY = {
         ),
         "arteleop.analysis.statistics",
     ),
+    **dict.fromkeys(
+        ("cohort_medians", "expert_gaps", "pool_cohorts", "pooled_effects",
+         "write_cohort_report"),
+        "arteleop.analysis.cohorts",
+    ),
     "AnalysisResult": "arteleop.analysis.study_analysis",
     "analyse": "arteleop.analysis.study_analysis",
     "write_report": "arteleop.analysis.report",
@@ -79,8 +91,10 @@ __all__ = [
     "TestResult",
     "analyse",
     "cohens_d",
+    "cohort_medians",
     "compare_independent",
     "compare_paired",
+    "expert_gaps",
     "holm",
     "idle_share",
     "load_study",
@@ -91,10 +105,13 @@ __all__ = [
     "order_effect",
     "pairwise",
     "path_length",
+    "pool_cohorts",
+    "pooled_effects",
     "rank_biserial",
     "spectral_arc_length",
     "stars",
     "submovement_count",
     "trim_extremes",
+    "write_cohort_report",
     "write_report",
 ]

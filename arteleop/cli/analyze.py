@@ -1,4 +1,5 @@
-"""'arteleop analyze': a study's statistics, figures and report from its files."""
+"""'arteleop analyze': a study's statistics, figures and report from its files; or, given
+several run folders of one design, its answer pooled over those cohorts."""
 
 from __future__ import annotations
 
@@ -8,42 +9,52 @@ from pathlib import Path
 
 import tyro
 
+from arteleop.errors import ConfigurationError
+
 
 @dataclass(frozen=True)
 class AnalyzeCommand:
-    """Analyse a study's files (docs/study.md §5) and write tables, figures and report.md."""
+    """Analyse a study's files (docs/explanation/original-study.md §5) and write tables,
+    figures and report.md; given several run folders of one design (cohorts), pool them:
+    medians per cohort and each cue set's effect against none, paired by participant."""
 
-    source: tyro.conf.Positional[Path]
-    """run folder (trials.csv, participants.csv, questionnaire.csv, trajectories/) or trials CSV"""
+    sources: tyro.conf.Positional[tuple[Path, ...]]
+    """run folder (trials.csv, participants.csv, questionnaire.csv, trajectories/) or trials
+    CSV; several: one per cohort, pooled"""
     out: Path = Path("arteleop-report")
     """report folder"""
     participants: Path | None = None
-    """participants.csv for a bare trials CSV"""
+    """participants.csv for a bare trials CSV (one source)"""
     trim: bool = True
-    """drop each group's maximum and minimum participant (the thesis)"""
+    """drop each group's maximum and minimum participant (the thesis; one source)"""
     paired: bool = False
-    """within-subject tests (paired t-test / Wilcoxon) between modalities"""
+    """within-subject tests (paired t-test / Wilcoxon) between modalities (one source)"""
     holm: bool = False
-    """Holm-correct each family of pairwise tests"""
+    """Holm-correct each family of pairwise tests (one source)"""
 
 
 def analyze(cmd: AnalyzeCommand) -> int:
-    from arteleop.analysis import (
-        AnalysisInputError,
-        AnalysisOptions,
-        analyse,
-        load_study,
-        write_report,
-    )
+    from arteleop.analysis import AnalysisInputError
 
+    if not cmd.sources:
+        raise ConfigurationError(
+            "arteleop analyze needs a run folder or a trials CSV: 'arteleop analyze my-run "
+            "--out my-report'; several run folders of one design are pooled."
+        )
     try:
-        study = load_study(cmd.source, cmd.participants)
-        options = AnalysisOptions(trim=cmd.trim, paired=cmd.paired, holm=cmd.holm)
-        result = analyse(study, options)
-        files = write_report(study, result, options, cmd.out)
+        return (_analyse_one if len(cmd.sources) == 1 else _pool)(cmd)
     except AnalysisInputError as err:
         print(f"arteleop: error: {err}", file=sys.stderr)
         return 2
+
+
+def _analyse_one(cmd: AnalyzeCommand) -> int:
+    from arteleop.analysis import AnalysisOptions, analyse, load_study, write_report
+
+    study = load_study(cmd.sources[0], cmd.participants)
+    options = AnalysisOptions(trim=cmd.trim, paired=cmd.paired, holm=cmd.holm)
+    result = analyse(study, options)
+    files = write_report(study, result, options, cmd.out)
     n_people = result.trials["participant"].nunique()
     print(f"analysed {result.counts['analysed']} trials of {n_people} participants")
     significant = result.tests[(result.tests["stars"] != "") & result.tests["stars"].notna()]
@@ -51,4 +62,28 @@ def analyze(cmd: AnalyzeCommand) -> int:
     for note in result.notes:
         print(f"note: {note}")
     print(f"wrote {len(files)} files to {cmd.out}, see {files['report.md']}")
+    return 0
+
+
+def _pool(cmd: AnalyzeCommand) -> int:
+    from arteleop.analysis import load_study, pool_cohorts, write_cohort_report
+
+    if cmd.participants is not None:
+        raise ConfigurationError(
+            "--participants goes with one bare trials CSV; pooled run folders each bring "
+            "their own participants.csv."
+        )
+    seen: dict[Path, Path] = {}
+    for path in cmd.sources:
+        if path.resolve() in seen:
+            raise ConfigurationError(
+                f"{path} is given twice (as {seen[path.resolve()]}): each cohort is pooled once."
+            )
+        seen[path.resolve()] = path
+    trials = pool_cohorts([load_study(path) for path in cmd.sources])
+    files = write_cohort_report(cmd.sources, trials, cmd.out)
+    print(f"pooled {len(cmd.sources)} cohorts: {len(trials)} experimental trials of "
+          f"{trials.groupby('cohort')['participant'].nunique().sum()} participants")  # fmt: skip
+    print(files["cohorts.md"].read_text(), end="")
+    print(f"wrote {len(files)} files to {cmd.out}, see {files['cohorts.md']}")
     return 0
