@@ -21,18 +21,22 @@ import os
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 import argparse
+import sys
 import time
 
 import mink
 import numpy as np
-from bench_speed import record_commands, replay_commands  # benchmarks/, the script's folder
+from bench_speed import ROOT, record_commands, replay_commands  # benchmarks/, the script's folder
 from scipy.spatial.transform import Rotation
 
-from arteleop.ar_features import DisplayFrame, OperatorView, ViewConfig, ViewProbe
+from arteleop.ar_features import DisplayFrame, OperatorView, ViewConfig
 from arteleop.robot import GRIPPER_FRAME, RIGHT_ARM_JOINTS, WORK_POSTURE
 from arteleop.robot.ik import ArmIK
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
 from arteleop.teleop import TrialConfig, TrialResult, run_trial, trial_operator
+
+sys.path.insert(0, str(ROOT))  # the checkout's tests/instruments
+from tests.instruments.view_probe import ViewProbe
 
 
 def ik_side_by_side(n: int) -> None:

@@ -38,9 +38,12 @@ from pathlib import Path
 import numpy as np
 from bench_speed import ROOT, baseline_tree  # benchmarks/, the script's folder
 
-from arteleop.ar_features import DisplayFrame, OperatorView, ViewConfig, ViewProbe
+from arteleop.ar_features import DisplayFrame, OperatorView, ViewConfig
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
 from arteleop.teleop import TrialConfig, display_frame_at, run_trial, trial_operator, view_assets
+
+sys.path.insert(0, str(ROOT))  # the checkout's tests/instruments
+from tests.instruments.view_probe import ViewProbe
 
 SIZES = ((320, 240), (640, 480))
 CLIENTS = 3

@@ -15,6 +15,7 @@ from arteleop import blas_kernel  # noqa: F401  (first: it picks numpy's BLAS ke
 
 # isort: split
 import argparse
+import sys
 import tempfile
 from dataclasses import replace
 from pathlib import Path
@@ -22,7 +23,6 @@ from pathlib import Path
 import cv2
 
 from arteleop.ar_features import MODALITIES, STUDY_MODALITIES, OperatorView, ViewConfig
-from arteleop.ar_features.browser import browser_page
 from arteleop.scene import RemoteSite, write_snapshot
 from arteleop.teleop import (
     NetworkConfig,
@@ -31,6 +31,9 @@ from arteleop.teleop import (
     trial_operator,
     view_assets,
 )
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the checkout's tests/instruments
+from tests.instruments.browser import browser_page
 
 MOMENT_S = 5.0
 DELAYED_MOMENT_S = 5.5

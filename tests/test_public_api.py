@@ -71,6 +71,8 @@ def test_the_analysis_knows_the_same_modalities_as_the_view() -> None:
          "arteleop.teleop.sensor_calibration", "0.3"),
         ("arteleop.operator.recording", "load_recording", "arteleop.operator.recording_file",
          "0.3"),
+        ("arteleop.operator", "TaskGeometry", "arteleop.operator.tasks", "0.3"),
+        ("arteleop.ar_features", "ViewProbe", "tests.instruments.view_probe", "0.3"),
     ],
 )  # fmt: skip
 def test_a_name_that_moved_is_found_at_its_old_home_with_a_warning(
@@ -78,13 +80,16 @@ def test_a_name_that_moved_is_found_at_its_old_home_with_a_warning(
 ) -> None:
     """Scripts written for the release before keep working, told where the name went."""
     module = importlib.import_module(old)
+    new_name = {"TaskGeometry": "PickAndPlace"}.get(name, name)
+    renamed = f" as {new_name}" if new_name != name else ""
     message = (
-        f"{old}.{name} has moved: import it from {home} ({old} re-exports it through {until} only)"
+        f"{old}.{name} has moved: import it from {home}{renamed} ({old} re-exports it through "
+        f"{until} only)"
     )
     with pytest.warns(DeprecationWarning) as caught:
         moved = getattr(module, name)
     assert [str(w.message) for w in caught] == [message]
-    assert moved is getattr(importlib.import_module(home), name)
+    assert moved is getattr(importlib.import_module(home), new_name)
     with pytest.raises(AttributeError, match=f"module '{old}' has no attribute 'NoSuchName'"):
         module.NoSuchName  # noqa: B018
 

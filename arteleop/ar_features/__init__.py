@@ -1,7 +1,9 @@
 """The operator's view: the display frame, its AR layers, the modality presets and the viser view.
 
-The view and the probe, which pull in viser's server and websockets, are imported on first use:
-``import arteleop.ar_features`` (and so ``arteleop.operator``) stays light.
+The view, which pulls in viser's server, is imported on first use: ``import
+arteleop.ar_features`` (and so ``arteleop.operator``) stays light. The view's probe and the
+browser that takes its pictures are instruments of the tests and benchmarks: they moved to the
+repository's ``tests/instruments/`` in 0.3.
 """
 
 from __future__ import annotations
@@ -19,16 +21,14 @@ from arteleop.ar_features.modalities import (
     ArCues,
     modality_cues,
 )
+from arteleop.moved import moved_names
 
 if TYPE_CHECKING:
     from arteleop.ar_features.view import OperatorView, ViewConfig
-    from arteleop.ar_features.view_probe import Received, ViewProbe
 
 _LAZY = {
     "OperatorView": "arteleop.ar_features.view",
     "ViewConfig": "arteleop.ar_features.view",
-    "Received": "arteleop.ar_features.view_probe",
-    "ViewProbe": "arteleop.ar_features.view_probe",
 }
 
 __all__ = [
@@ -41,15 +41,20 @@ __all__ = [
     "Layer",
     "OperatorView",
     "PredictedArm",
-    "Received",
     "ViewAssets",
     "ViewConfig",
-    "ViewProbe",
     "modality_cues",
 ]
+
+
+_moved = moved_names(
+    "arteleop.ar_features",
+    dict.fromkeys(("Received", "ViewProbe"), "tests.instruments.view_probe"),
+    until="0.3",
+)
 
 
 def __getattr__(name: str) -> Any:
     if name in _LAZY:
         return getattr(importlib.import_module(_LAZY[name]), name)
-    raise AttributeError(f"module 'arteleop.ar_features' has no attribute '{name}'")
+    return _moved(name)

@@ -23,11 +23,11 @@ from arteleop.ar_features import (
     ViewAssets,
     ViewConfig,
 )
-from arteleop.ar_features.browser import BrowserError, browser_page, chromium_path
 from arteleop.ar_features.layers.beam import BEAM_WIDTH_PX
 from arteleop.ar_features.live_input import LiveInput
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig, Workspace
 from arteleop.teleop import TrialConfig, display_frame_at, trial_operator, view_assets
+from tests.instruments.browser import BrowserError, browser_page, chromium_path
 
 MOMENT_S = 5.0
 """Seed 0 has reached over the bowl at the start then, 13 cm above the grasp point: bowl,

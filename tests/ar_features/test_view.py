@@ -8,12 +8,13 @@ import time
 import numpy as np
 import pytest
 
-from arteleop.ar_features import DisplayFrame, OperatorView, ViewConfig, ViewProbe
+from arteleop.ar_features import DisplayFrame, OperatorView, ViewConfig
 from arteleop.ar_features.layers import CloudLayer
 from arteleop.errors import ConfigurationError, DisplayFrameError
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
 from arteleop.teleop import Outcome, TrialConfig, run_trial, trial_operator
 from tests.ar_features.frames import CAMERA_M, display_frame
+from tests.instruments.view_probe import ViewProbe
 
 
 def test_view_serves_this_machine_only_by_default() -> None:
