@@ -1,6 +1,6 @@
 """Homogeneous transforms and quaternion conventions shared by every subpackage.
 
-Conventions (see README, "Conventions"):
+Conventions (see docs/explanation/architecture.md, "Conventions"):
 - ``T_a_b`` is a 4x4 homogeneous matrix that maps coordinates in frame b to frame a,
   i.e. the pose of frame b expressed in frame a. ``T_a_c = T_a_b @ T_b_c``.
 - Quaternions are ``(w, x, y, z)`` in the API. PyBullet uses ``(x, y, z, w)``: convert with

@@ -1,5 +1,5 @@
-"""Make the README's pictures: the head camera's image and depth at rest, the operator's view
-under each modality at the same moment, and the predictive ghost ahead of a delayed view.
+"""Make the documentation's pictures: the head camera's image and depth at rest, the operator's
+view under each modality at the same moment, and the predictive ghost ahead of a delayed view.
 
 Seed 0's synthetic operator under full AR, 5 s into the trial (13 cm over the grasp point), at the
 Kinect's 640x480; headless Chromium takes each picture of the view (needs ``apt-get install
@@ -39,7 +39,7 @@ MOMENT_S = 5.0
 DELAYED_MOMENT_S = 5.5
 """Seed 0 reaches for the bowl then, in view: the predicted gripper is 15 cm ahead."""
 WIDTH_PX = 800
-"""The pictures are scaled down to this width for the README."""
+"""The pictures are scaled down to this width for the documentation."""
 
 
 def main() -> None:

@@ -61,8 +61,6 @@ def test_the_analysis_knows_the_same_modalities_as_the_view() -> None:
 @pytest.mark.parametrize(
     ("old", "name", "home", "until"),
     [
-        ("arteleop.scene", "TransformGraph", "arteleop.frames", "0.2"),
-        ("arteleop.scene", "calibrate_camera", "arteleop.calibration", "0.2"),
         ("arteleop.operator", "reconstruct", "arteleop.teleop", "0.3"),
         ("arteleop.operator", "SensorMounting", "arteleop.teleop", "0.3"),
         ("arteleop.operator.reconstruction", "StreamingReconstructor",
@@ -103,3 +101,10 @@ def test_the_version_is_the_one_pyproject_gives() -> None:
     pyproject = Path(__file__).resolve().parent.parent / "pyproject.toml"
     with pyproject.open("rb") as f:
         assert arteleop.__version__ == tomllib.load(f)["project"]["version"]
+
+
+def test_the_names_that_moved_in_0_2_are_gone_from_the_scene_in_0_3() -> None:
+    import arteleop.scene
+
+    with pytest.raises(AttributeError, match="has no attribute 'TransformGraph'"):
+        arteleop.scene.TransformGraph  # noqa: B018

@@ -6,6 +6,7 @@ from __future__ import annotations
 import sys
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Annotated
 
 import tyro
 
@@ -14,13 +15,14 @@ from arteleop.errors import ConfigurationError
 
 @dataclass(frozen=True)
 class AnalyzeCommand:
-    """Analyse a study's files (docs/explanation/original-study.md §5) and write tables,
+    """Analyse a study's files (docs/study.md §5) and write tables,
     figures and report.md; given several run folders of one design (cohorts), pool them:
     medians per cohort and each cue set's effect against none, paired by participant."""
 
-    sources: tyro.conf.Positional[tuple[Path, ...]]
-    """run folder (trials.csv, participants.csv, questionnaire.csv, trajectories/) or trials
-    CSV; several: one per cohort, pooled"""
+    sources: Annotated[
+        tyro.conf.Positional[tuple[Path, ...]], tyro.conf.arg(metavar="RUN_DIR_OR_CSV ...")
+    ]
+    """a run folder (trials.csv, participants.csv, questionnaire.csv, trajectories/) or a trials CSV; several run folders: one per cohort, pooled"""
     out: Path = Path("arteleop-report")
     """report folder"""
     participants: Path | None = None

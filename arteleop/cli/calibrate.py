@@ -25,11 +25,9 @@ class CalibrateCommand(CameraSize):
     seed: int = 0
     """seed of the poses and of the marker's placements (0 or more)"""
     method: CalibrationMethod = "best"
-    """the closed-form hand-eye estimate that starts the refinement written to --out; 'best' is
-    the one with the lowest reprojection error (which needs no ground truth)"""
+    """the closed-form hand-eye estimate that starts the refinement written to --out; 'best' is the one with the lowest reprojection error (which needs no ground truth)"""
     out: Path = Path("calibration.json")
-    """transform graph file (JSON) to write: the site's frames (the robot's links at rest, the
-    table, the markers) and the camera's, joined to base by an edge of kind calibration"""
+    """transform graph file (JSON) to write: the site's frames (the robot's links at rest, the table, the markers) and the camera's, joined to base by an edge of kind calibration"""
 
 
 def calibrate(cmd: CalibrateCommand) -> int:

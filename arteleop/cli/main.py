@@ -82,7 +82,8 @@ commands:
   study resume     continue a run folder after a crash, Ctrl-C or kill
   study answer     merge real questionnaire answers into a run folder
   study replay     play a trial of a run folder back in the operator's view
-  analyze          the study's statistics, figures and report from its CSV files
+  analyze          the study's statistics, figures and report from its CSV files;
+                   several run folders of one design: its answer pooled over them
 
 'arteleop COMMAND --help' lists a command's options."""
 

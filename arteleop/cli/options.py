@@ -33,17 +33,13 @@ class CameraSize:
     height_px: int = 480
     """camera image height (px)"""
     renderer: Renderer = "auto"
-    """what draws the head camera: 'gl' (OpenGL through EGL, on the CPU or a GPU), 'tiny'
-    (PyBullet's TinyRenderer, several times slower), 'auto' (gl where it opens, else tiny)"""
+    """what draws the head camera: 'gl' (OpenGL through EGL, on the CPU or a GPU), 'tiny' (PyBullet's TinyRenderer, several times slower), 'auto' (gl where it opens, else tiny)"""
     camera_offset_mm: tuple[float, float, float] = (0.0, 0.0, 0.0)
-    """a mis-registered camera: the pose the system uses for it (for the point cloud, the
-    tracked bowl, the operator's eye) is the true one moved by this (mm, camera frame: x right,
-    y down, z forward), while the ghost and the target stay where they are"""
+    """a mis-registered camera: the pose the system uses for it (for the point cloud, the tracked bowl, the operator's eye) is the true one moved by this (mm, camera frame: x right, y down, z forward), while the ghost and the target stay where they are"""
     camera_offset_deg: tuple[float, float, float] = (0.0, 0.0, 0.0)
     """the registration's rotation error, a rotation vector (deg, camera frame)"""
     camera_graph: Path | None = None
-    """a transform graph file (from 'arteleop calibrate') whose base -> head_camera edge is the
-    camera's pose as the system uses it, instead of --camera-offset-*"""
+    """a transform graph file (from 'arteleop calibrate') whose base -> head_camera edge is the camera's pose as the system uses it, instead of --camera-offset-*"""
 
     def camera_config(self, **overrides: Any) -> HeadCameraConfig:
         from arteleop.frames import TransformGraph

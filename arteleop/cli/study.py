@@ -49,8 +49,7 @@ class StudyRunCommand:
     out: Path = Path("arteleop-study")
     """the run folder to create (must be new or empty)"""
     seed: int | None = None
-    """the study's seed (0 or more) instead of the definition's: another cohort, other orders
-    and trials (the run folder's study.toml records it)"""
+    """the study's seed (0 or more) instead of the definition's: another cohort, other orders and trials (the run folder's study.toml records it)"""
     workers: int = 0
     """processes running trials; 0: one per core"""
     quiet: bool = False
@@ -141,7 +140,7 @@ def _study_done(run: Any) -> int:
               f"{1000 * ok['placement_error_m'].median():>19.1f}")  # fmt: skip
     report = run.folder / "report"
     try:
-        return analyze(AnalyzeCommand(source=run.folder, out=report))
+        return analyze(AnalyzeCommand(sources=(run.folder,), out=report))
     except KeyboardInterrupt:
         raise KeyboardInterrupt(
             f"the trials are all in {run.folder}; 'arteleop analyze {run.folder} --out {report}' "
@@ -156,8 +155,7 @@ class StudyAnswerCommand:
     run_dir: Annotated[tyro.conf.Positional[Path], tyro.conf.arg(metavar="RUN_DIR")]
     """the run folder"""
     answers: Annotated[tyro.conf.Positional[Path], tyro.conf.arg(metavar="ANSWERS.csv")]
-    """CSV with participant, ar_class, item, score (docs/data-format.md); these participants'
-    answers replace the simulated ones"""
+    """CSV with participant, ar_class, item, score (docs/data-format.md); these participants' answers replace the simulated ones"""
 
 
 def study_answer(cmd: StudyAnswerCommand) -> int:
@@ -189,8 +187,7 @@ class StudyReplayCommand(CameraSize):
     height_px: int = 240
     """camera image height (px)"""
     camera_offset_mm: tuple[float, float, float] = (0.0, 0.0, 0.0)
-    """a mis-registered camera: its pose as the system uses it, moved by this (mm, camera
-    frame), so the cloud sits off the ghost and the target (see 'arteleop trial --help')"""
+    """a mis-registered camera: its pose as the system uses it, moved by this (mm, camera frame), so the cloud sits off the ghost and the target (see 'arteleop trial --help')"""
     camera_offset_deg: tuple[float, float, float] = (0.0, 0.0, 0.0)
     """the registration's rotation error, a rotation vector (deg, camera frame)"""
     host: str = "127.0.0.1"

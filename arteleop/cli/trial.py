@@ -35,8 +35,7 @@ class TrialCommand(CameraSize):
     timeout_s: float = 120.0
     """simulated time after which the trial ends as a timeout (s)"""
     confidence: float = 0.95
-    """synthetic operator: how sure it must be that the error is within its criterion to stop
-    correcting (0.5-0.999; docs/operator-model.md)"""
+    """synthetic operator: how sure it must be that the error is within its criterion to stop correcting (0.5-0.999; docs/operator-model.md)"""
     placement_criterion_m: float = 0.010
     """synthetic operator: how close to the target it holds good enough (0.001-0.1 m)"""
     filter_min_cutoff_hz: float = 1.0
@@ -178,36 +177,27 @@ class TeleopCommand:
     """Teleoperate the simulated Baxter in real time in the browser, trial after trial."""
 
     operator: str = "synthetic"
-    """'synthetic' (a new simulated participant each trial), 'live' (drive the gripper with a
-    gizmo and a grip slider in the page), or the path of a wearable recording's CSV"""
+    """'synthetic' (a new simulated participant each trial), 'live' (drive the gripper with a gizmo and a grip slider in the page), or the path of a wearable recording's CSV"""
     modality: Modality = "full"
-    """AR modality of the trials (docs/study.md §3; 'predictive': the predictive ghost, ahead of
-    a delayed view); the page's panel can switch layers live"""
+    """AR modality of the trials (docs/study.md §3; 'predictive': the predictive ghost, ahead of a delayed view); the page's panel can switch layers live"""
     seed: int = 0
     """seed of the first trial (0 or more); each next trial takes the next one"""
     delay_ms: float = 0.0
-    """one-way network delay between operator and robot (ms): the view shows each camera frame
-    this long after it was taken, and the predictive ghost where the commands sent will put
-    the arm"""
+    """one-way network delay between operator and robot (ms): the view shows each camera frame this long after it was taken, and the predictive ghost where the commands sent will put the arm"""
     timeout_s: float = 120.0
     """simulated time after which a trial ends as a timeout (s)"""
     width_px: int = 640
-    """camera image width (px); the Kinect's 640x480 shows 30 frames/s, 47 ms from a sample to
-    the view with OpenGL on two idle cores (fewer frames on a loaded machine, where 320x240
-    keeps 30 frames/s, 27 ms)"""
+    """camera image width (px); the Kinect's 640x480 shows 30 frames/s, 47 ms from a sample to the view with OpenGL on two idle cores (fewer frames on a loaded machine, where 320x240 keeps 30 frames/s, 27 ms)"""
     height_px: int = 480
     """camera image height (px)"""
     renderer: Renderer = "auto"
-    """what draws the head camera: 'gl' (OpenGL through EGL, on the CPU or a GPU), 'tiny'
-    (PyBullet's TinyRenderer, several times slower), 'auto' (gl where it opens, else tiny)"""
+    """what draws the head camera: 'gl' (OpenGL through EGL, on the CPU or a GPU), 'tiny' (PyBullet's TinyRenderer, several times slower), 'auto' (gl where it opens, else tiny)"""
     camera_offset_mm: tuple[float, float, float] = (0.0, 0.0, 0.0)
-    """a mis-registered camera: its pose as the system uses it, moved by this (mm, camera
-    frame), so the cloud sits off the ghost and the target (see 'arteleop trial --help')"""
+    """a mis-registered camera: its pose as the system uses it, moved by this (mm, camera frame), so the cloud sits off the ghost and the target (see 'arteleop trial --help')"""
     camera_offset_deg: tuple[float, float, float] = (0.0, 0.0, 0.0)
     """the registration's rotation error, a rotation vector (deg, camera frame)"""
     camera_graph: Path | None = None
-    """a transform graph file (from 'arteleop calibrate') whose base -> head_camera edge is the
-    camera's pose as the system uses it, instead of --camera-offset-*"""
+    """a transform graph file (from 'arteleop calibrate') whose base -> head_camera edge is the camera's pose as the system uses it, instead of --camera-offset-*"""
     host: str = "127.0.0.1"
     """interface to serve the page on; 0.0.0.0 lets other machines connect (and drive the robot)"""
     port: int = 8080

@@ -2,11 +2,8 @@
 and the site's frames.
 
 The transform graph and its transforms are in :mod:`arteleop.frames`, the camera's calibration
-and the ArUco markers in :mod:`arteleop.calibration`. Their names are still found here, with a
-``DeprecationWarning``, through 0.2 (they moved in 0.2).
+and the ArUco markers in :mod:`arteleop.calibration`.
 """
-
-from arteleop.moved import moved_names
 
 # First: it loads PyBullet without the banner PyBullet prints on import.
 from arteleop.robot import native_output  # noqa: F401
@@ -85,23 +82,3 @@ __all__ = [
     "reach_problem",
     "write_snapshot",
 ]
-
-_MOVED = {
-    **dict.fromkeys(
-        ("Edge", "EdgeKind", "RobotFrames", "TransformGraph", "UncertainTransform", "fuse",
-         "left_error", "mean_transform"),
-        "arteleop.frames",
-    ),
-    **dict.fromkeys(
-        ("HAND_EYE_METHODS", "ArucoMarker", "CalibrationConfig", "CalibrationErrors",
-         "CalibrationRun", "CameraCalibration", "HandEyeData", "MarkerObservation",
-         "calibrate_camera", "calibrate_with_table_marker", "calibration_errors",
-         "check_hand_eye_data", "collect_hand_eye", "detect_marker", "refine_hand_eye",
-         "solve_hand_eye"),
-        "arteleop.calibration",
-    ),
-}  # fmt: skip
-"""Names that moved out of this package in 0.2, and where they are now."""
-
-
-__getattr__ = moved_names("arteleop.scene", _MOVED, until="0.2")

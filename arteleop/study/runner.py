@@ -2,8 +2,8 @@
 
 Trials are independent (each has its own site, seed and operator), so they run in any order on
 any worker: a process per core by default, or any :class:`concurrent.futures.Executor`, such as
-a Dask cluster's (``distributed.Client(...).get_executor()``; the README shows Ray's
-equivalent). Whatever the order, the finished folder's CSVs are the same bytes.
+a Dask cluster's (``distributed.Client(...).get_executor()``; docs/guides/running-a-study.md
+shows Ray's equivalent). Whatever the order, the finished folder's CSVs are the same bytes.
 """
 
 from __future__ import annotations

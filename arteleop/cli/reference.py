@@ -1,0 +1,99 @@
+"""The reference pages of docs/reference/, made from the command line's and the study file's own
+definitions so that they cannot drift from them: ``python docs/make_reference.py`` writes them,
+and a test checks that the committed pages are what this module makes."""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import os
+from collections.abc import Iterator
+
+HELP_COLUMNS = 100
+"""The width the help texts are laid out at."""
+
+
+@contextlib.contextmanager
+def _columns(width: int) -> Iterator[None]:
+    """Lay out help as a terminal ``width`` characters wide would show it."""
+    before = os.environ.get("COLUMNS")
+    os.environ["COLUMNS"] = str(width)
+    try:
+        yield
+    finally:
+        if before is None:
+            del os.environ["COLUMNS"]
+        else:
+            os.environ["COLUMNS"] = before
+
+
+def _help(argv: list[str]) -> str:
+    from arteleop.cli.main import main
+
+    # A text stream with an encoding, as a terminal's or a pipe's: the help draws its boxes.
+    buffer = io.BytesIO()
+    out = io.TextIOWrapper(buffer, encoding="utf-8")
+    with _columns(HELP_COLUMNS), contextlib.redirect_stdout(out):
+        try:
+            main([*argv, "--help"])
+        except SystemExit:
+            pass
+    out.flush()
+    text = buffer.getvalue().decode("utf-8")
+    return "\n".join(line.rstrip() for line in text.strip().splitlines()) + "\n"
+
+
+def command_names() -> list[str]:
+    """Every command, as typed after ``arteleop``."""
+    from arteleop.cli.main import COMMANDS, GROUPS
+
+    names = list(COMMANDS)
+    for group, commands in GROUPS.items():
+        names += [f"{group} {name}" for name in commands]
+    return names
+
+
+def command_reference() -> str:
+    """docs/reference/commands.md: the overview, then each command's ``--help``."""
+    from arteleop.cli.main import OVERVIEW
+
+    lines = [
+        "# Commands",
+        "",
+        "Every command of `arteleop`, with its options as `arteleop COMMAND --help` prints them.",
+        "This page is made by `python docs/make_reference.py` from the commands' own",
+        "definitions; a test fails when it is out of date.",
+        "",
+        "```",
+        OVERVIEW,
+        "```",
+    ]
+    for name in command_names():
+        lines += ["", f"## `arteleop {name}`", "", "```", _help(name.split()).rstrip(), "```"]
+    return "\n".join(lines) + "\n"
+
+
+def study_file_reference() -> str:
+    """docs/reference/study-file.md: every key of a study definition, with its default and
+    meaning, as ``arteleop study init`` writes them."""
+    from arteleop.study import StudyConfig, study_text
+
+    return "\n".join([
+        "# Study files",
+        "",
+        "A study is defined in a TOML file; `arteleop study init FILE` writes the default one, and",
+        "`arteleop study run FILE --out RUN_DIR` runs it. Every key is optional: a missing key takes",
+        "the default shown below. An unknown key, a value of the wrong type or out of range, a",
+        "duplicate participant id, or a start or target the arm cannot reach or the head camera",
+        "cannot see is refused before anything runs, with the file, the line and the key.",
+        "`[[conditions]]` (network delay crossed with cues; see",
+        "[A delay study](../guides/delay-study.md)) and `[[participants]]` (named participants in",
+        "place of the simulated cohort) are tables of their own, shown commented at the end.",
+        "",
+        "This page is made by `python docs/make_reference.py` from the definitions themselves; a",
+        "test fails when it is out of date.",
+        "",
+        "```toml",
+        study_text(StudyConfig()).rstrip(),
+        "```",
+    ]) + "\n"  # fmt: skip
