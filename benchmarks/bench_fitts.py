@@ -1,20 +1,23 @@
 """The simulated participant's Fitts pointing task, through the whole teleoperation chain.
 
 Wearable -> network -> reconstruction -> IK -> robot -> camera -> display frame -> operator:
-targets are circles drawn on the table (distance D from a start point, diameter W), the
-operator points at them with the gripper 5 cm above the table and selects by closing it. Each
-simulated person (traits drawn as a study draws them) does every cell once per lag.
+targets are circles drawn on the table (distance D from a start point along +y, diameter W),
+the operator points at them with the gripper 5 cm above the table and selects by closing it.
+Each simulated person (traits drawn as a study draws them) does every cell ``--reps`` times per
+lag, with the same seeds at every lag (paired).
 
-Per cell it prints the movement time (start of the pointing movement to the selection), the
-error rate (selections outside the circle) and the effective index of difficulty
-``ID_e = log2(D_e / W_e + 1)``, ``W_e = 4.133 SD`` of the endpoints along the task axis
-(ISO 9241-9; Soukoreff & MacKenzie 2004), then fits ``MT = a + b ID_e`` over the cells. Under
-added lag (round trip) it prints movement time and error rate per lag and fits MacKenzie &
-Ware's (CHI 1993) two models: lag adding to movement time (``MT = a + b ID + c lag``) and lag
-multiplying the index of difficulty (``MT = a + (b + c lag) ID``).
+Measured as ISO 9241-9 asks (Soukoreff & MacKenzie 2004): the selection is the closure the
+operator decided (an earlier closure, the fingers pushed by the table, is a slip, counted); per
+person and cell the effective width ``W_e = 4.133 SD`` of the selections' 2-D endpoints
+projected on the task axis, the effective distance ``D_e`` their mean, ``ID_e = log2(D_e / W_e +
+1)`` and the movement time (the median of the repetitions); per cell the medians over people.
+Per lag it fits ``MT = a + b ID_e`` over the cells, then MacKenzie & Ware's (CHI 1993) two lag
+models over every lag (lag adding to movement time, ``MT = a + b ID + c lag``, or multiplying
+the index of difficulty, ``MT = a + (b + c lag) ID``), and each lag's effect on movement time
+against no lag, person by person (geometric mean of the paired ratios, 95 % t-interval).
 
-    python benchmarks/bench_fitts.py [--people 10] [--lags 0,75,150,225] [--quick]
-                                     [--workers 2] [--json OUT.json]
+    python benchmarks/bench_fitts.py [--people 16] [--reps 5] [--lags 0,75,150,225,450]
+                                     [--quick] [--workers 2] [--json OUT.json]
 
 What it prints is what the model predicts: no constant of the operator is fitted to it.
 """
@@ -33,6 +36,7 @@ from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
+from scipy import stats
 
 DISTANCES_M = (0.1, 0.2, 0.4)
 WIDTHS_M = (0.01, 0.02, 0.04)
@@ -44,18 +48,20 @@ class Job:
     distance_m: float
     width_m: float
     lag_ms: float
+    rep: int
     seed: int
 
 
 def run(job: Job) -> dict[str, float]:
-    """One pointing trial; its movement time, endpoint error along the axis and hit."""
+    """One pointing trial: its movement time, the selection's endpoint, hit and slips."""
     from arteleop.operator import Expertise, TraitDistribution
     from arteleop.teleop.pointing import run_pointing_trial
 
     traits = TraitDistribution().draw(0, f"F{job.person:02d}", Expertise())
     r = run_pointing_trial(job.distance_m, job.width_m, traits, job.seed, job.lag_ms / 1000)
     return {"selected": float(r.selected), "movement_time_s": r.movement_time_s,
-            "along_m": r.along_m, "hit": float(r.hit)}  # fmt: skip
+            "along_m": r.along_m, "across_m": r.across_m, "hit": float(r.hit),
+            "slips": float(r.slips)}  # fmt: skip
 
 
 def fit_line(x: np.ndarray, y: np.ndarray) -> tuple[float, float, float]:
@@ -96,96 +102,145 @@ def main() -> None:
     parser = argparse.ArgumentParser(
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
-    parser.add_argument("--people", type=int, default=10, help="simulated people (1 or more)")
-    parser.add_argument(
-        "--lags",
-        type=parse_lags,
-        default=[0.0, 75.0, 150.0, 225.0],
-        help="round-trip lags (ms), comma-separated",
-    )
-    parser.add_argument(
-        "--quick", action="store_true", help="4 people, the lags 0 and 225 ms: a few minutes"
-    )
+    parser.add_argument("--people", type=int, default=16, help="simulated people (1 or more)")
+    parser.add_argument("--reps", type=int, default=5, help="repetitions of a cell (2 or more)")
+    parser.add_argument("--lags", type=parse_lags, default=[0.0, 75.0, 150.0, 225.0, 450.0],
+                        help="round-trip lags (ms), comma-separated; the first is the baseline")  # fmt: skip
+    parser.add_argument("--quick", action="store_true",
+                        help="4 people, 3 repetitions, the lags 0 and 225 ms: a few minutes")  # fmt: skip
     parser.add_argument("--workers", type=int, default=len(os.sched_getaffinity(0)))
-    parser.add_argument("--json", help="write the lag table and the fits to this file")
+    parser.add_argument("--json", help="write the lag table, the fits and the cells to this file")
     args = parser.parse_args()
     if args.people < 1:
         parser.error(f"--people {args.people}: give 1 or more")
+    if args.reps < 2:
+        parser.error(f"--reps {args.reps}: give 2 or more (an effective width needs a spread)")
     if args.workers < 1:
         parser.error(f"--workers {args.workers}: give 1 or more")
-    people, lags = (4, [0.0, 225.0]) if args.quick else (args.people, args.lags)
-    jobs = [Job(p, d, w, lag, seed=1000 * p + 10 * i + j)
-            for lag in lags for p in range(people)
+    people, reps, lags = (4, 3, [0.0, 225.0]) if args.quick else (args.people, args.reps, args.lags)
+    jobs = [Job(p, d, w, lag, rep, seed=10000 * p + 100 * rep + 10 * i + j)
+            for lag in lags for p in range(people) for rep in range(reps)
             for i, d in enumerate(DISTANCES_M) for j, w in enumerate(WIDTHS_M)]  # fmt: skip
     t0 = time.perf_counter()
     with ProcessPoolExecutor(args.workers) as pool:
         rows = [dict(vars(job), **result) for job, result in zip(jobs, pool.map(run, jobs),
                                                                  strict=True)]  # fmt: skip
-    print(f"{len(rows)} pointing trials, {people} people, in {time.perf_counter() - t0:.0f} s "
-          f"on {args.workers} workers\n")  # fmt: skip
+    print(f"{len(rows)} pointing trials, {people} people x {reps} repetitions, in "
+          f"{time.perf_counter() - t0:.0f} s on {args.workers} workers\n")  # fmt: skip
     report(rows, lags, args.json)
 
 
-def report(rows: list[dict], lags: list[float], json_path: str | None) -> None:
-    done = [r for r in rows if r["selected"]]
-    missing = len(rows) - len(done)
-    if missing:
-        print(f"{missing} trials ended without a selection (timeout); left out\n")
+def person_cells(rows: list[dict]) -> list[dict]:
+    """Per lag, person and cell: the movement time (median of the repetitions), the effective
+    width and distance of the selections, ID_e, errors and slips."""
+    keyed: dict[tuple, list[dict]] = {}
+    for r in rows:
+        keyed.setdefault((r["lag_ms"], r["person"], r["distance_m"], r["width_m"]), []).append(r)
+    out = []
+    for (lag, person, d, w), trials in sorted(keyed.items()):
+        done = [r for r in trials if r["selected"]]
+        entry = {"lag_ms": lag, "person": person, "D_m": d, "W_m": w, "n": len(done),
+                 "timeouts": len(trials) - len(done),
+                 "slips": float(np.sum([r["slips"] for r in trials])),
+                 "id": float(np.log2(d / w + 1))}  # fmt: skip
+        if len(done) >= 2:
+            along = np.array([r["along_m"] for r in done])
+            we = 4.133 * along.std(ddof=1)
+            de = d + along.mean()
+            entry.update(
+                mt_s=float(np.median([r["movement_time_s"] for r in done])),
+                we_m=float(we), de_m=float(de), id_e=float(np.log2(de / we + 1)),
+                error_rate=float(1 - np.mean([r["hit"] for r in done])),
+            )  # fmt: skip
+        out.append(entry)
+    return out
+
+
+def cell_medians(people: list[dict], lags: list[float]) -> list[dict]:
+    """Per lag and cell, the medians over people."""
     cells = []
     for lag in lags:
         for d in DISTANCES_M:
             for w in WIDTHS_M:
-                c = [r for r in done if r["lag_ms"] == lag and r["distance_m"] == d
-                     and r["width_m"] == w]  # fmt: skip
-                if len(c) < 2:
+                ps = [p for p in people if p["lag_ms"] == lag and p["D_m"] == d
+                      and p["W_m"] == w and "mt_s" in p]  # fmt: skip
+                if not ps:
                     continue
-                along = np.array([r["along_m"] for r in c])
-                we = 4.133 * along.std(ddof=1)
-                de = d + along.mean()
                 cells.append({
-                    "lag_ms": lag, "D_m": d, "W_m": w, "n": len(c),
-                    "id": float(np.log2(d / w + 1)), "id_e": float(np.log2(de / we + 1)),
-                    "mt_s": float(np.mean([r["movement_time_s"] for r in c])),
-                    "error_rate": float(1 - np.mean([r["hit"] for r in c])),
-                    "we_mm": 1000 * we,
+                    "lag_ms": lag, "D_m": d, "W_m": w, "people": len(ps),
+                    "id": float(np.log2(d / w + 1)),
+                    "id_e": float(np.median([p["id_e"] for p in ps])),
+                    "we_mm": 1000 * float(np.median([p["we_m"] for p in ps])),
+                    "mt_s": float(np.median([p["mt_s"] for p in ps])),
+                    "error_rate": float(np.mean([p["error_rate"] for p in ps])),
+                    "slips": float(np.sum([p["slips"] for p in ps])),
+                    "timeouts": int(np.sum([p["timeouts"] for p in ps])),
                 })  # fmt: skip
-    base = [c for c in cells if c["lag_ms"] == lags[0]]
-    print(f"## Fitts' law through the loop, lag {lags[0]:g} ms (means over people)\n")
-    print("| D (m) | W (mm) | ID (bits) | W_e (mm) | ID_e (bits) | MT (s) | errors |")
-    print("| ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
-    for c in base:
-        print(f"| {c['D_m']:.1f} | {1000 * c['W_m']:.0f} | {c['id']:.2f} | {c['we_mm']:.1f} "
-              f"| {c['id_e']:.2f} | {c['mt_s']:.2f} | {100 * c['error_rate']:.0f} % |")  # fmt: skip
+    return cells
+
+
+def lag_effect(people: list[dict], lag: float, base: float) -> tuple[float, float, float, int]:
+    """Movement time at ``lag`` over ``base``, person by person (the mean of log ratios over the
+    cells both have), as the geometric mean over people with its 95 % t-interval, and n."""
+    logs = []
+    for person in sorted({p["person"] for p in people}):
+        mine = {(p["D_m"], p["W_m"], p["lag_ms"]): p["mt_s"]
+                for p in people if p["person"] == person and "mt_s" in p}  # fmt: skip
+        pairs = [np.log(mine[d, w, lag] / mine[d, w, base]) for d in DISTANCES_M
+                 for w in WIDTHS_M if (d, w, lag) in mine and (d, w, base) in mine]  # fmt: skip
+        if pairs:
+            logs.append(float(np.mean(pairs)))
+    if len(logs) < 2:
+        return float("nan"), float("nan"), float("nan"), len(logs)
+    mean, sem = float(np.mean(logs)), float(stats.sem(logs))
+    half = float(stats.t.ppf(0.975, len(logs) - 1) * sem)
+    return float(np.exp(mean)), float(np.exp(mean - half)), float(np.exp(mean + half)), len(logs)
+
+
+def report(rows: list[dict], lags: list[float], json_path: str | None) -> None:
+    people = person_cells(rows)
+    cells = cell_medians(people, lags)
+    timeouts = sum(1 for r in rows if not r["selected"])
+    if timeouts:
+        print(f"{timeouts} trials ended without a selection (timeout); left out\n")
     fits: dict[str, object] = {}
-    if len(base) >= 3:
-        a, b, r2 = fit_line(
-            np.array([c["id_e"] for c in base]), np.array([c["mt_s"] for c in base])
-        )
-        a0, b0, r20 = fit_line(
-            np.array([c["id"] for c in base]), np.array([c["mt_s"] for c in base])
-        )
-        fits["fitts_effective"] = {"a_s": a, "b_s_per_bit": b, "r2": r2}
-        fits["fitts_nominal"] = {"a_s": a0, "b_s_per_bit": b0, "r2": r20}
-        print(f"\nMT = {a:.2f} s + {b:.2f} s/bit x ID_e, R^2 = {r2:.2f} "
-              f"(nominal ID: {a0:.2f} s + {b0:.2f} s/bit, R^2 = {r20:.2f})")  # fmt: skip
-    per_lag = {"lag_ms": [], "movement_time_s": [], "error_rate": []}
-    print("\n## Under added lag (round trip; means over all cells)\n")
-    print("| lag (ms) | MT (s) | ratio to no lag | errors |")
-    print("| ---: | ---: | ---: | ---: |")
+    for lag in lags:
+        here = [c for c in cells if c["lag_ms"] == lag]
+        print(f"## Lag {lag:g} ms (medians over people)\n")
+        print("| D (m) | W (mm) | ID (bits) | W_e (mm) | ID_e (bits) | MT (s) | errors | slips "
+              "| timeouts |")  # fmt: skip
+        print("| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+        for c in here:
+            print(f"| {c['D_m']:.1f} | {1000 * c['W_m']:.0f} | {c['id']:.2f} | {c['we_mm']:.1f} "
+                  f"| {c['id_e']:.2f} | {c['mt_s']:.2f} | {100 * c['error_rate']:.0f} % "
+                  f"| {c['slips']:.0f} | {c['timeouts']} |")  # fmt: skip
+        if len(here) >= 3:
+            a, b, r2 = fit_line(np.array([c["id_e"] for c in here]),
+                                np.array([c["mt_s"] for c in here]))  # fmt: skip
+            a0, b0, r20 = fit_line(np.array([c["id"] for c in here]),
+                                   np.array([c["mt_s"] for c in here]))  # fmt: skip
+            key = "" if lag == lags[0] else f"_{lag:g}ms"
+            fits[f"fitts_effective{key}"] = {"a_s": a, "b_s_per_bit": b, "r2": r2}
+            fits[f"fitts_nominal{key}"] = {"a_s": a0, "b_s_per_bit": b0, "r2": r20}
+            print(f"\nMT = {a:.2f} s + {b:.2f} s/bit x ID_e, R^2 = {r2:.2f} "
+                  f"(nominal ID: {a0:.2f} s + {b0:.2f} s/bit, R^2 = {r20:.2f})\n")  # fmt: skip
+    per_lag: dict[str, list] = {"lag_ms": [], "movement_time_s": [], "error_rate": [],
+                                "ratio": [], "ratio_low": [], "ratio_high": []}  # fmt: skip
+    print("## Under added lag (round trip)\n")
+    print("| lag (ms) | MT (s, median of cells) | MT / no lag, paired by person (95 % CI) | people "
+          "| errors | slips |")  # fmt: skip
+    print("| ---: | ---: | --- | ---: | ---: | ---: |")
     for lag in lags:
         c = [x for x in cells if x["lag_ms"] == lag]
         if not c:
             continue
-        mt, err = (
-            float(np.mean([x["mt_s"] for x in c])),
-            float(np.mean([x["error_rate"] for x in c])),
-        )
-        per_lag["lag_ms"].append(lag)
-        per_lag["movement_time_s"].append(mt)
-        per_lag["error_rate"].append(err)
-        print(
-            f"| {lag:g} | {mt:.2f} | {mt / per_lag['movement_time_s'][0]:.2f} | {100 * err:.0f} % |"
-        )
+        mt = float(np.median([x["mt_s"] for x in c]))
+        err = float(np.mean([x["error_rate"] for x in c]))
+        ratio, low, high, n = lag_effect(people, lag, lags[0])
+        for key, value in zip(per_lag, (lag, mt, err, ratio, low, high), strict=True):
+            per_lag[key].append(value)
+        print(f"| {lag:g} | {mt:.2f} | x {ratio:.2f} ({low:.2f}-{high:.2f}) | {n} | "
+              f"{100 * err:.0f} % | {sum(x['slips'] for x in c):.0f} |")  # fmt: skip
     if len(per_lag["lag_ms"]) > 1:
         ids = np.array([c["id"] for c in cells])
         lag_s = np.array([c["lag_ms"] / 1000 for c in cells])
@@ -196,7 +251,7 @@ def report(rows: list[dict], lags: list[float], json_path: str | None) -> None:
                   f"c = {m['c']:.2f}, R^2 = {m['r2']:.3f}")  # fmt: skip
     if json_path:
         with open(json_path, "w", encoding="utf-8") as f:
-            json.dump({**per_lag, "fits": fits, "cells": cells}, f, indent=1)
+            json.dump({**per_lag, "fits": fits, "cells": cells, "people": people}, f, indent=1)
         print(f"\nwrote {json_path}")
 
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import NDArray
 
 from arteleop.errors import SimulationError
 from arteleop.operator import OperatorTraits, PointingTask, SyntheticSource
@@ -32,15 +33,24 @@ SELECTED_CLOSURE = 0.05
 class PointingResult:
     """How one pointing trial went; NaN where the operator never selected.
 
+    The selection is the closure the operator decided: the gripper's place when, after the
+    decision, its closure first passes :data:`SELECTED_CLOSURE`. A closure before the decision is
+    a slip (the fingers pushed against the table during a movement), counted and not taken for
+    the selection.
+
     Attributes:
-        movement_time_s: From the start of the pointing movement to the selection (s).
+        movement_time_s: From the start of the pointing movement to the decision to select (s).
         along_m: The gripper at the selection past the target's centre along the task axis (m).
-        hit: The gripper was within the circle at the selection (when it began to close).
+        across_m: ...and across it, in the table's plane (m).
+        hit: The gripper was within the circle at the selection.
+        slips: Closures before the decision.
     """
 
     movement_time_s: float
     along_m: float
+    across_m: float
     hit: bool
+    slips: int = 0
 
     @property
     def selected(self) -> bool:
@@ -69,19 +79,34 @@ def run_pointing_trial(
         to_hand = HandToGripper(config.controller.mapping).hand_position_for
         source = SyntheticSource(task, to_hand, np.random.default_rng([seed, 1]), traits=traits)
         result = run_trial(source, config, site)
-    pointing = [r for r in source.operator.history if r.name == "point"]
-    if not pointing or pointing[0].first_move_s is None or pointing[0].end_s is None:
-        return PointingResult(float("nan"), float("nan"), False)
-    # The selection is where the gripper starts to close: the click.
     trace = result.trace
     if trace is None:
         raise SimulationError("The pointing trial recorded no trace although its config asked.")
-    closing = np.flatnonzero(trace["gripper_closure"] > SELECTED_CLOSURE)
-    k = closing[0] if len(closing) else len(trace["time_s"]) - 1
-    end = np.array([trace["gripper_x_m"][k], trace["gripper_y_m"][k]])
-    off = end - ws.target_m[:2]
+    pointing = [r for r in source.operator.history if r.name == "point"]
+    if not pointing or pointing[0].first_move_s is None or pointing[0].end_s is None:
+        _, slips = decided_selection(trace["time_s"], trace["gripper_closure"], np.inf)
+        return PointingResult(float("nan"), float("nan"), float("nan"), False, slips)
+    decided_s = pointing[0].end_s
+    k, slips = decided_selection(trace["time_s"], trace["gripper_closure"], decided_s)
+    off = np.array([trace["gripper_x_m"][k], trace["gripper_y_m"][k]]) - ws.target_m[:2]
     return PointingResult(
-        pointing[0].end_s - pointing[0].first_move_s,
+        decided_s - pointing[0].first_move_s,
         float(off[1]),
+        float(off[0]),
         bool(np.linalg.norm(off) <= width_m / 2),
+        slips,
     )
+
+
+def decided_selection(
+    time_s: NDArray[np.float64], closure: NDArray[np.float64], decided_s: float
+) -> tuple[int, int]:
+    """The tick of the selection decided at ``decided_s`` (s): where the gripper's closure first
+    rises past :data:`SELECTED_CLOSURE` from then on (or is already past it, with none rising
+    later; the last tick if it never closes); and the slips, closures that rose before."""
+    closed = closure > SELECTED_CLOSURE
+    rises = np.flatnonzero(closed & ~np.concatenate([[False], closed[:-1]]))
+    later = rises[time_s[rises] >= decided_s]
+    held = np.flatnonzero(closed & (time_s >= decided_s))
+    k = later[0] if len(later) else held[0] if len(held) else len(time_s) - 1
+    return int(k), int(np.sum(time_s[rises] < decided_s))

@@ -37,3 +37,16 @@ def test_lag_raises_the_movement_time(times: dict) -> None:
     """Medians over six people (measured: 1.4 s without lag, 2.0 s with 0.6 s; two people
     alone, once, gave the opposite)."""
     assert np.median(times[0.1, 0.04, 0.6]) > np.median(times[0.1, 0.04, 0.0])
+
+
+def test_the_selection_is_the_closure_decided_and_earlier_ones_are_slips() -> None:
+    from arteleop.teleop.pointing import decided_selection
+
+    t = np.arange(10) * 0.1
+    closure = np.array([0, 0.2, 0.3, 0, 0, 0, 0.1, 0.9, 1.0, 1.0])
+    # A brush against the table at 0.1-0.2 s, the decision at 0.5 s, its closure from 0.6 s.
+    assert decided_selection(t, closure, 0.5) == (6, 1)
+    assert decided_selection(t, closure, 0.05) == (1, 0)  # decided before the brush: it selects
+    held = np.array([0, 0.2, 0.3, 0.3, 0.3, 0.3, 0.3, 0.3, 0.3, 0.3])
+    assert decided_selection(t, held, 0.5) == (5, 1)  # still pushed closed at the decision
+    assert decided_selection(t, np.zeros(10), 0.5) == (9, 0)  # never closed: the last tick
