@@ -64,3 +64,7 @@ class FrameGraphError(ArteleopError):
 class CalibrationError(ArteleopError):
     """A calibration cannot be solved: the marker was not seen, or the poses were too few or too
     similar. The message says how many were usable and what is needed."""
+
+
+class ReportWriteError(ArteleopError):
+    """A report could not be written (a full disk, permissions): nothing of it was kept."""

@@ -246,8 +246,8 @@ def test_ctrl_c_stops_a_parallel_study_at_once_and_resume_finishes_it(tmp_path) 
 
 
 def test_ctrl_c_during_the_report_says_how_to_write_it(tmp_path, monkeypatch, capsys) -> None:
-    """Once every trial is in, a Ctrl-C can only stop the report: resuming would find nothing to
-    run, so the message gives the command that writes the report."""
+    """Once every trial is in, a Ctrl-C can only stop the report: the message says that resume
+    writes it (the manifest says the report is not finished)."""
     from arteleop.cli import study
     from arteleop.study import StudyRun
 
@@ -260,8 +260,7 @@ def test_ctrl_c_during_the_report_says_how_to_write_it(tmp_path, monkeypatch, ca
     with pytest.raises(KeyboardInterrupt) as stop:
         study._study_done(StudyRun(tmp_path, trials, 1, []))
     assert str(stop.value) == (
-        f"the trials are all in {tmp_path}; 'arteleop analyze {tmp_path} --out "
-        f"{tmp_path / 'report'}' writes the report"
+        f"the trials are all in {tmp_path}; 'arteleop study resume {tmp_path}' writes it"
     )
 
 

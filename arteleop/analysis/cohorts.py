@@ -23,6 +23,7 @@ from scipy import stats
 
 from arteleop.analysis.data import StudyData
 from arteleop.analysis.delay import cue_sets, profiles, with_network
+from arteleop.analysis.output import whole_folder
 
 REFERENCE = "none"
 RATIOS = {"completion_time_s": "time", "placement_error_m": "error"}
@@ -142,8 +143,14 @@ def write_cohort_report(
     sources: Sequence[Path], trials: pd.DataFrame, out_dir: Path
 ) -> dict[str, Path]:
     """``cohort_medians.csv``, ``pooled_effects.csv``, ``experts.csv`` (with participants) and
-    ``cohorts.md`` in ``out_dir``; returns them by name."""
-    out_dir.mkdir(parents=True, exist_ok=True)
+    ``cohorts.md`` in ``out_dir``, whole or not at all (it replaces an existing ``out_dir``);
+    returns them by name."""
+    with whole_folder(out_dir) as partial:
+        files = _write(sources, trials, partial)
+    return {name: out_dir / path.relative_to(partial) for name, path in files.items()}
+
+
+def _write(sources: Sequence[Path], trials: pd.DataFrame, out_dir: Path) -> dict[str, Path]:
     medians, effects, experts = cohort_medians(trials), pooled_effects(trials), expert_gaps(trials)
     files = {"cohort_medians.csv": medians, "pooled_effects.csv": effects}
     if experts is not None:

@@ -26,6 +26,11 @@ MEASURES: tuple[str, ...] = (
 SMOOTHNESS: tuple[str, ...] = ("normalized_jerk_xy", "ldlj_xy", "sparc_xy", "submovements_xy")
 """The smoothness measures, each of the hand in the x-y plane from motion onset to the end."""
 PHASES = ("familiarization", "experimental")
+OUTCOMES = (
+    "success", "timeout", "tracking_lost", "dropped", "not_grasped", "operator_stopped",
+    "interrupted", "failure",
+)  # fmt: skip
+"""How a trial may end: success, or a failure (``failure`` for a lab's own reason)."""
 AR_CLASSES = ("embodiment", "manipulation", "task")
 QUESTIONNAIRE_ITEMS = ("presence", "embodiment", "ease")
 
@@ -98,9 +103,11 @@ def load_study(path: Path, participants_path: Path | None = None) -> StudyData:
         raise AnalysisInputError(f"{trials_path}: no such file; a run folder holds trials.csv")
     trials = read_table(
         trials_path, TRIAL_COLUMNS, TRIAL_REQUIRED, TRIAL_NUMERIC,
-        {"phase": PHASES}, may_be_empty=SUCCESS_ONLY,
+        {"phase": PHASES, "outcome": OUTCOMES}, may_be_empty=SUCCESS_ONLY,
     )  # fmt: skip
-    _check_trials(trials_path, trials)
+    if trials.empty:
+        raise AnalysisInputError(f"{trials_path}: no trials below the header")
+    _check_trials(trials_path, trials, base)
     trials[list(NETWORK_COLUMNS)] = trials[list(NETWORK_COLUMNS)].fillna(0.0)
     participants = None
     if participants_path is not None:
@@ -108,6 +115,7 @@ def load_study(path: Path, participants_path: Path | None = None) -> StudyData:
             participants_path, PARTICIPANT_COLUMNS, ("participant",), PARTICIPANT_NUMERIC,
             {"source": ("synthetic", "real", "")},
         )  # fmt: skip
+        _check_range(participants_path, participants, "age", 0, 120)
         _check_range(participants_path, participants, "avr_hours", 1, 3)
         _check_range(participants_path, participants, "games_hours", 1, 3)
     questionnaire = None
@@ -136,6 +144,8 @@ def read_table(
         df = pd.read_csv(path, dtype=str, keep_default_na=False, skipinitialspace=True)
     except (OSError, pd.errors.ParserError, pd.errors.EmptyDataError) as err:
         raise AnalysisInputError(f"{path}: cannot be read as CSV ({err})") from None
+    except UnicodeDecodeError:
+        raise AnalysisInputError(f"{path}: not UTF-8 text; save it as UTF-8 CSV") from None
     df.columns = [c.strip() for c in df.columns]
     for column in df.columns:
         if column not in known:
@@ -170,11 +180,12 @@ def read_table(
             )
     for column in numeric:
         values = pd.to_numeric(df[column].replace("", np.nan), errors="coerce")
-        bad = values.isna() & (df[column] != "")
+        bad = (values.isna() | np.isinf(values)) & (df[column] != "")
         if bad.any():
             i = int(np.flatnonzero(bad.to_numpy())[0])
+            kind = "a finite number" if np.isinf(values.iloc[i]) else "a number"
             raise AnalysisInputError(
-                f"{path}, line {i + 2}, column {column}: '{df[column].iloc[i]}' is not a number"
+                f"{path}, line {i + 2}, column {column}: '{df[column].iloc[i]}' is not {kind}"
             )
         df[column] = values.astype(float)
     return df
@@ -184,7 +195,10 @@ def load_trajectory(path: Path) -> pd.DataFrame:
     """A trajectory file: at least time_s, hand_x_m, hand_y_m, hand_z_m."""
     if not path.is_file():
         raise AnalysisInputError(f"{path}: trajectory file not found")
-    df = pd.read_csv(path)
+    try:
+        df = pd.read_csv(path)
+    except (OSError, UnicodeDecodeError, pd.errors.ParserError, pd.errors.EmptyDataError) as err:
+        raise AnalysisInputError(f"{path}: cannot be read as CSV ({err})") from None
     missing = [c for c in TRAJECTORY_COLUMNS if c not in df.columns]
     if missing:
         raise AnalysisInputError(f"{path}, line 1: missing column(s) {', '.join(missing)}")
@@ -205,7 +219,7 @@ def network_label(round_trip_ms: float, jitter_ms: float = 0.0, loss: float = 0.
     return label
 
 
-def _check_trials(path: Path, trials: pd.DataFrame) -> None:
+def _check_trials(path: Path, trials: pd.DataFrame, base_dir: Path) -> None:
     for i, label in trials["modality"].items():
         unknown = [part for part in label.split("+") if part not in CUE_NAMES]
         if unknown:
@@ -243,6 +257,14 @@ def _check_trials(path: Path, trials: pd.DataFrame) -> None:
             i = empty.index[0]
             raise AnalysisInputError(
                 f"{path}, line {i + 2}, column {column}: empty, but a successful trial has one"
+            )
+    inside = base_dir.resolve()
+    for i, name in trials["trajectory_file"].items():
+        if name and inside not in (inside / name).resolve().parents:
+            raise AnalysisInputError(
+                f"{path}, line {i + 2}, column trajectory_file: '{name}' is outside the "
+                "folder of the trials file; a trajectory file's path is relative to it, inside "
+                "it (trajectories/P01/1.csv)"
             )
     for column in ("completion_time_s", "placement_error_m"):
         neg = trials[trials[column] < 0]

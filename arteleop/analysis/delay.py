@@ -3,6 +3,8 @@ repeated-measures ANOVA of cue x delay (statsmodels' ``AnovaRM``)."""
 
 from __future__ import annotations
 
+import itertools
+
 import pandas as pd
 from statsmodels.stats.anova import AnovaRM
 
@@ -64,12 +66,27 @@ def delay_cue_anova(analysed: pd.DataFrame, measure: str) -> tuple[list[TestResu
     the participants with a successful trial in every cell (AnovaRM needs them all); one row
     per effect, with partial eta squared, and a note on who was left out."""
     data = with_network(analysed).dropna(subset=[measure])
-    cells = data.groupby(["modality", "network"]).ngroups
+    design = set(zip(with_network(analysed)["modality"], with_network(analysed)["network"],
+                     strict=True))  # fmt: skip
+    cues, networks = crossed_part(design)
+    notes = []
+    if len(cues) < 2 or len(networks) < 2:
+        why = ("the design does not cross cue sets with delays (no two cue sets share two "
+               "network profiles); the pairwise tests within each profile stand")  # fmt: skip
+        return [untested(ANOVA_SUBSET, measure, effect, "", 0, len(design), why)
+                for effect in EFFECTS.values()], why  # fmt: skip
+    if len(cues) * len(networks) < len(design):
+        notes.append(f"on the crossed part of the design: {', '.join(cues)} x "
+                     f"{', '.join(networks)}")  # fmt: skip
+    data = data[data["modality"].isin(cues) & data["network"].isin(networks)]
+    cells = len(cues) * len(networks)
     complete = data.groupby("participant").filter(lambda g: len(g) == cells)
     left_out = data["participant"].nunique() - complete["participant"].nunique()
-    note = f"{left_out} participant(s) without a value in every cell left out" if left_out else ""
+    if left_out:
+        notes.append(f"{left_out} participant(s) without a value in every cell left out")
+    note = "; ".join(notes)
     people = complete["participant"].nunique()
-    if people < 2 or complete["modality"].nunique() < 2 or complete["network"].nunique() < 2:
+    if people < 2:
         why = f"needs 2 or more participants with all {cells} cells, has {people}"
         return [
             untested(ANOVA_SUBSET, measure, effect, "", people, cells, why)
@@ -91,3 +108,18 @@ def delay_cue_anova(analysed: pd.DataFrame, measure: str) -> tuple[list[TestResu
             )
         )  # fmt: skip
     return rows, note
+
+
+def crossed_part(design: set[tuple[str, str]]) -> tuple[list[str], list[str]]:
+    """The largest part of a design's (cue set, network profile) cells that crosses every one of
+    its cue sets with every one of its profiles: (cue sets, profiles), most cells first, then
+    most profiles; empty where no two cue sets share two profiles."""
+    networks = sorted({n for _, n in design}, key=lambda n: float(n[: n.index("ms")]))
+    cue_names = sorted({c for c, _ in design})
+    best: tuple[list[str], list[str]] = ([], [])
+    for k in range(len(networks), 1, -1):
+        for chosen in itertools.combinations(networks, k):
+            cues = [c for c in cue_names if all((c, n) in design for n in chosen)]
+            if len(cues) >= 2 and len(cues) * k > len(best[0]) * len(best[1]):
+                best = (cues, list(chosen))
+    return best

@@ -15,6 +15,7 @@ from arteleop.analysis.figures import (
     questionnaire_boxplot,
     trajectory_plot,
 )
+from arteleop.analysis.output import whole_folder
 from arteleop.analysis.statistics import AnalysisOptions, trim_extremes
 from arteleop.analysis.study_analysis import EXPERT_MIN_BUCKET, EXPERTISE_KINDS, AnalysisResult
 
@@ -27,8 +28,17 @@ TEST_COLUMNS = (
 def write_report(
     study: StudyData, result: AnalysisResult, options: AnalysisOptions, out_dir: Path
 ) -> dict[str, Path]:
-    """Write tests.csv, normality.csv, order_effect.csv, descriptives.csv, report.md, figures/."""
-    out_dir.mkdir(parents=True, exist_ok=True)
+    """Write tests.csv, normality.csv, order_effect.csv, descriptives.csv, report.md, figures/
+    into ``out_dir``, whole or not at all (it replaces an existing ``out_dir``); returns the
+    files by name."""
+    with whole_folder(out_dir) as partial:
+        files = _write(study, result, options, partial)
+    return {name: out_dir / path.relative_to(partial) for name, path in files.items()}
+
+
+def _write(
+    study: StudyData, result: AnalysisResult, options: AnalysisOptions, out_dir: Path
+) -> dict[str, Path]:
     figures = out_dir / "figures"
     figures.mkdir(exist_ok=True)
     files = {}

@@ -10,7 +10,7 @@ from typing import Annotated
 
 import tyro
 
-from arteleop.errors import ConfigurationError
+from arteleop.errors import ConfigurationError, ReportWriteError
 
 
 @dataclass(frozen=True)
@@ -33,6 +33,8 @@ class AnalyzeCommand:
     """within-subject tests (paired t-test / Wilcoxon) between modalities (one source)"""
     holm: bool = False
     """Holm-correct each family of pairwise tests (one source)"""
+    force: bool = False
+    """replace --out if it holds an earlier report (never a folder of anything else)"""
 
 
 def analyze(cmd: AnalyzeCommand) -> int:
@@ -43,11 +45,43 @@ def analyze(cmd: AnalyzeCommand) -> int:
             "arteleop analyze needs a run folder or a trials CSV: 'arteleop analyze my-run "
             "--out my-report'; several run folders of one design are pooled."
         )
+    check_report_folder(cmd.out, cmd.sources, cmd.force)
     try:
         return (_analyse_one if len(cmd.sources) == 1 else _pool)(cmd)
     except AnalysisInputError as err:
         print(f"arteleop: error: {err}", file=sys.stderr)
         return 2
+    except OSError as err:
+        raise ReportWriteError(
+            f"Cannot write the report to {cmd.out}: {err.strerror or err}. Nothing of it was "
+            "kept; free space or fix permissions and analyse again."
+        ) from None
+
+
+def check_report_folder(out: Path, sources: tuple[Path, ...], force: bool) -> None:
+    """Refuse an ``--out`` that would lose something: a file, a folder of data or a source of
+    the analysis, or an earlier report without ``--force``."""
+    from arteleop.analysis.output import is_report_folder
+
+    resolved = out.resolve()
+    for source in sources:
+        folder = source.resolve() if source.is_dir() else source.resolve().parent
+        if resolved == folder or resolved in folder.parents:
+            raise ConfigurationError(
+                f"--out {out}: it holds the data analysed ({source}); give a new folder, such "
+                f"as {source / 'report' if source.is_dir() else folder / 'report'}."
+            )
+    if out.exists() and not out.is_dir():
+        raise ConfigurationError(f"--out {out}: a file, not a folder; give a new folder.")
+    if out.is_dir() and any(out.iterdir()):
+        if not is_report_folder(out):
+            raise ConfigurationError(
+                f"--out {out}: a folder that holds other files than a report; give a new folder."
+            )
+        if not force:
+            raise ConfigurationError(
+                f"--out {out} holds an earlier report; give a new folder, or --force to replace it."
+            )
 
 
 def _analyse_one(cmd: AnalyzeCommand) -> int:

@@ -9,6 +9,7 @@ import tyro
 
 from arteleop.cli.options import Modality, check_seed
 from arteleop.cli.progress import trial_progress
+from arteleop.errors import ConfigurationError
 
 
 @dataclass(frozen=True)
@@ -57,6 +58,8 @@ class OperatorSynthCommand:
     """seed of every random source of the trial (0 or more)"""
     out: Path = Path("synthetic.csv")
     """recording CSV (its JSON sidecar is written beside it)"""
+    force: bool = False
+    """replace a recording that --out (or its sidecar) already holds"""
     quiet: bool = False
     """print the result only, no progress"""
 
@@ -67,13 +70,20 @@ def operator_synth(cmd: OperatorSynthCommand) -> int:
     from arteleop.teleop import TrialConfig, run_trial, trial_operator
 
     check_seed(cmd.seed)
+    _check_out(cmd.out, cmd.force)
     config = TrialConfig(modality=cmd.modality, seed=cmd.seed)
     with RemoteSite(config.site) as site:
         source = trial_operator(site, config)
         with trial_progress(config.timeout_s, "trial", cmd.quiet) as progress:
             result = run_trial(source, config, site, progress=progress)
     rec = source.recording(subject_id=f"synthetic-{cmd.modality}-{cmd.seed}")
-    write_recording(rec, cmd.out)
+    try:
+        write_recording(rec, cmd.out)
+    except OSError as err:
+        raise ConfigurationError(
+            f"Cannot write {cmd.out}: {err.strerror or err}. An earlier recording there is "
+            "unchanged; free space or fix permissions and run it again."
+        ) from None
     print(f"trial outcome {result.outcome.value}")
     print(f"wrote {cmd.out} and its sidecar {sidecar_path(cmd.out)}")
     print(
@@ -81,3 +91,25 @@ def operator_synth(cmd: OperatorSynthCommand) -> int:
         "lost by the wearable in flight (rows with the time only, lost again on replay)"
     )
     return 0
+
+
+def _check_out(out: Path, force: bool) -> None:
+    """Refuse, before the trial runs, an ``--out`` that cannot take a recording or would replace
+    one without ``--force``."""
+    from arteleop.operator import sidecar_path
+
+    if out.is_dir():
+        raise ConfigurationError(
+            f"--out {out}: a folder; give the recording's CSV path, such as {out / 'synthetic.csv'}."
+        )
+    if out.suffix.lower() != ".csv":
+        raise ConfigurationError(
+            f"--out {out}: a recording's CSV ends in .csv (its sidecar takes the .json beside it)."
+        )
+    if not force:
+        for path in (out, sidecar_path(out)):
+            if path.exists():
+                raise ConfigurationError(
+                    f"--out {out}: {path} exists; give another path, or --force to replace the "
+                    "recording."
+                )

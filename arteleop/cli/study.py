@@ -15,7 +15,7 @@ import tyro
 from arteleop.cli.analyze import AnalyzeCommand, analyze
 from arteleop.cli.interrupt import check_ctrl_c
 from arteleop.cli.options import CameraSize, check_seed
-from arteleop.errors import ConfigurationError
+from arteleop.errors import ConfigurationError, ReportWriteError
 
 
 @dataclass(frozen=True)
@@ -82,7 +82,7 @@ def study_run(cmd: StudyRunCommand) -> int:
 
 
 def study_resume(cmd: StudyResumeCommand) -> int:
-    from arteleop.study import RunComplete, resume_study
+    from arteleop.study import RunComplete, RunFolder, resume_study
 
     _check_workers(cmd.workers)
     try:
@@ -90,7 +90,10 @@ def study_resume(cmd: StudyResumeCommand) -> int:
             run = resume_study(cmd.run_dir, workers=cmd.workers or None, progress=progress)
     except RunComplete as done:
         print(done)
-        return 0
+        if RunFolder(cmd.run_dir).report_finished():
+            return 0
+        print("its report is not whole: writing it")
+        return _write_run_report(cmd.run_dir)
     return _study_done(run)
 
 
@@ -138,14 +141,30 @@ def _study_done(run: Any) -> int:
         print(f"{modality:<14}{len(group):>7}{len(ok):>9}"
               f"{ok['completion_time_s'].median():>17.1f}"
               f"{1000 * ok['placement_error_m'].median():>19.1f}")  # fmt: skip
-    report = run.folder / "report"
-    try:
-        return analyze(AnalyzeCommand(sources=(run.folder,), out=report))
-    except KeyboardInterrupt:
-        raise KeyboardInterrupt(
-            f"the trials are all in {run.folder}; 'arteleop analyze {run.folder} --out {report}' "
-            "writes the report"
-        ) from None
+    for note in run.notes:
+        print(f"note: {note}")
+    return _write_run_report(run.folder)
+
+
+def _write_run_report(folder: Path) -> int:
+    """The run's analysis into RUN_DIR/report, whole, under the run's lock; the manifest says
+    it is finished only once its last file is in."""
+    from datetime import UTC, datetime
+
+    from arteleop.study import RunFolder, run_lock
+
+    report = folder / "report"
+    resume = f"'arteleop study resume {folder}' writes it"
+    with run_lock(folder):
+        try:
+            code = analyze(AnalyzeCommand(sources=(folder,), out=report, force=True))
+        except KeyboardInterrupt:
+            raise KeyboardInterrupt(f"the trials are all in {folder}; {resume}") from None
+        except ReportWriteError as err:
+            raise ReportWriteError(f"{err} The trials are all in {folder}; {resume}.") from None
+        if code == 0:
+            RunFolder(folder).mark_report_finished(datetime.now(UTC).isoformat(timespec="seconds"))
+    return code
 
 
 @dataclass(frozen=True)

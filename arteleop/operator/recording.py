@@ -21,6 +21,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation, Slerp
 
+from arteleop.checks import Bounds, check_fields
 from arteleop.errors import ConfigurationError, RecordingError
 from arteleop.moved import moved_names
 from arteleop.operator.arm_model import SEGMENTS, ArmModel
@@ -44,6 +45,11 @@ UNITS = {
 }
 
 
+RATE_BOUNDS_HZ = (10.0, 1000.0)
+"""Sample rates a wearable recording may have: the IMUs of the field run at 50-400 Hz (the
+original's at 100 Hz)."""
+
+
 @dataclass(frozen=True)
 class RecordingInfo:
     """The sidecar's content."""
@@ -52,6 +58,9 @@ class RecordingInfo:
     arm: ArmModel = field(default_factory=ArmModel)
     calibration: CalibrationPosture = field(default_factory=CalibrationPosture)
     subject_id: str = "synthetic"
+
+    def __post_init__(self) -> None:
+        check_fields(self, {"rate_hz": Bounds(*RATE_BOUNDS_HZ, "Hz, an IMU's sample rate")})
 
 
 @dataclass(frozen=True)

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import csv
+import io
 import json
 import math
 from dataclasses import asdict
@@ -15,6 +16,7 @@ from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation, Slerp
 
 from arteleop.errors import ConfigurationError, RecordingError
+from arteleop.files import write_atomic
 from arteleop.operator.arm_model import SEGMENTS, ArmAngles, ArmModel
 from arteleop.operator.posture import CalibrationPosture
 from arteleop.operator.recording import (
@@ -37,19 +39,18 @@ def sidecar_path(csv_path: Path) -> Path:
 
 
 def write_recording(recording: Recording, csv_path: Path) -> None:
-    """Write the CSV and its sidecar; loading them gives the same numbers back exactly."""
+    """Write the CSV and its sidecar, each whole or not at all (through a temporary file and a
+    rename: a full disk leaves the old files); loading them gives the same numbers back
+    exactly. Raises ``OSError`` where the files cannot be written."""
     csv_path = Path(csv_path)
-    csv_path.parent.mkdir(parents=True, exist_ok=True)
     q = recording.sensor_quat_wxyz.reshape(len(recording.time_s), 12)
     lost_row = [""] * (len(COLUMNS) - 1)
-    with csv_path.open("w", newline="") as f:
-        writer = csv.writer(f)
-        writer.writerow(COLUMNS)
-        for t, quats, g, lost in zip(
-            recording.time_s, q, recording.grip, recording.lost, strict=True
-        ):
-            values = lost_row if lost else [*(repr(float(v)) for v in quats), repr(float(g))]
-            writer.writerow([repr(float(t)), *values])
+    buffer = io.StringIO()
+    writer = csv.writer(buffer)
+    writer.writerow(COLUMNS)
+    for t, quats, g, lost in zip(recording.time_s, q, recording.grip, recording.lost, strict=True):
+        values = lost_row if lost else [*(repr(float(v)) for v in quats), repr(float(g))]
+        writer.writerow([repr(float(t)), *values])
     info = recording.info
     sidecar = {
         "format": FORMAT_NAME,
@@ -64,7 +65,8 @@ def write_recording(recording: Recording, csv_path: Path) -> None:
         },
         "units": UNITS,
     }
-    sidecar_path(csv_path).write_text(json.dumps(sidecar, indent=2) + "\n")
+    write_atomic(csv_path, buffer.getvalue())
+    write_atomic(sidecar_path(csv_path), json.dumps(sidecar, indent=2) + "\n")
 
 
 def load_recording(csv_path: Path, config: LoaderConfig | None = None) -> Recording:
@@ -240,9 +242,16 @@ def _load_sidecar(path: Path, csv_path: Path) -> RecordingInfo:
             "segment lengths, calibration posture, subject id, units)."
         )
     try:
-        data: dict[str, Any] = json.loads(path.read_text())
+        data: dict[str, Any] = json.loads(path.read_text(encoding="utf-8"))
     except json.JSONDecodeError as err:
         raise RecordingError(f"{path}, line {err.lineno}: not valid JSON ({err.msg})") from None
+    except (OSError, UnicodeDecodeError) as err:
+        raise RecordingError(f"{path}: cannot be read ({err})") from None
+    if not isinstance(data, dict):
+        raise RecordingError(
+            f"{path}: a JSON {type(data).__name__}; expected an object with format, version, "
+            "rate_hz, arm, calibration_posture, subject_id and units (docs/recording-format.md)"
+        )
     if data.get("format") != FORMAT_NAME or data.get("version") not in READ_VERSIONS:
         raise RecordingError(
             f"{path}: format {data.get('format')!r} version {data.get('version')!r}; expected "
@@ -264,5 +273,5 @@ def _load_sidecar(path: Path, csv_path: Path) -> RecordingInfo:
         )
     except KeyError as err:
         raise RecordingError(f"{path}: missing field {err}") from None
-    except (TypeError, ValueError, ConfigurationError) as err:
+    except (TypeError, ValueError, AttributeError, ConfigurationError) as err:
         raise RecordingError(f"{path}: {err}") from None

@@ -108,6 +108,9 @@ def serve(conn: Connection) -> None:
     """The child: build the world, then render each request until told to stop."""
     try:
         robot_urdf, ws, body_ids, moving_joints, renderer = conn.recv()
+    except (EOFError, OSError):
+        return  # the parent went away before it said what to build
+    try:
         world = RenderWorld(Path(robot_urdf), ws, body_ids, moving_joints, renderer)
     except Exception as err:  # sent to the parent, which raises it
         conn.send(err)
@@ -121,7 +124,7 @@ def serve(conn: Connection) -> None:
                 conn.send(world.render(request))
             except Exception as err:  # sent to the parent, which raises it
                 conn.send(err)
-    except EOFError:
-        pass  # the parent went away without saying goodbye; nothing to render for
+    except (EOFError, OSError):
+        pass  # the parent went away without saying goodbye (a kill); nothing to render for
     finally:
         world.close()

@@ -19,6 +19,7 @@ from arteleop.study.plan import PracticePoints, TrialSpec, plan_study, trial_see
 from arteleop.study.protocol import TrialRecord, operator_traits, run_planned_trial
 from arteleop.study.questionnaire import simulated_answers
 from arteleop.study.run_folder import FORMAT_VERSION, TRIAL_COLUMNS, RunFolder
+from arteleop.study.run_lock import run_lock
 from arteleop.study.runner import RunComplete, StudyRun, resume_study, run_study
 from arteleop.study.sites import StudySite
 from arteleop.study.study_file import (
@@ -53,6 +54,7 @@ __all__ = [
     "participants",
     "plan_study",
     "resume_study",
+    "run_lock",
     "run_planned_trial",
     "run_study",
     "simulated_answers",

@@ -15,6 +15,7 @@ from arteleop.study.run_folder import (
     table_text,
     write_atomic,
 )
+from arteleop.study.run_lock import run_lock
 
 
 def merge_answers(run_dir: Path, answers: Path) -> list[str]:
@@ -42,11 +43,15 @@ def merge_answers(run_dir: Path, answers: Path) -> list[str]:
             raise RunFolderError(f"{answers} line {line}: {problem}. Nothing was merged.")
     replaced = sorted({row[0] for row in new}, key=people.index)
     path = folder.path / QUESTIONNAIRE_FILE
-    old = _rows(path, QUESTIONNAIRE_COLUMNS)[1:] if path.exists() else []
-    kept = [row for row in old if row[0] not in replaced]
-    order = {"p": people.index, "c": AR_CLASSES.index, "i": ITEMS.index}
-    rows = sorted(kept + new, key=lambda r: (order["p"](r[0]), order["c"](r[1]), order["i"](r[2])))
-    write_atomic(path, table_text(QUESTIONNAIRE_COLUMNS, rows))
+    with run_lock(folder.path):  # not while a run or a resume writes the folder
+        old = _rows(path, QUESTIONNAIRE_COLUMNS)[1:] if path.exists() else []
+        kept = [row for row in old if row[0] not in replaced]
+
+        def place(row: list[str]) -> tuple[int, int, int]:
+            return people.index(row[0]), AR_CLASSES.index(row[1]), ITEMS.index(row[2])
+
+        rows = sorted(kept + new, key=place)
+        write_atomic(path, table_text(QUESTIONNAIRE_COLUMNS, rows))
     return replaced
 
 

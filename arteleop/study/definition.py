@@ -81,6 +81,10 @@ class ParticipantSpec:
             )
 
 
+MAX_COHORT = 10_000
+"""The most participants one run takes (its plan is held in memory, its trials in one folder)."""
+
+
 @dataclass(frozen=True)
 class CohortConfig:
     """A simulated cohort, drawn from the study's seed when no participants are listed.
@@ -110,6 +114,13 @@ class CohortConfig:
     def __post_init__(self) -> None:
         if self.size < 1:
             raise StudyDefinitionError(f"cohort.size = {self.size}: expected 1 or more.")
+        if self.size > MAX_COHORT:
+            raise StudyDefinitionError(
+                f"cohort.size = {self.size}: expected at most {MAX_COHORT} participants. A run "
+                "plans every trial before the first runs and keeps them in one folder: run a "
+                "larger cohort as several runs with other seeds and pool them with 'arteleop "
+                "analyze RUN1 RUN2 ...'."
+            )
         only = self.avr_experts + self.games_experts - self.both_experts
         if not (
             0 <= self.both_experts <= min(self.avr_experts, self.games_experts)

@@ -69,9 +69,15 @@ def load_replay(run_dir: Path, participant: str, trial_index: int) -> ReplaySour
         site.close()
     spec = next(s for s in plan if s.key == (participant, trial_index))
     path = folder.path / str(row["trajectory_file"])
+    if folder.path.resolve() not in path.resolve().parents:
+        raise RunFolderError(
+            f"{folder.path / 'trials.csv'}, {participant} trial {trial_index}, column "
+            f"trajectory_file: '{row['trajectory_file']}' is outside the run folder; a "
+            "trajectory file's path is inside it (trajectories/P01/1.csv)."
+        )
     try:
         trajectory = pd.read_csv(path)
-    except (OSError, pd.errors.ParserError) as err:
+    except (OSError, UnicodeDecodeError, pd.errors.ParserError) as err:
         raise RunFolderError(f"{path}: cannot read the trajectory ({err}).") from err
     missing = [c for c in REPLAY_COLUMNS if c not in trajectory.columns]
     if missing:

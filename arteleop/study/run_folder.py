@@ -5,9 +5,12 @@
   over the target: a reader sees the old file or the new one, never half of one.
 - ``trials.csv`` grows by whole rows as trials end: each row is one write, flushed and synced;
   a write that fails is cut back off. A row that a ``kill -9`` left half-written has no line
-  end, and resuming drops it (the trial runs again).
+  end; resuming sets it aside (the trial runs again).
 - When every trial is in, the rows are put in plan order (participant, then trial), so the
   files of a run do not depend on which trial finished first.
+- Nothing is dropped silently: a row that cannot stay in trials.csv (cut short, a duplicate, a
+  trial the plan does not have) is moved to ``trials-set-aside.csv`` beside it, and the run
+  says so (:attr:`RunFolder.notes`).
 """
 
 from __future__ import annotations
@@ -36,6 +39,7 @@ MANIFEST_FILE = "manifest.json"
 TRIALS_FILE = "trials.csv"
 PARTICIPANTS_FILE = "participants.csv"
 QUESTIONNAIRE_FILE = "questionnaire.csv"
+SET_ASIDE_FILE = "trials-set-aside.csv"
 
 
 def cell(value: object) -> str:
@@ -83,6 +87,8 @@ class RunFolder:
 
     def __init__(self, path: Path) -> None:
         self.path = Path(path)
+        self.notes: list[str] = []
+        """What the folder set aside or repaired, for the user to be told."""
 
     @property
     def trials_path(self) -> Path:
@@ -94,9 +100,24 @@ class RunFolder:
     def manifest(self) -> dict[str, object]:
         path = self.path / MANIFEST_FILE
         try:
-            return json.loads(path.read_text(encoding="utf-8"))
-        except (OSError, json.JSONDecodeError) as err:
+            manifest = json.loads(path.read_text(encoding="utf-8"))
+        except (OSError, UnicodeDecodeError, json.JSONDecodeError) as err:
             raise RunFolderError(f"Cannot read {path}: {err}.") from err
+        if not isinstance(manifest, dict):
+            raise RunFolderError(
+                f"{path}: a JSON {type(manifest).__name__}, expected an object with the run's "
+                "format_version, seed and packages; restore it from a backup."
+            )
+        return manifest
+
+    def report_finished(self) -> bool:
+        """Whether the run's report was written whole (``report_finished`` in the manifest)."""
+        return bool(self.manifest().get("report_finished"))
+
+    def mark_report_finished(self, when: str) -> None:
+        manifest = self.manifest()
+        manifest["report_finished"] = when
+        self.write_manifest(manifest)
 
     def write_manifest(self, manifest: dict[str, object]) -> None:
         write_atomic(self.path / MANIFEST_FILE, json.dumps(manifest, indent=2) + "\n")
@@ -110,36 +131,91 @@ class RunFolder:
         write_atomic(self.trials_path, csv_line(TRIAL_COLUMNS))
         self.write_manifest(manifest)
 
-    def done_rows(self) -> dict[tuple[str, int], str]:
-        """The rows in trials.csv, by (participant, trial_index), as their exact lines. A last
-        line without a line end (a write cut short) is cut off the file first."""
+    def done_rows(self, repair: bool = False) -> dict[tuple[str, int], str]:
+        """The rows in trials.csv, by (participant, trial_index), as their exact lines.
+
+        A last line without a line end is a row whose write was cut short when it lacks
+        fields (its trial runs again), or a whole row that lost its line end (an editor). A
+        second row of a trial does not count. With ``repair`` (the writer, holding the lock),
+        the whole row gets its line end back and the others are set aside; without, nothing
+        is written."""
         path = self.trials_path
         try:
             data = path.read_bytes()
         except OSError as err:
             raise RunFolderError(f"Cannot read {path}: {err.strerror or err}.") from err
-        if not data.endswith(b"\n"):
-            keep = data.rfind(b"\n") + 1
-            with open(path, "r+b") as f:
-                f.truncate(keep)
-                f.flush()
-                os.fsync(f.fileno())
-            data = data[:keep]
-        lines = data.decode("utf-8").splitlines(keepends=True)
+        try:
+            text = data.decode("utf-8")
+        except UnicodeDecodeError as err:
+            raise RunFolderError(
+                f"{path}: not UTF-8 text (byte {err.start}); restore it from a backup."
+            ) from None
+        lines = text.splitlines(keepends=True)
         if not lines or next(csv.reader([lines[0]])) != list(TRIAL_COLUMNS):
             raise RunFolderError(
                 f"{path} line 1: expected the header {','.join(TRIAL_COLUMNS)}; this is not a "
                 "trials file that arteleop started."
             )
+        if not lines[-1].endswith("\n"):
+            last = len(lines)
+            if self._whole_row(next(csv.reader([lines[-1]]))):
+                lines[-1] += "\n"
+                if repair:
+                    self._rewrite_trials(lines)
+                    self.notes.append(f"{path} line {last}: a whole row without its line end; "
+                                      "the line end is back.")  # fmt: skip
+            else:
+                cut = lines.pop()
+                if repair:
+                    self.set_aside([cut], f"line {last} was cut short")
+                    self._rewrite_trials(lines)
         rows: dict[tuple[str, int], str] = {}
+        twice: list[str] = []
         for number, line in enumerate(lines[1:], start=2):
             fields = next(csv.reader([line]))
             if len(fields) != len(TRIAL_COLUMNS):
                 raise RunFolderError(
                     f"{path} line {number}: {len(fields)} fields, expected {len(TRIAL_COLUMNS)}."
                 )
-            rows[(fields[0], int(fields[2]))] = line
+            try:
+                key = (fields[0], int(fields[2]))
+            except ValueError:
+                raise RunFolderError(
+                    f"{path} line {number}, column trial_index: {fields[2]!r}; expected a whole "
+                    "number. Correct the row or move it out of the file, then resume."
+                ) from None
+            if key in rows:
+                twice.append(line)
+            else:
+                rows[key] = line
+        if twice and repair:
+            self.set_aside(twice, f"{len(twice)} second row(s) of a trial already in it")
+            self._rewrite_trials([lines[0], *rows.values()])
         return rows
+
+    def _whole_row(self, fields: list[str]) -> bool:
+        """A row with every field, down to its trajectory file's whole name (the last field,
+        the file written before the row)."""
+        if len(fields) != len(TRIAL_COLUMNS):
+            return False
+        row = dict(zip(TRIAL_COLUMNS, fields, strict=True))
+        name = f"trajectories/{row['participant']}/{row['trial_index']}.csv"
+        return row["trajectory_file"] == name and (self.path / name).is_file()
+
+    def set_aside(self, lines: Sequence[str], why: str) -> None:
+        """Move ``lines`` of trials.csv to :data:`SET_ASIDE_FILE` (appended, whole lines) and
+        say so in :attr:`notes`."""
+        aside = self.path / SET_ASIDE_FILE
+        text = "".join(line if line.endswith("\n") else line + "\n" for line in lines)
+        try:
+            old = aside.read_text(encoding="utf-8") if aside.exists() else ""
+        except OSError as err:
+            raise RunFolderError(f"Cannot read {aside}: {err.strerror or err}.") from err
+        write_atomic(aside, old + text)
+        self.notes.append(f"{self.trials_path}: {why}; moved to {aside}.")
+
+    def _rewrite_trials(self, lines: Sequence[str]) -> None:
+        write_atomic(self.trials_path, "".join(lines))
 
     def append_trial(self, row: dict[str, object], trace: dict[str, np.ndarray]) -> None:
         """A finished trial: its trajectory file, then its row of trials.csv."""
@@ -164,14 +240,19 @@ class RunFolder:
             ) from err
 
     def finish(self, order: Sequence[tuple[str, int]]) -> None:
-        """Every trial is in: its rows in plan order."""
-        rows = self.done_rows()
+        """Every trial is in: its rows in plan order; a row of a trial the plan does not have is
+        set aside."""
+        rows = self.done_rows(repair=True)
         missing = [key for key in order if key not in rows]
         if missing:
             raise RunFolderError(
                 f"{self.trials_path} lacks {len(missing)} planned trials, the first "
                 f"{missing[0][0]} trial {missing[0][1]}."
             )
+        planned = set(order)
+        unplanned = [line for key, line in rows.items() if key not in planned]
+        if unplanned:
+            self.set_aside(unplanned, f"{len(unplanned)} row(s) of trials the plan does not have")
         write_atomic(self.trials_path, csv_line(TRIAL_COLUMNS) + "".join(rows[k] for k in order))
 
     def write_questionnaire(self, text: str) -> None:

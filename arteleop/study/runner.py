@@ -8,10 +8,14 @@ shows Ray's equivalent). Whatever the order, the finished folder's CSVs are the 
 
 from __future__ import annotations
 
+import dataclasses
+import hashlib
 import multiprocessing
 import os
 import platform
 import signal
+import threading
+import time
 from collections.abc import Callable, Sequence
 from concurrent.futures import Executor, Future, ProcessPoolExecutor, as_completed
 from dataclasses import dataclass
@@ -31,6 +35,7 @@ from arteleop.study.plan import EXPERIMENTAL, TrialSpec, plan_study
 from arteleop.study.protocol import TrialRecord, run_planned_trial
 from arteleop.study.questionnaire import simulated_answers
 from arteleop.study.run_folder import FORMAT_VERSION, STUDY_FILE, RunFolder, table_text
+from arteleop.study.run_lock import LOCK_FILE, after_fork_in_child, run_lock
 from arteleop.study.sites import StudySite
 from arteleop.study.study_file import first_difference, parse_study, study_text
 
@@ -51,12 +56,14 @@ class StudyRun:
         trials: trials.csv as a table.
         ran: Trials run by this call (the rest were in the folder already).
         speed: (simulated s, wall s) of each trial run by this call, for benchmarks.
+        notes: What the run set aside or repaired in the folder, to tell the user.
     """
 
     folder: Path
     trials: pd.DataFrame
     ran: int
     speed: list[tuple[float, float]]
+    notes: tuple[str, ...] = ()
 
 
 class RunComplete(RunFolderError):
@@ -79,17 +86,10 @@ def run_study(
         progress: Told of each trial written.
     """
     folder = RunFolder(out)
-    if folder.path.exists() and any(folder.path.iterdir()):
-        if folder.is_run_folder():
-            raise RunFolderError(
-                f"{folder.path} already holds a run: 'arteleop study resume {folder.path}' "
-                "continues it; give --out a new folder for a new run."
-            )
-        raise RunFolderError(
-            f"{folder.path} exists and is not empty: give --out a new or empty folder."
-        )
+    _check_new(folder)
     site = StudySite()
     plan, people = _plan(study, site)
+    text = study_text(study)
     manifest = {
         "format_version": FORMAT_VERSION,
         "seed": study.seed,
@@ -103,13 +103,36 @@ def run_study(
         "head_camera": renderer_description(resolve_renderer("auto")),
         "started": _now(),
         "finished": None,
+        # What the run is, so that resume can refuse a folder whose definition was edited or
+        # whose plan this arteleop would make otherwise.
+        "definition": text,
+        "definition_sha256": _digest(text),
+        "plan_sha256": _plan_digest(plan),
+        "report_finished": None,
     }
     try:
         folder.path.mkdir(parents=True, exist_ok=True)
     except OSError as err:
         raise RunFolderError(f"Cannot create {folder.path}: {err.strerror or err}.") from err
-    folder.start(study_text(study), manifest, _participants_text(people))
-    return _execute(study, site, folder, plan, people, workers, executor, progress)
+    with run_lock(folder.path):
+        _check_new(folder)  # again, holding the lock: another run may have begun meanwhile
+        folder.start(text, manifest, _participants_text(people))
+        return _execute(study, site, folder, plan, people, workers, executor, progress)
+
+
+def _check_new(folder: RunFolder) -> None:
+    """Refuse a folder that holds anything but a lock or a start that a kill cut short."""
+    if folder.path.exists() and not folder.path.is_dir():
+        raise RunFolderError(f"--out {folder.path}: a file, not a folder; give a new folder.")
+    if folder.path.exists() and not _begun_only(folder):
+        if folder.is_run_folder():
+            raise RunFolderError(
+                f"{folder.path} already holds a run: 'arteleop study resume {folder.path}' "
+                "continues it; give --out a new folder for a new run."
+            )
+        raise RunFolderError(
+            f"{folder.path} exists and is not empty: give --out a new or empty folder."
+        )
 
 
 def resume_study(
@@ -127,28 +150,86 @@ def resume_study(
             f"{folder.path} is not a run folder (it has no {STUDY_FILE} and manifest.json): "
             "'arteleop study run --out DIR' starts one."
         )
-    text = (folder.path / STUDY_FILE).read_text(encoding="utf-8")
-    recorded = parse_study(text, str(folder.path / STUDY_FILE))
-    if study is not None and (key := first_difference(study, recorded)) is not None:
-        raise RunFolderError(
-            f"{folder.path} was made from another definition: its key {key!r} is "
-            f"{_value(recorded, key)!r}, the given one {_value(study, key)!r}. Resume it "
-            "without a definition, or start a new run in another folder."
-        )
-    manifest = folder.manifest()
-    if manifest.get("format_version") != FORMAT_VERSION:
-        raise RunFolderError(
-            f"{folder.path / 'manifest.json'}: format_version {manifest.get('format_version')!r}"
-            f", this arteleop writes {FORMAT_VERSION}; resume it with the version that began it "
-            f"({manifest.get('packages', {}).get('arteleop', 'unknown')})."
-        )
-    site = StudySite()
-    plan, people = _plan(recorded, site)
-    if manifest.get("finished") and len(folder.done_rows()) == len(plan):
-        raise RunComplete(
-            f"{folder.path} is complete: all {len(plan)} trials are in; nothing to resume."
-        )
-    return _execute(recorded, site, folder, plan, people, workers, executor, progress)
+    with run_lock(folder.path):
+        manifest = folder.manifest()
+        recorded = _recorded_definition(folder, manifest)
+        if study is not None and (key := first_difference(study, recorded)) is not None:
+            raise RunFolderError(
+                f"{folder.path} was made from another definition: its key {key!r} is "
+                f"{_value(recorded, key)!r}, the given one {_value(study, key)!r}. Resume it "
+                "without a definition, or start a new run in another folder."
+            )
+        if manifest.get("format_version") != FORMAT_VERSION:
+            raise RunFolderError(
+                f"{folder.path / 'manifest.json'}: format_version "
+                f"{manifest.get('format_version')!r}, this arteleop writes {FORMAT_VERSION}; "
+                "resume it with the version that began it "
+                f"({_get(manifest, 'packages', {}).get('arteleop', 'unknown')})."
+            )
+        site = StudySite()
+        plan, people = _plan(recorded, site)
+        planned = manifest.get("plan_sha256")
+        if planned is not None and planned != _plan_digest(plan):
+            raise RunFolderError(
+                f"{folder.path}: this arteleop plans the run's definition otherwise than the "
+                "version that began it (its plan's digest differs); resume it with that version "
+                f"({_get(manifest, 'packages', {}).get('arteleop', 'unknown')})."
+            )
+        if manifest.get("finished") and len(folder.done_rows(repair=True)) == len(plan):
+            notes = "".join(f"\nnote: {note}" for note in folder.notes)
+            raise RunComplete(
+                f"{folder.path} is complete: all {len(plan)} trials are in; nothing to resume."
+                + notes
+            )
+        return _execute(recorded, site, folder, plan, people, workers, executor, progress)
+
+
+def _begun_only(folder: RunFolder) -> bool:
+    """Whether ``folder`` holds nothing but what :meth:`RunFolder.start` writes before the
+    manifest (a start cut short: no trial has run), its temporary files, and the lock."""
+    begun = {LOCK_FILE, STUDY_FILE, "participants.csv", "trials.csv"}
+    for entry in folder.path.iterdir():
+        temporary = entry.name.startswith(".") and entry.name.endswith(".tmp")
+        if entry.name not in begun and not temporary:
+            return False
+    trials = folder.trials_path
+    return not trials.exists() or trials.read_text(encoding="utf-8").count("\n") <= 1
+
+
+def _recorded_definition(folder: RunFolder, manifest: dict[str, object]) -> StudyConfig:
+    """The run's definition: study.toml, refused if it no longer says what the run began with
+    (the manifest keeps the text it began with)."""
+    path = folder.path / STUDY_FILE
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as err:
+        raise RunFolderError(f"Cannot read {path}: {err}.") from err
+    recorded = parse_study(text, str(path))
+    began = manifest.get("definition")
+    if isinstance(began, str) and text != began:
+        original = parse_study(began, f"{folder.path / 'manifest.json'} (definition)")
+        key = first_difference(original, recorded)
+        if key is not None:
+            raise RunFolderError(
+                f"{path} was edited after the run began: its key {key!r} is "
+                f"{_value(recorded, key)!r}, the run's {_value(original, key)!r}. Put it back "
+                "(manifest.json keeps the run's definition as 'definition'), or start a new run "
+                "in another folder."
+            )
+    return recorded
+
+
+def _digest(text: str) -> str:
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+def _plan_digest(plan: Sequence[TrialSpec]) -> str:
+    return _digest("\n".join(repr(dataclasses.astuple(spec)) for spec in plan))
+
+
+def _get(manifest: dict[str, object], key: str, default: dict) -> dict:
+    value = manifest.get(key, default)
+    return value if isinstance(value, dict) else default
 
 
 def _plan(study: StudyConfig, site: StudySite) -> tuple[list[TrialSpec], list[ParticipantSpec]]:
@@ -172,7 +253,7 @@ def _execute(
     executor: Executor | None,
     progress: Progress | None,
 ) -> StudyRun:
-    done = folder.done_rows()
+    done = folder.done_rows(repair=True)
     pending = [spec for spec in plan if spec.key not in done]
     by_id = {p.id: p for p in people}
     count = len(plan) - len(pending)
@@ -186,14 +267,18 @@ def _execute(
         if progress is not None:
             progress(record.spec, count, len(plan))
 
-    workers = workers or os.cpu_count() or 1
+    # More processes than trials only costs memory (each holds a simulator).
+    workers = min(workers or os.cpu_count() or 1, max(len(pending), 1))
     if executor is None and (workers == 1 or len(pending) <= 1):
         for spec in pending:
             keep(run_planned_trial(study, site, by_id[spec.participant], spec))
     else:
         own = executor is None
         pool = executor or ProcessPoolExecutor(
-            workers, mp_context=multiprocessing.get_context("fork"), initializer=_ignore_ctrl_c
+            workers,
+            mp_context=multiprocessing.get_context("fork"),
+            initializer=_start_worker,
+            initargs=(os.getpid(),),
         )
         futures: list[Future[TrialRecord]] = []
         try:
@@ -219,15 +304,29 @@ def _execute(
     manifest = folder.manifest()
     manifest["finished"] = _now()
     folder.write_manifest(manifest)
-    return StudyRun(folder.path, folder.trials(), len(pending), speed)
+    return StudyRun(folder.path, folder.trials(), len(pending), speed, tuple(folder.notes))
 
 
 _WORKER_SITE: StudySite | None = None
 
 
-def _ignore_ctrl_c() -> None:
-    """In a worker: Ctrl-C reaches the whole process group, and the parent alone handles it."""
+PARENT_CHECK_S = 0.5
+"""How often a worker checks that the process that started it is still there (s)."""
+
+
+def _start_worker(parent_pid: int) -> None:
+    """In a worker: Ctrl-C reaches the whole process group, and the parent alone handles it; the
+    run folder's lock stays the parent's; and the worker ends when its parent is gone, however
+    it went (a ``kill -9`` leaves no orphans blocked on a pipe)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    after_fork_in_child()
+    threading.Thread(target=_exit_with_parent, args=(parent_pid,), daemon=True).start()
+
+
+def _exit_with_parent(parent_pid: int) -> None:
+    while os.getppid() == parent_pid:
+        time.sleep(PARENT_CHECK_S)
+    os._exit(1)
 
 
 def _stop_workers(pool: ProcessPoolExecutor) -> None:

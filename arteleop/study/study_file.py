@@ -63,10 +63,16 @@ def _check_points(study: StudyConfig, text: str, source: str) -> None:
 
 def parse_study(text: str, source: str = "<study>") -> StudyConfig:
     """A definition from TOML text; ``source`` names it in errors."""
+    text = text.removeprefix("\ufeff")  # a byte-order mark some editors write first
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise StudyDefinitionError(f"{source}: not valid TOML: {err}.") from err
+    if not data:
+        raise StudyDefinitionError(
+            f"{source} defines nothing (no key). 'arteleop study run' without a file runs the "
+            "built-in default study; 'arteleop study init FILE' writes it to edit."
+        )
     where = _Locator(text, source)
     top: dict[str, Any] = {}
     for key, value in data.items():
@@ -83,6 +89,18 @@ def parse_study(text: str, source: str = "<study>") -> StudyConfig:
                     f"{where.at('', given[0])}: {given[0]} and [[conditions]]: the conditions "
                     "give each trial's cues and network; remove one or the other."
                 )
+            if not value:
+                raise StudyDefinitionError(
+                    f"{where.at('', key)}: conditions = [] gives no condition; give "
+                    "[[conditions]] tables (each a cue set over a network profile), or remove "
+                    "the key to compare the modalities."
+                )
+            for index, item in enumerate(value):
+                if item == {}:
+                    raise StudyDefinitionError(
+                        f"{where.at('conditions', '', index)}: an empty [[conditions]] table; "
+                        "give its cues (cues = [] for no AR) and, for a delay, round_trip_ms."
+                    )
             top[key] = tuple(
                 _build(ConditionSpec, item, "conditions", where, index)
                 for index, item in enumerate(value)

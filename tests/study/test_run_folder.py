@@ -56,14 +56,21 @@ def test_trials_are_appended_whole_and_read_back(tmp_path: Path) -> None:
     assert folder.trials().columns.tolist() == list(TRIAL_COLUMNS)
 
 
-def test_a_row_cut_short_by_a_kill_is_dropped_on_resume(tmp_path: Path) -> None:
+def test_a_row_cut_short_by_a_kill_is_set_aside_on_resume(tmp_path: Path) -> None:
     folder = _folder(tmp_path)
     folder.append_trial(_row("P01", 1), TRACE)
     whole = folder.trials_path.read_bytes()
     with open(folder.trials_path, "ab") as f:
         f.write(b"P01,experimental,2,fu")  # what kill -9 can leave
-    assert list(folder.done_rows()) == [("P01", 1)]
+    assert list(folder.done_rows()) == [("P01", 1)]  # a reader writes nothing
+    assert folder.trials_path.read_bytes() == whole + b"P01,experimental,2,fu"
+    assert list(folder.done_rows(repair=True)) == [("P01", 1)]
     assert folder.trials_path.read_bytes() == whole
+    assert (folder.path / "trials-set-aside.csv").read_text() == "P01,experimental,2,fu\n"
+    assert folder.notes == [
+        f"{folder.trials_path}: line 3 was cut short; moved to "
+        f"{folder.path / 'trials-set-aside.csv'}."
+    ]
 
 
 def test_a_write_that_fails_midway_leaves_no_half_row(

@@ -20,6 +20,7 @@ from arteleop.study import (
     CohortConfig,
     FamiliarizationConfig,
     RunComplete,
+    RunFolder,
     StudyConfig,
     resume_study,
     run_study,
@@ -37,11 +38,14 @@ SMALL = StudyConfig(
 
 
 def _files(folder: Path) -> dict[str, bytes]:
-    """Every file of a run but the manifest (its start and end times differ) and the report."""
+    """Every file of a run but the manifest (its start and end times differ), the lock (the
+    process id of its last writer) and the report."""
     return {
         str(p.relative_to(folder)): p.read_bytes()
         for p in sorted(folder.rglob("*"))
-        if p.is_file() and p.name != "manifest.json" and "report" not in p.parts
+        if p.is_file()
+        and p.name not in ("manifest.json", ".arteleop.lock")
+        and "report" not in p.parts
     }
 
 
@@ -116,6 +120,36 @@ def test_a_run_killed_midway_resumes_to_the_same_bytes(
     assert _files(folder) == series
     with pytest.raises(RunComplete, match=r"is complete: all 6 trials are in; nothing to resume"):
         resume_study(folder)
+
+
+@pytest.mark.parametrize("point", range(2))
+def test_a_run_killed_at_a_random_moment_resumes_to_the_same_bytes(
+    series: dict[str, bytes], tmp_path: Path, point: int
+) -> None:
+    """The parent killed at a seeded random moment (starting, among the trials with two
+    workers, or writing the report): the workers end with it, and resume finishes the run with
+    the same bytes and a whole report."""
+    delay_s = float(np.random.default_rng([43, point]).uniform(2.0, 14.0))
+    definition = tmp_path / "small.toml"
+    definition.write_text(study_text(SMALL))
+    folder = tmp_path / "run"
+    command = [sys.executable, "-m", "arteleop.cli", "study", "run", str(definition),
+               "--out", str(folder), "--workers", "2", "--quiet"]  # fmt: skip
+    child = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        child.wait(timeout=delay_s)
+    except subprocess.TimeoutExpired:
+        os.kill(child.pid, signal.SIGKILL)
+        child.wait()
+    if RunFolder(folder).is_run_folder():
+        again = [*command[:4], "resume", str(folder), "--workers", "2", "--quiet"]
+    else:  # killed before the run had begun: it begins again, in the same folder
+        again = command
+    done = subprocess.run(again, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, (delay_s, done.stderr)
+    assert _files(folder) == series, delay_s
+    assert RunFolder(folder).report_finished()
+    assert (folder / "report" / "report.md").is_file()
 
 
 def test_resume_refuses_what_is_not_its_run(tmp_path: Path, capsys) -> None:
