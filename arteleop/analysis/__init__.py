@@ -33,6 +33,8 @@ if TYPE_CHECKING:
         pooled_effects,
         write_cohort_report,
     )
+    from arteleop.analysis.power import Pool, PowerOptions, make_pool, power
+    from arteleop.analysis.power_report import write_power_report
     from arteleop.analysis.report import write_report
     from arteleop.analysis.statistics import (
         AnalysisOptions,
@@ -67,6 +69,8 @@ _LAZY = {
          "write_cohort_report"),
         "arteleop.analysis.cohorts",
     ),
+    **dict.fromkeys(("Pool", "PowerOptions", "make_pool", "power"), "arteleop.analysis.power"),
+    "write_power_report": "arteleop.analysis.power_report",
     "AnalysisResult": "arteleop.analysis.study_analysis",
     "analyse": "arteleop.analysis.study_analysis",
     "write_report": "arteleop.analysis.report",
@@ -87,6 +91,8 @@ __all__ = [
     "AnalysisOptions",
     "AnalysisResult",
     "NormalityResult",
+    "Pool",
+    "PowerOptions",
     "StudyData",
     "TestResult",
     "analyse",
@@ -100,6 +106,7 @@ __all__ = [
     "load_study",
     "load_trajectory",
     "log_dimensionless_jerk",
+    "make_pool",
     "normality",
     "normalized_jerk",
     "order_effect",
@@ -107,11 +114,13 @@ __all__ = [
     "path_length",
     "pool_cohorts",
     "pooled_effects",
+    "power",
     "rank_biserial",
     "spectral_arc_length",
     "stars",
     "submovement_count",
     "trim_extremes",
     "write_cohort_report",
+    "write_power_report",
     "write_report",
 ]

@@ -10,7 +10,7 @@ import shutil
 from collections.abc import Iterator
 from pathlib import Path
 
-REPORT_MARKERS = ("report.md", "cohorts.md")
+REPORT_MARKERS = ("report.md", "cohorts.md", "power.md")
 """A folder holding one of these (and no trials.csv) is a report arteleop wrote."""
 
 

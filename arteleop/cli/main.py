@@ -20,6 +20,7 @@ from arteleop.cli.operator import (
     operator_check,
     operator_synth,
 )
+from arteleop.cli.power import StudyPowerCommand, study_power
 from arteleop.cli.scene import SceneCommand, scene
 from arteleop.cli.study import (
     StudyAnswerCommand,
@@ -59,6 +60,7 @@ GROUPS: dict[str, dict[str, Command]] = {
         "resume": (StudyResumeCommand, study_resume),
         "answer": (StudyAnswerCommand, study_answer),
         "replay": (StudyReplayCommand, study_replay),
+        "power": (StudyPowerCommand, study_power),
     },
 }
 
@@ -82,6 +84,7 @@ commands:
   study resume     continue a run folder after a crash, Ctrl-C or kill
   study answer     merge real questionnaire answers into a run folder
   study replay     play a trial of a run folder back in the operator's view
+  study power      how many participants a design needs: power by resampling a pilot
   analyze          the study's statistics, figures and report from its CSV files;
                    several run folders of one design: its answer pooled over them
 
