@@ -30,6 +30,7 @@ def whole_folder(out_dir: Path) -> Iterator[Path]:
     ``out_dir`` (an existing one is removed only once the new one is in place). If the block
     fails, the hidden folder is removed and ``out_dir`` is left as it was."""
     out_dir = Path(out_dir)
+    _remove_left_behind(out_dir)
     partial = out_dir.parent / f".{out_dir.name}.partial-{os.getpid()}"
     shutil.rmtree(partial, ignore_errors=True)
     partial.mkdir(parents=True)
@@ -43,3 +44,22 @@ def whole_folder(out_dir: Path) -> Iterator[Path]:
         os.replace(out_dir, old)
     os.replace(partial, out_dir)
     shutil.rmtree(old, ignore_errors=True)
+
+
+def _remove_left_behind(out_dir: Path) -> None:
+    """Remove the hidden folders of ``out_dir`` that a killed writer left (its process is gone);
+    a live writer's are its own."""
+    for hidden in out_dir.parent.glob(f".{out_dir.name}.*-*"):
+        kind, _, pid = hidden.name.rpartition("-")
+        if kind.endswith((".partial", ".old")) and pid.isdigit() and not _alive(int(pid)):
+            shutil.rmtree(hidden, ignore_errors=True)
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # another user's process
+        return True
+    return True

@@ -274,6 +274,24 @@ def test_a_report_cut_by_a_full_disk_is_not_kept_and_resume_writes_it(
     assert RunFolder(run).report_finished()
 
 
+def test_a_killed_writers_hidden_folders_go_a_live_ones_stay(
+    tiny_run: Path, tmp_path: Path
+) -> None:
+    """A writer killed while writing a report leaves its hidden folder; the next write removes
+    it (seen in a run killed at a random moment), but not one of a writer still at work."""
+    run = _copy(tiny_run, tmp_path / "run")
+    dead = subprocess.Popen([sys.executable, "-c", "pass"])
+    dead.wait()
+    left = [run / f".report.partial-{dead.pid}", run / f".report.old-{dead.pid}"]
+    working = run / f".report.partial-{os.getppid()}"
+    for folder in (*left, working):
+        folder.mkdir()
+        (folder / "tests.csv").write_text("cut")
+    assert main(["analyze", str(run), "--out", str(run / "report"), "--force"]) == 0
+    assert [p.exists() for p in left] == [False, False]
+    assert working.exists()
+
+
 def test_analyze_does_not_replace_a_report_unless_asked(tiny_run: Path, tmp_path: Path,
                                                          capsys) -> None:  # fmt: skip
     out = tmp_path / "report"
