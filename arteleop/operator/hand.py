@@ -19,24 +19,43 @@ PATH_S = 2.0
 @dataclass(frozen=True)
 class Submovement:
     """A minimum-jerk displacement of the hand (torso frame, m) from ``start_s`` (s) over
-    ``duration_s`` (s); submovements under way at once superpose."""
+    ``duration_s`` (s); submovements under way at once superpose. ``delta_m`` is what the
+    hand does, ``intended_m`` what the operator meant it to do (without the motor noise): its
+    efference copy."""
 
     start_s: float
     delta_m: NDArray[np.float64]
     duration_s: float
+    intended_m: NDArray[np.float64]
+
+    def share_at(self, t: float) -> float:
+        """The share of the movement covered at ``t`` (s)."""
+        return float(minimum_jerk_profile((t - self.start_s) / self.duration_s))
 
     def done_at(self, t: float) -> NDArray[np.float64]:
-        """The share of ``delta_m`` covered at ``t`` (s)."""
-        return self.delta_m * float(minimum_jerk_profile((t - self.start_s) / self.duration_s))
+        """The displacement covered at ``t`` (s)."""
+        return self.delta_m * self.share_at(t)
+
+    def time_to_cover_s(self, distance_m: float) -> float:
+        """When (s) the intended displacement has covered ``distance_m`` (m); its end if never."""
+        amplitude = float(np.linalg.norm(self.intended_m))
+        if amplitude <= distance_m:
+            return self.start_s + self.duration_s
+        tau = np.linspace(0.0, 1.0, 201)
+        share = minimum_jerk_profile(tau)
+        return self.start_s + self.duration_s * float(np.interp(distance_m / amplitude, share, tau))
 
 
 class Hand:
     """The hand's position (torso frame, m): where every finished submovement left it plus what
-    those under way have covered, and its recent path."""
+    those under way have covered; where the operator meant it to be (the efference copy), and
+    that intended path's recent past."""
 
     def __init__(self, position_m: NDArray[np.float64]) -> None:
         self.position_m = position_m.copy()
         self._base = position_m.copy()
+        self.intended_m = position_m.copy()
+        self._intended_base = position_m.copy()
         self.moves: list[Submovement] = []
         self._path: deque[tuple[float, NDArray[np.float64]]] = deque()
 
@@ -52,25 +71,31 @@ class Hand:
         done = [m for m in self.moves if t >= m.start_s + m.duration_s]
         for m in done:
             self._base = self._base + m.delta_m
+            self._intended_base = self._intended_base + m.intended_m
             self.moves.remove(m)
         self.position_m = self._base + sum((m.done_at(t) for m in self.moves), np.zeros(3))
+        self.intended_m = self._intended_base + sum(
+            (m.intended_m * m.share_at(t) for m in self.moves), np.zeros(3)
+        )
 
     def remember(self, t: float) -> None:
-        """Keep the hand's position at ``t`` (s) in its recent path."""
-        self._path.append((t, self.position_m.copy()))
+        """Keep the intended hand at ``t`` (s) in its recent path."""
+        self._path.append((t, self.intended_m.copy()))
         while self._path[0][0] < t - PATH_S:
             self._path.popleft()
 
     def moved_since(self, since_s: float) -> NDArray[np.float64]:
-        """How far the hand has moved since ``since_s`` (m), from its recent path."""
+        """How far the operator meant its hand to move since ``since_s`` (m): its efference
+        copy, which knows nothing of the motor noise."""
         before = next((h for ts, h in reversed(self._path) if ts <= since_s), None)
         if before is None:  # the lag reaches back before what it remembers: the oldest
-            before = self._path[0][1] if self._path else self.position_m
-        return self.position_m - before
+            before = self._path[0][1] if self._path else self.intended_m
+        return self.intended_m - before
 
     def remaining_m(self, t: float) -> NDArray[np.float64]:
-        """The displacement still to come from the submovements under way at ``t`` (s; m)."""
-        return sum((m.delta_m - m.done_at(t) for m in self.moves), np.zeros(3))
+        """The intended displacement still to come from the submovements under way at ``t``
+        (s; m)."""
+        return sum((m.intended_m * (1.0 - m.share_at(t)) for m in self.moves), np.zeros(3))
 
 
 class Tremor:

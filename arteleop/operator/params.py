@@ -26,8 +26,11 @@ class OperatorParams:
         arrival_timeout_s: After the hand stops, the operator looks anyway after this (s).
         familiar_lag_s: The display's lag the operator knows from practice on the system
             (s): its first estimate of the lag, before a trial shows it another.
-        move_and_wait_lag_s: Above this display lag (s) the operator no longer corrects in
-            flight; it moves and waits.
+        lag_learning_rate: How much of the difference between a movement's observed lag and
+            the believed one the belief takes on (per movement): adapting to a delay is slow.
+        timing_weber: The SD of a timed wait as a share of its mean (scalar timing).
+        motion_threshold_m: The smallest displacement of the shown gripper the operator sees
+            as a movement (m); movements under twice it teach no lag.
         gross_criterion_m: Criterion of the movements without a precision demand (in the
             pick-and-place: lift, retract, home; m).
         max_look_s: A look ends by then, sure or not (s).
@@ -52,7 +55,9 @@ class OperatorParams:
     arrival_speed_m_s: float = 0.02
     arrival_timeout_s: float = 3.0
     familiar_lag_s: float = 0.3
-    move_and_wait_lag_s: float = 0.6
+    lag_learning_rate: float = 0.03
+    timing_weber: float = 0.15
+    motion_threshold_m: float = 0.005
     gross_criterion_m: float = 0.05
     max_look_s: float = 1.5
     max_setbacks: int = 2
@@ -70,4 +75,7 @@ class OperatorParams:
                              "max_look_s", "grip_ramp_s"), positive),
             **dict.fromkeys(("noise_floor_m", "motor_delay_s", "visuomotor_delay_s",
                              "familiar_lag_s", "max_setbacks"), non_negative),
+            "lag_learning_rate": Bounds(0, 1, "a share"),
+            "timing_weber": Bounds(0, 1, "a share of the wait"),
+            "motion_threshold_m": Bounds(0, above=True),
         })  # fmt: skip

@@ -6,8 +6,10 @@ display, criteria); how, the operator's, the same for every task. It **moves** i
 submovements timed to minimise the expected time to the criterion (:mod:`.submovements`),
 **watches** the display until the gripper it shows is still (:mod:`.watch`), **looks**, glance
 after glance, until it is sure either way (:mod:`.look`, :mod:`.perception`, :mod:`.belief`),
-and **homes in** during a movement where the display shows the gripper and the goal and the lag
-is short, acting on what it sees, a round trip old. Before the task it holds the calibration
+and **homes in** during a movement where the display shows the gripper and the goal, with
+corrections spaced so that each one's effect is on the display before the next (intermittent
+control), acting on what it sees, a round trip old, and predicting from its efference copy over
+the lag it believes. Before the task it holds the calibration
 posture, aligns its hand on the resting gripper and waits for the display to show the robot
 engaged. A cue changes it only through what the display lets it see. Its output is a hand pose
 in the torso frame and a grip value; the loop turns them into IMU signals.
@@ -99,7 +101,7 @@ class SyntheticOperator:
         self._correcting_from_s: float | None = None  # the primary's arrival in this phase
         self._tremor = Tremor(self.p.tremor_amplitude_m, self.p.tremor_hz, rng)
         self._errors = PerceptualErrors(rng, self.traits.bias_seed, self.p.perception.bias_share)
-        self._watch = DisplayWatch(self.p, calib_pos)
+        self._watch = DisplayWatch(self.p)
         self._look = Look(self.traits, self.p.max_look_s)
         self._last_amend_s = -np.inf
         self._homing_from_s = 0.0  # in-flight corrections start half-way through the primary
@@ -228,17 +230,19 @@ class SyntheticOperator:
         self._move(t, self._hand_delta(error), t + self.p.motor_delay_s)
         primary = self.hand.moves[-1]
         self._homing_from_s = primary.start_s + 0.5 * primary.duration_s
-        self._watch.began(self.hand.position_m, from_display=True)
+        visible_at = primary.time_to_cover_s(self.p.motion_threshold_m)
+        self._watch.await_response(error, visible_at)
 
     def _home_in(self, t: float, view: DisplayFrame) -> None:
         """A glance during a movement: correct in flight where the display shows the gripper
-        and the goal and its lag is short."""
+        and the goal. Corrections are intermittent: the next waits until the last one's effect
+        is on the display as the operator believes its delay (visuomotor and display), so a long
+        lag leaves room for few, and the operator moves and waits."""
         p = self.p
         phase = self._task_phase
         if (
             phase is None
             or self._task_criterion_m() is None
-            or self.lag_s > p.move_and_wait_lag_s
             or t < self._look.next_glance_s
             # A correction's effect must be on the display before the next one is planned.
             or t < self._last_amend_s + p.visuomotor_delay_s + self.lag_s
@@ -299,7 +303,7 @@ class SyntheticOperator:
         operator's decisions, never the time at which the hand is evaluated.
         """
         t = time_s
-        self._watch.see(view)
+        self._watch.see(t, view)
         self.hand.remember(t)
         moves_in_task = self._task_phase is not None and self._task_phase.action is Action.MOVE
         if self._mode is _Mode.MOVE:
@@ -308,12 +312,14 @@ class SyntheticOperator:
                 if moves_in_task:
                     self._home_in(t, view)
             else:
-                self._watch.hand_stopped(t)
+                # The operator times its wait for the display as people time intervals.
+                wait = self.lag_s * max(0.0, 1.0 + self.p.timing_weber * self._rng.normal())
+                self._watch.hand_stopped(t, wait)
                 self._mode = _Mode.WATCH
         elif self._mode is _Mode.WATCH:
             if not moves_in_task:
                 self._decide(t, view)
-            elif self._watch.arrived(t, self.hand.position_m):
+            elif self._watch.arrived(t):
                 if self._correcting_from_s is None:
                     self._correcting_from_s = t
                 self._start_look(t)
@@ -360,7 +366,6 @@ class SyntheticOperator:
     def _align(self, t: float) -> None:
         """Bring the hand to where it commands the resting gripper, from memory of the pose."""
         self._move(t, self._to_hand(self.task.rest_gripper_m) - self.hand.position_m, t)
-        self._watch.began(self.hand.position_m, from_display=False)
 
     def _output(self, t: float) -> OperatorOutput:
         tremor = self._tremor.at(t)

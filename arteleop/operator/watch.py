@@ -1,5 +1,16 @@
-"""The synthetic operator watching the display's gripper come to rest after a movement, and
-learning the display's lag from how long that takes."""
+"""The synthetic operator watching the display: when the gripper it shows has come to rest after
+a movement, and how late the display answers the hand (the lag, learnt from it).
+
+Nothing here knows what the display will show. The operator waits the lag it believes, timed
+as people time intervals (with scalar variability), and looks once the display has shown the
+gripper still over a short window, which may overlap the wait. It knows whether it made a
+movement big enough to see, and does not take a display that has not answered it at all for one
+at rest; but it does not know where the display will bring the gripper: a display still on the
+robot's slow tail, or not yet showing a correction made in flight, is taken as settled, and the
+operator looks at a stale frame. It learns the lag from the display's response: the time from
+its hand covering a visible displacement to the display showing the gripper move that way;
+slowly, and never from a movement too small to see.
+"""
 
 from __future__ import annotations
 
@@ -15,43 +26,28 @@ from arteleop.operator.perception import shown_gripper_m
 
 class DisplayWatch:
     """Where the display has shown the gripper over the last two arrival windows (None where it
-    did not show it), and the movement the operator is waiting to see arrive."""
+    did not show it), and the lag the operator believes the display has."""
 
-    def __init__(self, params: OperatorParams, hand_m: NDArray[np.float64]) -> None:
+    def __init__(self, params: OperatorParams) -> None:
         self.p = params
         self._shown: deque[tuple[float, NDArray[np.float64] | None]] = deque()
         self.lag_s = params.familiar_lag_s
-        """The display's lag as the operator has come to perceive it (s)."""
+        """The display's lag as the operator has come to believe it (s)."""
         self._stop_s = 0.0
-        self._hand_at_start_m = hand_m.copy()
-        self._shown_at_start_m: NDArray[np.float64] | None = None
-
-    def began(self, hand_m: NDArray[np.float64], from_display: bool) -> None:
-        """A movement begins with the hand at ``hand_m`` (m): where the display shows the
-        gripper now is where it should be seen to leave from (unless not ``from_display``)."""
-        self._hand_at_start_m = hand_m.copy()
-        self._shown_at_start_m = self.latest_m if from_display else None
-
-    def hand_stopped(self, time_s: float) -> None:
-        self._stop_s = time_s
-
-    def arrived(self, time_s: float, hand_m: NDArray[np.float64]) -> bool:
-        """Whether the movement that left the hand at ``hand_m`` (m) is seen to have arrived at
-        ``time_s`` (s); if so, the wait it took teaches the operator the lag."""
-        expected_m = float(np.linalg.norm(hand_m - self._hand_at_start_m))
-        if not self._arrived(time_s, expected_m):
-            return False
-        lag = time_s - self._stop_s - self.p.arrival_window_s
-        self.lag_s = 0.5 * self.lag_s + 0.5 * max(lag, 0.0)
-        return True
+        self._wait_s = 0.0
+        # A movement whose appearance on the display the operator watches for: from where the
+        # display showed the gripper, and when its hand had covered the visible displacement.
+        # ...and the direction it goes on the display (a unit vector, m/m).
+        self._awaited: tuple[NDArray[np.float64], NDArray[np.float64], float] | None = None
 
     @property
     def latest_m(self) -> NDArray[np.float64] | None:
         """The gripper as last shown (m); None if it was not, or nothing was seen yet."""
         return self._shown[-1][1] if self._shown else None
 
-    def see(self, view: DisplayFrame) -> None:
-        """Keep what ``view`` shows of the gripper, once per new frame."""
+    def see(self, time_s: float, view: DisplayFrame) -> None:
+        """Keep what ``view`` shows of the gripper, once per new frame, at the operator's
+        ``time_s`` (s); learn the lag if it shows an awaited movement."""
         # A prediction is of the operator's present, newer than the frame it is drawn over.
         predicted = view.shown_predicted
         stamp = view.time_s if predicted is None else predicted.time_s
@@ -59,28 +55,65 @@ class DisplayWatch:
             return
         cues = view.cues
         seen = cues.ghost or cues.predictive_ghost or view.gripper_in_camera
-        self._shown.append((stamp, shown_gripper_m(view) if seen else None))
+        shown = shown_gripper_m(view) if seen else None
+        self._shown.append((stamp, shown))
         while self._shown and self._shown[0][0] < stamp - 2 * self.p.arrival_window_s:
             self._shown.popleft()
+        if self._awaited is not None and shown is not None:
+            origin, direction, visible_at_s = self._awaited
+            # The response is the movement seen: the way the hand went, and faster than the
+            # gripper still at rest may drift.
+            if (
+                float((shown - origin) @ direction) > self.p.motion_threshold_m
+                and self._speed_m_s() > self.p.arrival_speed_m_s
+            ):
+                sample = max(time_s - visible_at_s, 0.0)
+                self.lag_s += self.p.lag_learning_rate * (sample - self.lag_s)
+                self._awaited = None
+            elif time_s - visible_at_s > self.p.arrival_timeout_s:
+                self._awaited = None  # never seen to move (held by the IK, out of view)
 
-    def _arrived(self, t: float, expected_m: float) -> bool:
-        """Whether, at ``t`` (s), the display has shown the gripper still over the arrival
-        window, after showing the movement made (``expected_m``, how far the hand went; m).
-        Where the display does not show the gripper, the operator trusts its own arm after the
-        window and the lag it believes."""
-        p, stop_s, shown_at_start_m = self.p, self._stop_s, self._shown_at_start_m
-        if t - stop_s > p.arrival_timeout_s:
+    def _speed_m_s(self) -> float:
+        """The shown gripper's mean speed over the last arrival window (m/s); 0 if unknown."""
+        stamp, newest = self._shown[-1]
+        past = [(ts, s) for ts, s in self._shown if ts >= stamp - self.p.arrival_window_s]
+        first_s, first = past[0]
+        if newest is None or first is None or stamp <= first_s:
+            return 0.0
+        return float(np.linalg.norm(newest - first)) / (stamp - first_s)
+
+    def await_response(self, intended_m: NDArray[np.float64], visible_at_s: float) -> None:
+        """A movement meant to take the gripper ``intended_m`` (base frame, m) begins, its hand
+        covering the visible displacement at ``visible_at_s`` (s): watch for the display to
+        show it, unless it is too small to see or the display does not show the gripper."""
+        origin = self.latest_m
+        amplitude = float(np.linalg.norm(intended_m))
+        if origin is None or amplitude < 2 * self.p.motion_threshold_m:
+            self._awaited = None
+            return
+        self._awaited = (origin.copy(), intended_m / amplitude, visible_at_s)
+
+    def hand_stopped(self, time_s: float, wait_s: float) -> None:
+        """The hand stopped at ``time_s`` (s); the operator will wait ``wait_s`` (s) for the
+        display to catch up (its believed lag, as it times it)."""
+        self._stop_s, self._wait_s = time_s, wait_s
+
+    def arrived(self, time_s: float) -> bool:
+        """Whether, at ``time_s`` (s), the operator's wait is over, the display has answered its
+        visible movement and has shown the gripper still over the arrival window; where the
+        display does not show the gripper, the operator trusts its own arm after the wait and
+        the window."""
+        p = self.p
+        waited = time_s - self._stop_s
+        if waited > p.arrival_timeout_s:
             return True
+        if waited < self._wait_s or self._awaited is not None:
+            return False  # its wait is not over, or the display has not answered the movement
         latest = self._shown[-1][0] if self._shown else -np.inf
         window = [s for ts, s in self._shown if ts >= latest - p.arrival_window_s]
         if not self._shown or any(s is None for s in window):
-            return t - stop_s >= p.arrival_window_s + self.lag_s
+            return waited >= self._wait_s + p.arrival_window_s
         if self._shown[0][0] > latest - p.arrival_window_s + 1e-9:
             return False  # not a whole window seen yet
         spread = max(float(np.linalg.norm(s - window[-1])) for s in window)
-        if spread > p.arrival_speed_m_s * p.arrival_window_s:
-            return False
-        if shown_at_start_m is None or expected_m < 0.01:
-            return t - stop_s >= p.arrival_window_s
-        shown_moved = float(np.linalg.norm(window[-1] - shown_at_start_m))
-        return shown_moved >= 0.5 * expected_m
+        return spread <= p.arrival_speed_m_s * p.arrival_window_s

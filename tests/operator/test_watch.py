@@ -1,0 +1,123 @@
+"""The operator's efference copy and its watch of the display: no oracle of the motor noise or of
+what the display will show, and a lag learnt only from movements it can see."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from arteleop.ar_features import MODALITIES
+from arteleop.operator import OperatorParams
+from arteleop.operator.hand import Hand, Submovement
+from arteleop.operator.watch import DisplayWatch
+from arteleop.transforms import make_transform
+from tests.ar_features.frames import display_frame
+
+DOWN = np.diag([1.0, -1.0, -1.0])
+
+
+def test_the_prediction_ignores_the_motor_noise_of_the_movement() -> None:
+    """Two hands meant to move the same way, their noise drawn otherwise, predict alike."""
+    intended = np.array([0.1, 0.0, 0.0])
+    hands = []
+    for noise in (np.zeros(3), np.array([0.01, -0.02, 0.005])):
+        hand = Hand(np.zeros(3))
+        hand.add(Submovement(0.0, intended + noise, 0.5, intended))
+        for t in np.arange(0.0, 0.31, 0.01):
+            hand.advance(t)
+            hand.remember(t)
+        hands.append(hand)
+    (a, b) = hands
+    assert not np.allclose(a.position_m, b.position_m)  # the hands differ...
+    np.testing.assert_array_equal(a.moved_since(0.1), b.moved_since(0.1))  # ...their copies not
+    np.testing.assert_array_equal(a.remaining_m(0.3), b.remaining_m(0.3))
+    np.testing.assert_allclose(a.intended_m + a.remaining_m(0.3), intended)
+
+
+def _shown_at(watch: DisplayWatch, t: float, gripper_m: np.ndarray) -> None:
+    view = display_frame(cues=MODALITIES["embodiment"], time_s=t,
+                         T_base_gripper=make_transform(DOWN, gripper_m))  # fmt: skip
+    watch.see(t, view)
+
+
+def _show(watch: DisplayWatch, times_s: np.ndarray, path) -> None:
+    """The display at 30 Hz, its gripper at ``path(t)`` (m)."""
+    for t in times_s:
+        _shown_at(watch, float(t), np.asarray(path(t)))
+
+
+START = np.array([0.6, -0.4, 0.0])
+AWAY = np.array([0.1, 0.0, 0.0])  # the movement the operator makes: 0.1 m along x
+
+
+def _moving_at(begin_s: float):
+    """A display that shows the gripper still at START until ``begin_s`` (s), then going 0.2 m/s
+    along x."""
+    return lambda t: START + [0.2 * max(t - begin_s, 0.0), 0.0, 0.0]
+
+
+FRAMES = 1 / 30
+
+
+def test_the_lag_is_learnt_from_the_displays_response_and_slowly() -> None:
+    params = OperatorParams(familiar_lag_s=0.3, lag_learning_rate=0.1)
+    watch = DisplayWatch(params)
+    _show(watch, np.arange(0.0, 0.2, FRAMES), _moving_at(0.8))
+    watch.await_response(AWAY, visible_at_s=0.05)
+    _show(watch, np.arange(0.2, 0.8, FRAMES), _moving_at(0.8))
+    assert watch.lag_s == 0.3  # not shown moving yet: no sample
+    times = np.arange(0.8, 1.2, FRAMES)
+    _show(watch, times, _moving_at(0.8))
+    # Seen once 5 mm along the way (at 0.825 s) and faster than a drift: the first frame after.
+    seen_s = times[np.argmax(0.2 * (times - 0.8) > params.motion_threshold_m)]
+    assert watch.lag_s == pytest.approx(0.3 + 0.1 * (seen_s - 0.05 - 0.3))
+
+
+def test_a_movement_too_small_to_see_teaches_no_lag() -> None:
+    params = OperatorParams(motion_threshold_m=0.005, lag_learning_rate=0.5)
+    watch = DisplayWatch(params)
+    _show(watch, np.arange(0.0, 0.2, FRAMES), _moving_at(0.8))
+    watch.await_response(np.array([0.008, 0.0, 0.0]), visible_at_s=0.05)  # under 2 thresholds
+    _show(watch, np.arange(0.2, 1.2, FRAMES), _moving_at(0.8))
+    assert watch.lag_s == params.familiar_lag_s
+
+
+def test_the_robots_jitter_at_rest_is_not_taken_for_the_response() -> None:
+    """A gripper shaking 10 mm across the movement's way, or drifting along it slower than the
+    operator's still, is not the display answering."""
+    params = OperatorParams(lag_learning_rate=0.5)
+    watch = DisplayWatch(params)
+    _show(watch, np.arange(0.0, 0.2, FRAMES), lambda t: START)
+    watch.await_response(AWAY, visible_at_s=0.05)
+    _show(watch, np.arange(0.2, 1.0, FRAMES),
+          lambda t: START + [0.0, 0.01 * np.sin(20 * t), 0.0])  # fmt: skip
+    _show(watch, np.arange(1.0, 2.0, FRAMES),
+          lambda t: START + [0.5 * params.arrival_speed_m_s * (t - 1.0), 0.0, 0.0])  # fmt: skip
+    assert watch.lag_s == params.familiar_lag_s
+
+
+def test_the_operator_does_not_take_a_display_that_has_not_answered_for_one_at_rest() -> None:
+    watch = DisplayWatch(OperatorParams(arrival_window_s=0.25, arrival_timeout_s=3.0))
+    _show(watch, np.arange(0.0, 0.2, FRAMES), lambda t: START)
+    watch.await_response(AWAY, visible_at_s=0.05)
+    watch.hand_stopped(0.6, wait_s=0.3)
+    _show(watch, np.arange(0.2, 2.0, FRAMES), lambda t: START)
+    assert not watch.arrived(2.0)  # its wait is long over, but nothing has moved
+    assert watch.arrived(3.7)  # it looks anyway, in the end
+
+
+def test_after_its_wait_the_operator_looks_at_a_display_on_the_robots_slow_tail() -> None:
+    """It does not know where the display will bring the gripper: once the display has answered,
+    a gripper creeping on slower than the operator's still is taken for one at rest, and the
+    operator looks at a stale frame."""
+    params = OperatorParams(arrival_window_s=0.25)
+    watch = DisplayWatch(params)
+    _show(watch, np.arange(0.0, 0.2, FRAMES), lambda t: START)
+    watch.await_response(AWAY, visible_at_s=0.05)
+    creep = 0.5 * params.arrival_speed_m_s
+    path = lambda t: START + [0.2 * np.clip(t - 0.2, 0, 0.2) + creep * max(t - 0.4, 0), 0, 0]  # noqa: E731
+    watch.hand_stopped(0.5, wait_s=0.3)
+    _show(watch, np.arange(0.2, 0.7, FRAMES), path)
+    assert not watch.arrived(0.7)  # still waiting
+    _show(watch, np.arange(0.7, 1.1, FRAMES), path)
+    assert watch.arrived(1.1)  # 47 mm shown of the 100 mm made
