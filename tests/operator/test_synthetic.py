@@ -349,13 +349,14 @@ def test_fitts_law_comes_out_of_the_planner_and_a_costly_look_slows_the_movement
     assert costly > cheap
 
 
-@pytest.mark.parametrize(("look_cost_s", "noise_k_s"), [(0.05, 0.012), (0.6, 0.012), (1.5, 0.03)])
+@pytest.mark.parametrize(("look_cost_s", "noise_k_s"), [(0.3, 0.012), (0.6, 0.012), (1.5, 0.03)])
 def test_submovement_policy_is_the_plain_dynamic_programme_to_the_bit(
     look_cost_s: float, noise_k_s: float
 ) -> None:
     """The planner keeps what does not change across its iterations; its table must equal the
-    programme written out plainly (the module docstring's formula), value for value."""
-    from arteleop.operator.submovements import _D, _Q, _X, _policy
+    programme written out plainly (the module docstring's formula, durations rising with the
+    amplitude over criterion), value for value."""
+    from arteleop.operator.submovements import _D, _Q, _X, _policy, _rising_argmin
 
     durations = _D[None, :]
     value = np.zeros_like(_X)
@@ -364,7 +365,8 @@ def test_submovement_policy_is_the_plain_dynamic_programme_to_the_bit(
         future = np.interp(np.log(np.maximum(left, _X[0])), np.log(_X), value)
         expected = np.where(left <= 1.0, 0.0, future).mean(axis=2)
         total = durations + look_cost_s + expected
-        new, best = total.min(axis=1), _D[total.argmin(axis=1)]
+        choice = _rising_argmin(total)
+        new, best = total[np.arange(len(_X)), choice], _D[choice]
         if np.max(np.abs(new - value)) < 1e-6:
             break
         value = new
@@ -372,6 +374,36 @@ def test_submovement_policy_is_the_plain_dynamic_programme_to_the_bit(
     np.testing.assert_array_equal(kept_value, value)
     np.testing.assert_array_equal(kept_best, best)
     assert len(np.unique(best)) > 5, "premise: the durations vary with the distance"
+
+
+def test_the_rising_choice_is_the_cheapest_of_all_rising_ones() -> None:
+    """Against every rising path through a small table of costs, enumerated."""
+    import itertools
+
+    from arteleop.operator.submovements import _rising_argmin
+
+    rng = np.random.default_rng(42)
+    for _ in range(20):
+        total = rng.uniform(0.0, 1.0, (4, 5))
+        paths = [p for p in itertools.product(range(5), repeat=4) if list(p) == sorted(p)]
+        cheapest = min(paths, key=lambda p: sum(total[i, j] for i, j in enumerate(p)))
+        choice = _rising_argmin(total)
+        assert list(np.diff(choice) >= 0) == [True] * 3
+        assert total[np.arange(4), choice].sum() == pytest.approx(
+            sum(total[i, j] for i, j in enumerate(cheapest))
+        )
+
+
+@pytest.mark.parametrize("look_cost_s", [0.3, 0.6, 1.0, 2.0])
+def test_a_longer_movement_or_a_smaller_tolerance_is_never_planned_faster(
+    look_cost_s: float,
+) -> None:
+    amplitudes = np.geomspace(0.005, 0.6, 200)
+    for criterion in (0.0025, 0.005, 0.01, 0.02):
+        durations = [submovement_duration_s(a, criterion, look_cost_s, 0.012) for a in amplitudes]
+        assert np.all(np.diff(durations) >= 0), (look_cost_s, criterion)
+    narrow = [submovement_duration_s(0.3, c, look_cost_s, 0.012) for c in (0.02, 0.01, 0.005)]
+    assert np.all(np.diff(narrow) >= 0)
 
 
 @pytest.mark.parametrize(
