@@ -96,15 +96,21 @@ def test_a_dask_cluster_writes_the_same_bytes(series: dict[str, bytes], tmp_path
     assert _files(tmp_path / "run") == series
 
 
-def test_a_run_killed_midway_resumes_to_the_same_bytes(
-    series: dict[str, bytes], tmp_path: Path
-) -> None:
+def _start_small_run(tmp_path: Path, workers: int) -> tuple[Path, list[str], subprocess.Popen]:
+    """``arteleop study run`` of the small study into ``tmp_path/run``, started in a child."""
     definition = tmp_path / "small.toml"
     definition.write_text(study_text(SMALL))
     folder = tmp_path / "run"
     command = [sys.executable, "-m", "arteleop.cli", "study", "run", str(definition),
-               "--out", str(folder), "--workers", "1", "--quiet"]  # fmt: skip
+               "--out", str(folder), "--workers", str(workers), "--quiet"]  # fmt: skip
     child = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    return folder, command, child
+
+
+def test_a_run_killed_midway_resumes_to_the_same_bytes(
+    series: dict[str, bytes], tmp_path: Path
+) -> None:
+    folder, _, child = _start_small_run(tmp_path, workers=1)
     trials = folder / "trials.csv"
     deadline = time.monotonic() + 120
     while time.monotonic() < deadline and child.poll() is None:
@@ -130,12 +136,7 @@ def test_a_run_killed_at_a_random_moment_resumes_to_the_same_bytes(
     workers, or writing the report): the workers end with it, and resume finishes the run with
     the same bytes and a whole report."""
     delay_s = float(np.random.default_rng([43, point]).uniform(2.0, 14.0))
-    definition = tmp_path / "small.toml"
-    definition.write_text(study_text(SMALL))
-    folder = tmp_path / "run"
-    command = [sys.executable, "-m", "arteleop.cli", "study", "run", str(definition),
-               "--out", str(folder), "--workers", "2", "--quiet"]  # fmt: skip
-    child = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    folder, command, child = _start_small_run(tmp_path, workers=2)
     try:
         child.wait(timeout=delay_s)
     except subprocess.TimeoutExpired:
