@@ -12,7 +12,12 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 from arteleop.ar_features.assets import ViewAssets
-from arteleop.ar_features.display_frame import Display, DisplayFrame, PredictedArm
+from arteleop.ar_features.display_frame import (
+    DISTANCE_LABEL_STEP_M,
+    Display,
+    DisplayFrame,
+    PredictedArm,
+)
 from arteleop.ar_features.layer import Layer
 from arteleop.ar_features.modalities import (
     LAYER_NAMES,
@@ -32,6 +37,7 @@ _LAZY = {
 }
 
 __all__ = [
+    "DISTANCE_LABEL_STEP_M",
     "LAYER_NAMES",
     "MODALITIES",
     "STUDY_MODALITIES",

@@ -16,6 +16,10 @@ from arteleop.ar_features.modalities import ArCues
 from arteleop.arrays import frozen_array
 from arteleop.errors import DisplayFrameError
 
+DISTANCE_LABEL_STEP_M = 0.001
+"""The distance bar's label shows :meth:`DisplayFrame.grasp_distance_m` to this step (m): what a
+reader of the label can know of it."""
+
 
 @dataclass(frozen=True)
 class PredictedArm:

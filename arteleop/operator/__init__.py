@@ -7,6 +7,13 @@ The robot side's reading of the wearable (its calibration, the hand's reconstruc
 """
 
 from arteleop.moved import moved_names
+from arteleop.operator.acuity import (
+    Acuities,
+    DisplayGeometry,
+    Judgement,
+    judgement_sd,
+    reading_sd_m,
+)
 from arteleop.operator.arm_model import (
     SEGMENTS,
     ArmAngles,
@@ -71,15 +78,18 @@ __all__ = [
     "COLUMNS",
     "SEGMENTS",
     "Action",
+    "Acuities",
     "ArmAngles",
     "ArmModel",
     "BowlMemory",
     "CalibrationPosture",
+    "DisplayGeometry",
     "Expertise",
     "Goal",
     "HandModel",
     "HandTarget",
     "ImuErrorConfig",
+    "Judgement",
     "LiveOperator",
     "LoadReport",
     "LoaderConfig",
@@ -111,12 +121,14 @@ __all__ = [
     "hand_from_calibration",
     "hand_pose",
     "joint_positions",
+    "judgement_sd",
     "live_source",
     "load_recording",
     "minimum_jerk",
     "minimum_jerk_profile",
     "perceive",
     "probability_within",
+    "reading_sd_m",
     "record_hand_motion",
     "segment_rotations",
     "segments_for_hand_pose",

@@ -1,25 +1,30 @@
-"""What the operator sees on the display, and how well: judgements by visible cue.
+"""What the operator sees on the display, and how well: judgements of what is drawn.
 
 The operator never reads the simulator's state. At each glance it judges the gripper, the bowl
-and the target from what the display frame shows; how precisely depends only on the cues the
-frame shows (:class:`PerceptionParams`; each value's source is in docs/operator-model.md):
+and the target from what the display frame shows. Every judgement is of a drawn thing's place
+relative to another, and its precision is one function of what is drawn
+(:func:`~arteleop.operator.acuity.judgement_sd`: the interval judged, the grain it is drawn at,
+the display's stereo; no layer has a precision of its own). What each layer changes is what
+there is to judge:
 
 - the bowl is seen only when the camera shows it (``DisplayFrame.bowl_m``); hidden by the arm,
   it is not seen, and the operator relies on memory (:class:`BowlMemory`);
-- the point cloud alone gives good lateral but poor depth judgement along the line of sight;
-- the distance bar gives the gripper-to-grasp-point distance, the beam its direction;
-- the target mesh turns placement into a coincidence judgement: of the bowl with the mesh, or,
-  while the arm hides the bowl in hand, of the gripper with where it would hold the mesh (and
-  then the bowl's place in the hand, judged at the grasp, adds its own uncertainty);
+- in the point cloud the gripper is judged against the bowl's grasp point, in stereo depth;
+- the beam draws that interval at the display's own grain; the distance bar's label gives its
+  length, read to the label's last digit, so depth along it no longer comes from stereo;
+- the target mesh turns placement into a coincidence judgement (an interval near zero): of the
+  bowl with the mesh, or, while the arm hides the bowl in hand, of the gripper with where it
+  would hold the mesh (and then the bowl's place in the hand adds its own uncertainty);
+  without it the marker's centre is found by bisecting its circle;
 - the ghost shows the arm when the camera cannot; without it, an unseen gripper is estimated
   from the operator's own arm (proprioception);
 - what the point cloud shows is displaced by the camera's registration error
   (``DisplayFrame.T_cloud_true``), the AR layers are not.
 
-Each judgement's error has two parts (:class:`PerceptualErrors`): a **bias** that lasts, the same
-for a person and a judgement in every look and every trial of a study, and **noise** fresh at
-each glance, which a longer look averages away. The operator knows how precise a judgement is
-(its covariance, :class:`Perceived`), not its own bias.
+A judgement of the display errs afresh at each glance (a longer look averages it) and, along the
+line of sight, by the person's lasting depth scale, which the person does not know of. A
+proprioceptive judgement has a lasting bias per person (:class:`PerceptualErrors`). The operator
+knows how precise a judgement is (its covariance, :class:`Perceived`), not its own lasting error.
 """
 
 from __future__ import annotations
@@ -30,33 +35,35 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from arteleop.ar_features import DisplayFrame
+from arteleop.ar_features import DISTANCE_LABEL_STEP_M, DisplayFrame
 from arteleop.checks import Bounds, check_fields
+from arteleop.operator.acuity import (
+    Acuities,
+    DisplayGeometry,
+    Judgement,
+    judgement_sd,
+    reading_sd_m,
+)
 
 
 @dataclass(frozen=True)
 class PerceptionParams:
-    """Standard deviations (m) of single judgements, and how their errors split.
+    """What sets a judgement's precision: the display, published acuities, and how a person's
+    errors split.
 
     Attributes:
-        depth_sd_m: Along the line of sight, a point of the point cloud.
-        lateral_sd_m: Across the line of sight, a point of the point cloud.
-        bar_sd_m: Reading the distance bar.
-        beam_sd_m: Across the beam, aligning with it.
-        centring_fraction: Centring by eye over the target circle, SD per axis as a share of
-            the circle's diameter.
-        target_mesh_sd_m: Making the real and the virtual bowl coincide, per axis.
-        proprioception_sd_m: Estimating an unseen gripper from one's own arm, per axis.
-        bias_share: Share of each judgement's variance that lasts (the person's bias); the rest
-            is fresh at every glance. The SDs above are those of one glance.
+        display: The display the operator looks through.
+        acuities: Published acuities; every judgement of what the display draws takes its
+            precision from :func:`~arteleop.operator.acuity.judgement_sd` of these two.
+        proprioception_sd_m: Estimating an unseen gripper from one's own arm, per axis (m):
+            not a judgement of the display.
+        bias_share: Share of a proprioceptive judgement's variance that lasts (the person's
+            bias); the rest is fresh at every glance. Judgements of the display are fresh at
+            every glance; their lasting error is the person's depth scale (a trait).
     """
 
-    depth_sd_m: float = 0.015
-    lateral_sd_m: float = 0.004
-    bar_sd_m: float = 0.003
-    beam_sd_m: float = 0.002
-    centring_fraction: float = 0.008 / 0.12
-    target_mesh_sd_m: float = 0.003
+    display: DisplayGeometry = field(default_factory=DisplayGeometry)
+    acuities: Acuities = field(default_factory=Acuities)
     proprioception_sd_m: float = 0.03
     bias_share: float = 0.5
 
@@ -89,17 +96,18 @@ class PerceptualErrors:
         self._sums.clear()
 
     def draw(self, stream: str, size: int) -> NDArray[np.float64]:
-        """One more glance at ``stream``: the bias plus the mean of this look's fresh noise."""
-        bias, fresh = self.draw_parts(stream, size)
-        return self._bias_sd * bias + self._fresh_sd * fresh
+        """One more glance at ``stream``: the bias plus the mean of this look's fresh noise,
+        weighted by the split of a glance's variance."""
+        fresh = self.draw_fresh(stream, size)
+        return self._bias_sd * self.bias(stream, size) + self._fresh_sd * fresh
 
-    def draw_parts(self, stream: str, size: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """One more glance at ``stream``: its bias and the mean of this look's fresh noise,
-        each in standard units, unweighted."""
+    def draw_fresh(self, stream: str, size: int) -> NDArray[np.float64]:
+        """One more glance at ``stream`` without a lasting part: the mean of this look's
+        fresh noise (standard units per glance)."""
         n, total = self._sums.get(stream, (0, np.zeros(size)))
         n, total = n + 1, total + self._rng.normal(0.0, 1.0, size)
         self._sums[stream] = (n, total)
-        return self.bias(stream, size), total / n
+        return total / n
 
     def bias(self, stream: str, size: int) -> NDArray[np.float64]:
         """The person's lasting bias of ``stream`` (standard units)."""
@@ -108,11 +116,6 @@ class PerceptualErrors:
             stream_rng = np.random.default_rng([self._seed, zlib.crc32(stream.encode())])
             bias = self._bias[stream] = stream_rng.normal(0.0, 1.0, size)
         return bias
-
-    @property
-    def shares(self) -> tuple[float, float]:
-        """(bias SD, fresh SD) in standard units: the split of a glance's error."""
-        return self._bias_sd, self._fresh_sd
 
     def glances(self, stream: str) -> int:
         """Glances at ``stream`` in this look."""
@@ -166,110 +169,123 @@ def perceive(
     params: PerceptionParams,
     errors: PerceptualErrors,
     depth_factor: float = 1.0,
+    depth_scale: float = 1.0,
 ) -> Perceived:
-    """One glance at the display frame ``view``: judgements whose errors depend on the visible
-    cues, averaged with this look's earlier glances. ``depth_factor`` scales the point cloud's
-    depth SD (the person's depth judgement)."""
+    """One glance at the display frame ``view``, averaged with this look's earlier glances.
+
+    Every judgement is of a drawn thing's place relative to another, with the precision
+    :func:`judgement_sd` gives for what is drawn: the interval between them, their grain and
+    the display's stereo. ``depth_factor`` scales the person's depth SD; ``depth_scale`` is how
+    the person sees a depth interval in the rendered scene (1: true), a lasting error the person
+    does not know of, so it is not in the believed covariances."""
     cues = view.cues
-    depth_sd = params.depth_sd_m * depth_factor
-    lateral_sd = params.lateral_sd_m
+    p = params
     gripper_seen = view.gripper_in_camera or cues.ghost or cues.predictive_ghost
     shown_gripper = shown_gripper_m(view)
+    cloud_grain = view.cloud_spacing_rad or 0.0  # batch frames carry no cloud: the display's
+
+    def precision(point: NDArray[np.float64], interval_m: float, grain_rad: float) -> Judgement:
+        eye = float(np.linalg.norm(point - view.viewpoint_m))
+        sd = judgement_sd(interval_m, eye, grain_rad, p.display, p.acuities)
+        return Judgement(sd.across_sd_m, sd.depth_sd_m * depth_factor)
 
     def seen(
         stream: str,
         point: NDArray[np.float64],
-        along_sd: float,
-        across_sd: float,
+        reference: NDArray[np.float64],
+        grain_rad: float,
+        along_sd: float | None = None,
         axis: NDArray[np.float64] | None = None,
+        stretched: bool = True,
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """``point`` judged with ``along_sd`` along ``axis`` and ``across_sd`` across it: the
-        judgement and its believed covariance.
+        """``point`` judged relative to ``reference`` (both drawn at ``grain_rad``) in one more
+        glance: the judgement and its believed covariance (fresh noise, which looking averages).
 
-        Without an axis it is a point of the cloud, judged along the line of sight. Its
-        lasting error is then the view's, shared by every point of the cloud (a viewer
-        compresses a rendered scene's depth as a whole, and misplaces what a view shows
-        together), so it cancels between two points compared with each other: the covariance
-        returned is the one of such a comparison, fresh noise only (:func:`absolute` adds the
-        view's part back)."""
-        d = point - view.viewpoint_m if axis is None else axis
+        Along the line of sight depth is seen in stereo and the person's depth scale stretches
+        the interval (once per pair: not ``stretched`` for the other of a pair judged against
+        each other); with ``axis`` (a drawn line from ``point`` to ``reference``) the interval
+        along it is read off a label with SD ``along_sd`` instead."""
+        d = point - view.viewpoint_m
         d = d / np.linalg.norm(d)
-        bias, fresh = errors.draw_parts(stream, 4)
-        bias_sd, fresh_sd = errors.shares
-        scale = params.belief_scale(errors.glances(stream))
+        interval = point - reference
+        sd = precision(point, float(np.linalg.norm(interval)), grain_rad)
+        glances = errors.glances(stream) + 1
+        z = errors.draw_fresh(stream, 3)
         if axis is None:
-            bias = errors.bias("scene", 4)
-            scale = (1.0 - params.bias_share) / errors.glances(stream)
-        z = bias_sd * bias + fresh_sd * fresh
-        across = z[1:] * across_sd
-        across -= d * (across @ d)
-        along = np.outer(d, d)
-        cov = scale * (along_sd**2 * along + across_sd**2 * (np.eye(3) - along))
-        return point + d * (z[0] * along_sd) + across, cov
-
-    def absolute(point: NDArray[np.float64], cov: NDArray[np.float64]) -> NDArray[np.float64]:
-        """A cloud point's covariance judged on its own: the view's lasting error added."""
-        d = (point - view.viewpoint_m) / np.linalg.norm(point - view.viewpoint_m)
-        along = np.outer(d, d)
-        view_part = depth_sd**2 * along + lateral_sd**2 * (np.eye(3) - along)
-        return cov + params.bias_share * view_part
+            a, a_sd = d, sd.depth_sd_m
+            lasting = (depth_scale - 1.0) * (interval @ d) * d * stretched
+        else:
+            a, a_sd = axis / np.linalg.norm(axis), float(along_sd)
+            lasting = np.zeros(3)
+        across = z[1:] @ _orthonormal(a) * sd.across_sd_m
+        along = np.outer(a, a)
+        cov = (a_sd**2 * along + sd.across_sd_m**2 * (np.eye(3) - along)) / glances
+        return point + a * (z[0] * a_sd) + across + lasting, cov
 
     def planar(stream: str, sd: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """An error in the table's plane with ``sd`` per axis, and its covariance."""
-        z = errors.draw(stream, 2) * sd
-        cov = np.diag([sd**2, sd**2, 0.0]) * params.belief_scale(errors.glances(stream))
-        return np.append(z, 0.0), cov
+        """An error in the table's plane with ``sd`` per axis, and its believed covariance."""
+        glances = errors.glances(stream) + 1
+        z = errors.draw_fresh(stream, 2) * sd
+        return np.append(z, 0.0), np.diag([sd**2, sd**2, 0.0]) / glances
 
     tracked = view.bowl_m
     grasp = view.grasp_point_m()  # what the beam and the distance bar draw
+    reference = grasp if grasp is not None else view.target_m
     bowl = bowl_cov = None
     if tracked is not None:
-        bowl, bowl_cov = seen("bowl", tracked, depth_sd, lateral_sd)
+        bowl, bowl_cov = seen("bowl", tracked, view.target_m, cloud_grain)
     if gripper_seen and grasp is not None and tracked is not None and bowl is not None:
-        # Judged relative to the bowl. The bar gives the gripper's distance to the grasp point
-        # and the beam its direction: both show nothing while the bowl is not tracked.
-        if cues.distance_bar or cues.beam:
-            along_sd = params.bar_sd_m if cues.distance_bar else depth_sd
-            across_sd = params.beam_sd_m if cues.beam else lateral_sd
-            beam = view.gripper_m - grasp
-            axis = beam if np.linalg.norm(beam) > 1e-6 else None
-            judged, grasp_cov = seen("gripper", view.gripper_m, along_sd, across_sd, axis)
+        # Judged relative to the bowl. The beam draws the gripper-to-grasp interval with the
+        # display's grain; the bar's label gives its length: both show nothing while the bowl
+        # is not tracked.
+        grain = p.display.pixel_rad if cues.beam else cloud_grain
+        beam = view.gripper_m - grasp
+        if cues.distance_bar and np.linalg.norm(beam) > 1e-6:
+            reading = reading_sd_m(DISTANCE_LABEL_STEP_M)
+            judged, grasp_cov = seen("gripper", view.gripper_m, grasp, grain, reading, beam)
+        elif cues.beam:
+            judged, grasp_cov = seen("gripper", view.gripper_m, grasp, grain)
         else:
-            judged, grasp_cov = seen("gripper", shown_gripper, depth_sd, lateral_sd)
+            judged, grasp_cov = seen("gripper", shown_gripper, grasp, grain)
         gripper = bowl + judged - tracked
         gripper_cov = grasp_cov
     elif gripper_seen:  # against a remembered bowl: seen apart, in other glances
-        gripper, gripper_cov = seen("gripper", shown_gripper, depth_sd, lateral_sd)
-        grasp_cov = 2 * absolute(shown_gripper, gripper_cov)
+        # The marker is judged against it below: their interval is stretched there.
+        gripper, gripper_cov = seen(
+            "gripper", shown_gripper, reference, cloud_grain, stretched=False
+        )
+        grasp_cov = 2 * gripper_cov
     else:
-        z = errors.draw("proprioception", 3) * params.proprioception_sd_m
+        z = errors.draw("proprioception", 3) * p.proprioception_sd_m
         gripper = view.gripper_m + z
-        scale = params.belief_scale(errors.glances("proprioception"))
-        grasp_cov = np.eye(3) * params.proprioception_sd_m**2 * scale
+        scale = p.belief_scale(errors.glances("proprioception"))
+        grasp_cov = np.eye(3) * p.proprioception_sd_m**2 * scale
         gripper_cov = grasp_cov
-        if bowl_cov is not None and tracked is not None:
-            grasp_cov = grasp_cov + absolute(tracked, bowl_cov)
+        if bowl_cov is not None:
+            grasp_cov = grasp_cov + bowl_cov
     placed_by_gripper = False
-    if cues.target_mesh and bowl is not None:
-        # Coincidence of the real and the virtual bowl: judged relative to the bowl.
-        offset, placement_cov = planar("coincidence", params.target_mesh_sd_m)
+    if cues.target_mesh and bowl is not None and tracked is not None:
+        # Coincidence of the real and the virtual bowl: their offset, at the mesh's grain.
+        offset_m = float(np.linalg.norm((tracked - view.target_m)[:2]))
+        sd = precision(view.target_m, offset_m, max(cloud_grain, p.display.pixel_rad))
+        offset, placement_cov = planar("coincidence", sd.across_sd_m)
         target = bowl + view.target_m - tracked + offset
     elif cues.target_mesh and gripper_seen:
         # The bowl in hand is hidden (the arm is over it): the gripper is put where it would
-        # hold the virtual bowl, judged against the mesh beside it.
-        offset, placement_cov = planar("coincidence", params.target_mesh_sd_m)
+        # hold the virtual bowl, judged against the mesh beside it, a grasp radius away.
+        sd = precision(view.target_m, view.grasp_radius_m, p.display.pixel_rad)
+        offset, placement_cov = planar("coincidence", sd.across_sd_m)
         target = gripper + view.target_m - shown_gripper + offset
         placed_by_gripper = True
     else:
-        # The marker is a point of the cloud like the bowl (or the gripper over it), centred on
-        # by eye: compared within the cloud, the scene's depth error cancels. A mesh with
-        # nothing to coincide with is a point drawn over the cloud: judged on its own.
+        # The marker is drawn in the cloud (or, as a mesh with nothing to coincide with, over
+        # it) and centred on by eye: its centre bisects the circle, a radius from its rim.
         point = view.target_m if cues.target_mesh else view.in_cloud(view.target_m)
-        marker, marker_cov = seen("target", point, depth_sd, lateral_sd)
-        if cues.target_mesh:
-            marker_cov = absolute(point, marker_cov)
-        centring_sd = params.centring_fraction * 2 * view.target_radius_m
-        centring, centring_cov = planar("centring", centring_sd)
+        # Against the bowl, their interval was stretched in the bowl's judgement.
+        against = bowl if bowl is not None else shown_gripper
+        marker, marker_cov = seen("target", point, against, cloud_grain, stretched=bowl is None)
+        sd = precision(point, view.target_radius_m, cloud_grain)
+        centring, centring_cov = planar("centring", sd.across_sd_m)
         target = marker + centring
         placement_cov = marker_cov + centring_cov
         if bowl_cov is not None:
@@ -284,6 +300,14 @@ def perceive(
         gripper, bowl, target, gripper_seen, closure_known, grasp_cov, placement_cov,
         placed_by_gripper, lead,
     )  # fmt: skip
+
+
+def _orthonormal(axis: NDArray[np.float64]) -> NDArray[np.float64]:
+    """(2, 3) two unit vectors perpendicular to the unit ``axis`` and to each other."""
+    helper = np.array([1.0, 0.0, 0.0]) if abs(axis[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    u = np.cross(axis, helper)
+    u /= np.linalg.norm(u)
+    return np.stack([u, np.cross(axis, u)])
 
 
 class BowlMemory:

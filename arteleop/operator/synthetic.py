@@ -188,7 +188,8 @@ class SyntheticOperator:
 
     # -- seeing ----------------------------------------------------------------------------------
     def _glance(self, view: DisplayFrame) -> Perceived:
-        return perceive(view, self.p.perception, self._errors, self.traits.depth_factor)
+        t = self.traits
+        return perceive(view, self.p.perception, self._errors, t.depth_factor, t.depth_scale)
 
     # -- deciding --------------------------------------------------------------------------------
     def _start_look(self, t: float) -> None:

@@ -52,6 +52,8 @@ class OperatorTraits:
         movement_time_factor: Scales every submovement's duration (below 1: faster, and by the
             speed-accuracy trade-off less accurate).
         depth_factor: Scales the SD of depth judged from the point cloud.
+        depth_scale: How the person sees a depth interval in the rendered scene (1: true;
+            below 1 compressed). A lasting error the person does not know of.
         bias_seed: Seeds the person's lasting perceptual biases, one per judgement.
     """
 
@@ -62,6 +64,7 @@ class OperatorTraits:
     glance_s: float = 0.1
     movement_time_factor: float = 1.0
     depth_factor: float = 1.0
+    depth_scale: float = 1.0
     bias_seed: int = 0
 
     def __post_init__(self) -> None:
@@ -73,6 +76,7 @@ class OperatorTraits:
             "glance_s": Bounds(0.02, 1.0, "s"),
             "movement_time_factor": Bounds(0.25, 4.0, "a factor"),
             "depth_factor": Bounds(0.1, 3.0, "a factor"),
+            "depth_scale": Bounds(0.5, 2.0, "a factor on depth intervals"),
         })  # fmt: skip
 
 
@@ -92,6 +96,7 @@ class TraitDistribution:
         glance_s: Median glance (s).
         glance_sd: Its log SD.
         avr_depth_factor: ``depth_factor`` of an AR/VR expert.
+        depth_scale_sd: Log SD of ``depth_scale`` (median 1).
         games_speed_factor: Movement-time factor of a video-game expert (on their own one).
     """
 
@@ -105,6 +110,7 @@ class TraitDistribution:
     glance_s: float = 0.1
     glance_sd: float = 0.2
     avr_depth_factor: float = 0.8
+    depth_scale_sd: float = 0.15
     games_speed_factor: float = 0.88
 
     def __post_init__(self) -> None:
@@ -117,7 +123,7 @@ class TraitDistribution:
             "avr_depth_factor": Bounds(0.1, 3.0, "a factor"),
             "games_speed_factor": Bounds(0.25, 4.0, "a factor"),
             **dict.fromkeys(("miss_rate_sd", "grasp_criterion_sd", "placement_criterion_sd",
-                             "urgency_sd", "glance_sd"), log_sd),
+                             "urgency_sd", "glance_sd", "depth_scale_sd"), log_sd),
         })  # fmt: skip
 
     def draw(
@@ -142,6 +148,7 @@ class TraitDistribution:
             movement_time_factor=float(np.clip(speed, 0.25, 4.0)),
             depth_factor=self.avr_depth_factor if expertise.avr_expert else 1.0,
             bias_seed=int(rng.integers(2**31)),
+            depth_scale=lognormal(1.0, self.depth_scale_sd, 0.5, 2.0),
         )
 
     def typical(self, expertise: Expertise | None = None) -> OperatorTraits:

@@ -314,6 +314,8 @@ _COMMENTS = {
     "operator.urgency_s": "median effort after which the criterion has doubled (s)",
     "operator.glance_s": "median time per glance while looking (s)",
     "operator.avr_depth_factor": "AR/VR experts' depth judgement from the cloud: a factor on SD",
+    "operator.depth_scale_sd": "how each person sees depth intervals in the rendered scene: "
+    "a scale of median 1",
     "operator.games_speed_factor": "gamers' movement time: a factor on their own",
     "hand_filter.enabled": "1-euro filter on the operator's reconstructed hand (Casiez 2012)",
     "hand_filter.min_cutoff_hz": "cutoff at rest (Hz): lower removes more jitter, adds more lag",

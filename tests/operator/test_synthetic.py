@@ -1,5 +1,5 @@
-"""The synthetic operator's perception, checked statistically, and its decision mechanism,
-checked on a small scene (tests/operator/small_scene.py)."""
+"""The synthetic operator's decision mechanism, checked on a small scene
+(tests/operator/small_scene.py); its perception is in test_perception.py."""
 
 import re
 from dataclasses import replace
@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import arteleop.operator
-from arteleop.ar_features import MODALITIES, ArCues, DisplayFrame
+from arteleop.ar_features import MODALITIES, ArCues
 from arteleop.errors import ConfigurationError
 from arteleop.operator import (
     Expertise,
@@ -20,226 +20,7 @@ from arteleop.operator import (
     probability_within,
     submovement_duration_s,
 )
-from arteleop.operator.perception import (
-    BowlMemory,
-    Perceived,
-    PerceptionParams,
-    PerceptualErrors,
-    perceive,
-)
-from tests.ar_features.frames import display_frame
 from tests.operator.small_scene import descend
-
-P = PerceptionParams()
-
-
-class _Independent(PerceptualErrors):
-    """Every glance a look of its own and no bias, to sample one glance's spread."""
-
-    def __init__(self, seed: int) -> None:
-        super().__init__(np.random.default_rng(seed), bias_seed=0, bias_share=0.0)
-
-    def draw(self, stream: str, size: int) -> np.ndarray:
-        self.new_look()
-        return super().draw(stream, size)
-
-
-def _independent(seed: int) -> PerceptualErrors:
-    return _Independent(seed)
-
-
-def _view(cues: ArCues, gripper_in_camera: bool = True) -> DisplayFrame:
-    return display_frame(cues=cues, gripper_in_camera=gripper_in_camera)
-
-
-def _errors(cues: ArCues, n: int = 4000, **kw) -> dict[str, np.ndarray]:
-    noise = _independent(0)
-    view = _view(cues, **kw)
-    seen = [perceive(view, P, noise) for _ in range(n)]
-    return {
-        "relative": np.array(
-            [(s.gripper_m - s.bowl_m) - (view.gripper_m - view.bowl_m) for s in seen]
-        ),
-        "target_vs_bowl": np.array(
-            [(s.target_m - s.bowl_m)[:2] - (view.target_m - view.bowl_m)[:2] for s in seen]
-        ),
-    }
-
-
-def test_distance_bar_and_beam_sharpen_the_gripper_to_grasp_judgement() -> None:
-    plain = np.linalg.norm(_errors(MODALITIES["none"])["relative"], axis=1)
-    cued = np.linalg.norm(_errors(MODALITIES["manipulation"])["relative"], axis=1)
-    # Depth dominates without cues (15 mm); bar and beam bring it to a few millimetres.
-    assert np.sqrt(np.mean(plain**2)) == pytest.approx(
-        np.sqrt(P.depth_sd_m**2 + 2 * P.lateral_sd_m**2), rel=0.05
-    )
-    assert np.sqrt(np.mean(cued**2)) == pytest.approx(
-        np.sqrt(P.bar_sd_m**2 + 2 * P.beam_sd_m**2), rel=0.05
-    )
-
-
-def test_target_mesh_turns_placement_into_a_coincidence_judgement() -> None:
-    without = _errors(MODALITIES["none"])["target_vs_bowl"].std(axis=0)
-    with_mesh = _errors(MODALITIES["task"])["target_vs_bowl"].std(axis=0)
-    np.testing.assert_allclose(with_mesh, P.target_mesh_sd_m, rtol=0.05)
-    assert np.all(without > 2.5 * with_mesh)
-
-
-def test_ghost_shows_a_gripper_the_camera_cannot() -> None:
-    noise = _independent(1)
-    hidden = [
-        perceive(_view(MODALITIES["none"], gripper_in_camera=False), P, noise) for _ in range(3000)
-    ]
-    ghost = [
-        perceive(_view(MODALITIES["embodiment"], gripper_in_camera=False), P, noise)
-        for _ in range(3000)
-    ]
-    assert not hidden[0].gripper_seen and ghost[0].gripper_seen
-    err_hidden = np.std([s.gripper_m - _view(ArCues()).gripper_m for s in hidden], axis=0)
-    np.testing.assert_allclose(err_hidden, P.proprioception_sd_m, rtol=0.1)  # from one's own arm
-    assert not hidden[0].closure_known and ghost[0].closure_known
-
-
-def test_a_bowl_the_display_does_not_show_is_not_perceived() -> None:
-    noise = _independent(2)
-    view = display_frame(cues=MODALITIES["full"], bowl_m=None)
-    seen = [perceive(view, P, noise) for _ in range(4000)]
-    assert all(s.bowl_m is None for s in seen)
-    # No bar or beam value without a tracked bowl: the gripper is judged from the cloud alone.
-    err = np.array([s.gripper_m - view.gripper_m for s in seen])
-    assert np.sqrt(np.mean(np.sum(err**2, axis=1))) == pytest.approx(
-        np.sqrt(P.depth_sd_m**2 + 2 * P.lateral_sd_m**2), rel=0.05
-    )
-
-
-def test_the_operator_remembers_a_hidden_bowl_and_carries_it_with_the_hand() -> None:
-    def look(gripper: list[float], bowl: list[float] | None) -> Perceived:
-        return Perceived(
-            np.array(gripper),
-            None if bowl is None else np.array(bowl),
-            np.zeros(3),
-            True,
-            True,
-            np.eye(3) * 1e-4,
-            np.eye(3) * 1e-4,
-            False,
-        )
-
-    memory = BowlMemory()
-    assert memory.bowl_m(look([0.0, 0.0, 0.1], None)) is None  # never seen
-    shown = look([0.5, -0.3, 0.0], [0.6, -0.4, -0.2])
-    np.testing.assert_array_equal(memory.bowl_m(shown), [0.6, -0.4, -0.2])
-    # Hidden by the arm: where it was last seen.
-    np.testing.assert_array_equal(memory.bowl_m(look([0.9, 0.9, 0.9], None)), [0.6, -0.4, -0.2])
-    memory.grasp(shown, shown.bowl_m)
-    carried = memory.bowl_m(look([0.7, 0.0, 0.1], None))
-    np.testing.assert_allclose(carried, [0.8, -0.1, -0.1])  # moved with the gripper
-    assert not memory.left_behind(look([0.7, 0.0, 0.1], [0.8, -0.1, -0.1]))
-    assert memory.left_behind(look([0.7, 0.0, 0.1], [0.6, -0.4, -0.2]))  # the grasp missed
-    memory.release()
-    np.testing.assert_array_equal(memory.bowl_m(look([0.7, 0.0, 0.1], None)), [0.6, -0.4, -0.2])
-
-
-def test_a_carried_bowl_is_judged_within_its_own_frame_under_the_predictive_ghost() -> None:
-    """The predictive ghost's gripper is 15 cm up (lifting) while the delayed frame still shows
-    the arm, and the bowl in its hand, at the table: the bowl was not left behind, and it is
-    believed where the lifting hand carries it."""
-    memory = BowlMemory()
-    at_grasp = Perceived(
-        np.array([0.5, -0.3, 0.0]), np.array([0.6, -0.4, -0.2]), np.zeros(3), True, True,
-        np.eye(3) * 1e-4, np.eye(3) * 1e-4, False,
-    )  # fmt: skip
-    memory.grasp(at_grasp, at_grasp.bowl_m)
-    lifting = replace(
-        at_grasp, gripper_m=np.array([0.5, -0.3, 0.15]), lead_m=np.array([0, 0, 0.15])
-    )
-    assert not memory.left_behind(lifting)
-    np.testing.assert_allclose(memory.bowl_m(lifting), [0.6, -0.4, -0.05])
-    # Had the grasp missed, the frame's own arm rises while the bowl stays: left behind.
-    missed = replace(lifting, lead_m=np.zeros(3))
-    assert memory.left_behind(missed)
-
-
-def test_the_bar_and_beam_are_read_along_the_drawn_beam() -> None:
-    view = _view(MODALITIES["manipulation"])
-    beam = view.gripper_m - view.grasp_point_m()  # the layers' own grasp point
-    beam /= np.linalg.norm(beam)
-    relative = _errors(MODALITIES["manipulation"])["relative"]
-    along = relative @ beam
-    across = relative - np.outer(along, beam)
-    assert along.std() == pytest.approx(P.bar_sd_m, rel=0.05)  # the bar: the distance
-    assert np.sqrt((across**2).sum(axis=1).mean() / 2) == pytest.approx(P.beam_sd_m, rel=0.05)
-
-
-def test_a_judgement_keeps_its_bias_and_a_longer_look_averages_the_rest() -> None:
-    """Each stream is bias + fresh noise, variance split by ``bias_share``; n glances keep the
-    bias and divide the fresh variance by n, and a new trial of the same person errs with the
-    same bias."""
-    streams = [f"s{i}" for i in range(6000)]
-    person = PerceptualErrors(np.random.default_rng(3), bias_seed=11, bias_share=0.5)
-    one = np.array([person.draw(s, 1)[0] for s in streams])  # one glance each
-    assert one.std() == pytest.approx(1.0, abs=0.03)
-    for _ in range(8):
-        nine = np.array([person.draw(s, 1)[0] for s in streams])  # up to nine glances
-    assert nine.var() == pytest.approx(0.5 + 0.5 / 9, abs=0.03)
-    assert P.belief_scale(9) == pytest.approx(0.5 + 0.5 / 9)
-    next_trial = PerceptualErrors(np.random.default_rng(99), bias_seed=11, bias_share=1.0)
-    bias = np.array([next_trial.draw(s, 1)[0] for s in streams])
-    other = PerceptualErrors(np.random.default_rng(99), bias_seed=12, bias_share=1.0)
-    other_bias = np.array([other.draw(s, 1)[0] for s in streams])
-    # The same person's bias in any trial: what the averaged looks converge on.
-    assert np.corrcoef(nine, bias)[0, 1] == pytest.approx(np.sqrt(0.5 / (0.5 + 0.5 / 9)), abs=0.03)
-    assert abs(np.corrcoef(bias, other_bias)[0, 1]) < 0.05
-
-
-def test_the_mesh_guides_the_gripper_while_the_arm_hides_the_bowl() -> None:
-    """With the bowl in hand hidden, the mesh is judged against the gripper beside it: the
-    target relative to the gripper errs by the mesh's SD; without the mesh, by two points'."""
-    noise = _independent(4)
-    hidden = {"bowl_m": None, "gripper_in_camera": True}
-    for cues, sd in (
-        (MODALITIES["task"], P.target_mesh_sd_m),
-        (MODALITIES["none"], None),
-    ):
-        view = display_frame(cues=cues, **hidden)
-        seen = [perceive(view, P, noise) for _ in range(4000)]
-        relative = np.array(
-            [(s.target_m - s.gripper_m)[:2] - (view.target_m - view.gripper_m)[:2] for s in seen]
-        )
-        if sd is not None:
-            np.testing.assert_allclose(relative.std(axis=0), sd, rtol=0.06)
-            np.testing.assert_allclose(np.diag(seen[0].placement_cov)[:2], sd**2)
-        else:
-            assert np.all(relative.std(axis=0) > 3 * P.target_mesh_sd_m)
-            assert np.all(np.diag(seen[0].placement_cov)[:2] > 9 * P.target_mesh_sd_m**2)
-        assert seen[0].placed_by_gripper  # the bowl's place in the hand adds its uncertainty
-
-
-@pytest.mark.parametrize(
-    ("modality", "misled_grasp", "misled_place"),
-    [("none", False, False), ("embodiment", True, False), ("manipulation", True, False),
-     ("task", False, True), ("full", True, True)],
-)  # fmt: skip
-def test_a_misregistered_cloud_misleads_only_the_ar_layers(
-    modality: str, misled_grasp: bool, misled_place: bool
-) -> None:
-    """The cloud, shifted by s, shows the real gripper, the bowl and the marker shifted alike:
-    judged against each other, the shift cancels. The ghost, the beam and the target mesh stay
-    where the robot and the task put them: against the shifted bowl they are off by s. Without
-    perceptual noise the judgements are exact, so the errors are s or 0 to the bit."""
-    s = np.array([0.03, -0.02, 0.0])
-    shift = np.eye(4)
-    shift[:3, 3] = s
-    true_bowl = np.array([0.68, -0.45, -0.2])
-    view = display_frame(cues=MODALITIES[modality], bowl_m=true_bowl + s, T_cloud_true=shift)
-    exact = replace(P, depth_sd_m=0.0, lateral_sd_m=0.0, bar_sd_m=0.0, beam_sd_m=0.0,
-                    centring_fraction=0.0, target_mesh_sd_m=0.0)  # fmt: skip
-    seen = perceive(view, exact, _independent(1))
-    grasp_error = (seen.gripper_m - seen.bowl_m) - (view.gripper_m - true_bowl)
-    place_error = (seen.target_m - seen.bowl_m) - (view.target_m - true_bowl)
-    np.testing.assert_allclose(grasp_error, -s if misled_grasp else 0.0, atol=1e-15)
-    np.testing.assert_allclose(place_error, -s if misled_place else 0.0, atol=1e-15)
-
 
 # -- the decision mechanism ----------------------------------------------------------------------
 SEEDS = range(16)
@@ -252,13 +33,13 @@ def _mean(cues: ArCues, **kw) -> dict[str, float]:
 
 
 def test_a_more_precise_cue_reaches_the_criterion_sooner_and_no_less_accurately() -> None:
-    """The bar and the beam sharpen the grasp judgement: no more looks, less time, and a smaller
-    error than from the cloud alone (measured: 2.0 against 2.2 looks, 0.68 against 1.24 s,
-    8.6 against 12.9 mm)."""
+    """The bar's label sharpens the grasp judgement in depth: no more looks, less time, and no
+    larger an error than from the cloud alone, where the motor noise now dominates the error
+    (measured: 2.06 against 2.13 looks, 0.69 against 0.84 s, 10.0 against 11.1 mm)."""
     plain, cued = _mean(MODALITIES["none"]), _mean(MODALITIES["manipulation"])
     assert cued["looks"] <= plain["looks"]
-    assert cued["duration_s"] < 0.8 * plain["duration_s"]
-    assert cued["error_m"] < 0.8 * plain["error_m"]
+    assert cued["duration_s"] < 0.9 * plain["duration_s"]
+    assert cued["error_m"] <= plain["error_m"]
 
 
 def test_a_stricter_criterion_costs_time_with_the_same_cue() -> None:
@@ -422,8 +203,6 @@ def test_a_longer_movement_or_a_smaller_tolerance_is_never_planned_faster(
          "OperatorParams.lag_learning_rate = -0.1: expected 0-1 (a share)."),
         (lambda: OperatorParams(motion_threshold_m=0.0),
          "OperatorParams.motion_threshold_m = 0.0: expected > 0."),
-        (lambda: PerceptionParams(bias_share=2.0),
-         "PerceptionParams.bias_share = 2.0: expected 0-1."),
     ],
 )  # fmt: skip
 def test_an_operator_constant_out_of_range_is_refused_by_name(build, message: str) -> None:

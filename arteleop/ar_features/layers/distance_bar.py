@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import viser
 
-from arteleop.ar_features.display_frame import DisplayFrame
+from arteleop.ar_features.display_frame import DISTANCE_LABEL_STEP_M, DisplayFrame
 from arteleop.ar_features.layer import Layer
 from arteleop.ar_features.layers.bar import Bar
 from arteleop.ar_features.layers.colors import DISTANCE_RGB
@@ -29,7 +29,8 @@ class DistanceBarLayer(Layer):
         if d is None:
             self._bar.show(frame, None, NOT_TRACKED_LABEL)
         else:
-            self._bar.show(frame, d / FULL_SCALE_M, f"{d * 1000:.0f} mm")
+            shown_mm = round(d / DISTANCE_LABEL_STEP_M) * DISTANCE_LABEL_STEP_M * 1000
+            self._bar.show(frame, d / FULL_SCALE_M, f"{shown_mm:.0f} mm")
 
     def _set_visible(self, visible: bool) -> None:
         for handle in self._bar.handles:
