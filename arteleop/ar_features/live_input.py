@@ -25,6 +25,7 @@ class LiveInput:
         on_change: Callable[[NDArray[np.float64] | None, float | None], None],
     ) -> None:
         self._start = np.asarray(start_m, dtype=np.float64)
+        self._on_change = on_change
         self._gizmo = server.scene.add_transform_controls(
             "/live/gripper_target",
             scale=GIZMO_SCALE_M,
@@ -38,9 +39,12 @@ class LiveInput:
         self._grip.on_update(lambda _: on_change(None, float(self._grip.value)))
 
     def reset(self) -> None:
-        """Back to the rest position, the grip open."""
+        """Back to the rest position, the grip open, and the listener told so: viser calls
+        ``on_update`` only for a change made in the browser, so a target last dragged elsewhere
+        would otherwise outlive the reset (the robot aimed for it, the trial waited for ever)."""
         self._gizmo.position = self._start
         self._grip.value = 0.0
+        self._on_change(self._start.copy(), 0.0)
 
     def show_reach(self, reachable: bool) -> None:
         text = "" if reachable else "out of reach: the arm stops at the nearest pose"
