@@ -16,13 +16,17 @@ GIZMO_SCALE_M = 0.15
 
 
 class LiveInput:
-    """The gizmo and the slider; ``on_change(gripper_m, grip)`` hears every change."""
+    """The gizmo and the slider; ``on_change(gripper_m, grip)`` hears every change. The slider's
+    ends read open and closed, and ticks mark where the robot side closes (``close_at``) and
+    opens (``open_at``) the gripper; its hint says so."""
 
     def __init__(
         self,
         server: viser.ViserServer,
         start_m: ArrayLike,
         on_change: Callable[[NDArray[np.float64] | None, float | None], None],
+        close_at: float = 0.6,
+        open_at: float = 0.4,
     ) -> None:
         self._start = np.asarray(start_m, dtype=np.float64)
         self._on_change = on_change
@@ -33,7 +37,12 @@ class LiveInput:
             position=self._start,
         )
         with server.gui.add_folder("Drive the robot"):
-            self._grip = server.gui.add_slider("Grip", 0.0, 1.0, 0.05, 0.0)
+            self._grip = server.gui.add_slider(
+                "Grip", 0.0, 1.0, 0.05, 0.0,
+                marks=((0.0, "open"), open_at, close_at, (1.0, "closed")),
+                hint=f"The gripper closes when the grip reaches {close_at:g} and opens again "
+                f"when it falls to {open_at:g}.",
+            )  # fmt: skip
             self._reach = server.gui.add_text("Reach", "", disabled=True)
         self._gizmo.on_update(lambda _: on_change(np.array(self._gizmo.position), None))
         self._grip.on_update(lambda _: on_change(None, float(self._grip.value)))

@@ -73,7 +73,11 @@ class TeleopApp(Closeable):
         self._live: LiveInput | None = None
         if config.operator == "live":
             self._target = HandTarget(self._rest_gripper_m)
-            self._live = LiveInput(self.view.server, self._rest_gripper_m, self._target.set)
+            grip = trial.controller.grip
+            self._live = LiveInput(
+                self.view.server, self._rest_gripper_m, self._target.set,
+                grip.close_at, grip.open_at,
+            )  # fmt: skip
         self._recording = (
             load_recording(Path(config.operator))
             if config.operator not in ("synthetic", "live")

@@ -162,7 +162,8 @@ def test_live_input_shows_beside_the_docked_panel(
     moment: tuple[DisplayFrame, ViewAssets, NDArray[np.float64]], tmp_path: Path
 ) -> None:
     """``arteleop teleop --operator live``: the gizmo at the gripper's rest position (at the
-    right edge of the head camera's image) and the Grip slider are both in view; the
+    right edge of the head camera's image) and the Grip slider, its thresholds marked, are in
+    view; the
     floating panel used to cover the gizmo."""
     frame, assets, rest_m = moment
     config = ViewConfig(port=0)
@@ -173,6 +174,8 @@ def test_live_input_shows_beside_the_docked_panel(
             shot = page.screenshot(tmp_path / "live.png")
             scene_px = page.scene_size_px()
             assert page.shows("Grip")
+            # The slider's ends say what it does (its ticks mark the thresholds).
+            assert page.shows("closed")
     u, v = _Egocentric(frame, config, scene_px)(rest_m)
     width = int(scene_px[0])
     assert 0 < v < scene_px[1] and width - 120 < u < width + 60, "premise: at the image's edge"
