@@ -36,6 +36,12 @@ class TrialInterrupted(ArteleopError):
     """The trial was stopped from the panel."""
 
 
+READY = "press Start trial when ready"
+"""The state shown before a person's first trial."""
+AT_REST = "at the rest pose: press Start trial"
+"""The state shown after a reset."""
+
+
 @dataclass(frozen=True)
 class TeleopAppConfig:
     """The live application's settings.
@@ -93,7 +99,10 @@ class TeleopApp(Closeable):
     def run(self, on_trial: Callable[[TrialResult], None] | None = None) -> None:
         """Trial after trial until :meth:`stop`; ``on_trial`` hears each trial's result."""
         seed = self._trial.seed
-        self._start.set()  # the first trial starts at once
+        if self._live is None:
+            self._start.set()  # a simulated or recorded operator's first trial starts at once
+        else:  # a person starts when ready, the page open
+            self.panel.finished(READY, "")
         while not self._stopped.is_set():
             if not self._start.wait(timeout=0.1):
                 continue
@@ -107,7 +116,7 @@ class TeleopApp(Closeable):
                 result = run_trial(self._source(config), config, self.site, self.view, self._tick)
             except TrialInterrupted:
                 self.site.reset()
-                self.panel.finished("at the rest pose: press Start trial", "")
+                self.panel.finished(AT_REST, "")
                 continue
             self.results.append(result)
             self.panel.finished(*trial_summary(result))

@@ -22,6 +22,7 @@ from arteleop.teleop import (
     TrialProgress,
     run_trial,
 )
+from arteleop.teleop.live_app import READY
 
 
 def _drive(site: RemoteSite, offset_m: np.ndarray, duration_s: float) -> list[TrialProgress]:
@@ -114,3 +115,24 @@ def test_reset_stops_the_trial_and_waits_for_start(app: TeleopApp) -> None:
         app.stop()
         runner.join(timeout=5.0)
     assert not runner.is_alive()
+
+
+def test_a_persons_first_trial_waits_for_start(site_config: SiteConfig) -> None:
+    """With a person at the controls no trial starts when the server does (before anyone has
+    the page open): the panel asks for Start, and Start runs the trial."""
+    small = replace(site_config, camera=HeadCameraConfig(width_px=160, height_px=120))
+    trial = TrialConfig(timeout_s=1.0, seed=4, site=small)
+    config = TeleopAppConfig("live", trial, ViewConfig(port=0))
+    with RemoteSite(small) as site, TeleopApp(config, site) as app:
+        runner = threading.Thread(target=app.run)
+        runner.start()
+        try:
+            assert _until(lambda: app.panel._state.value == READY)
+            threading.Event().wait(0.5)
+            assert app.site.time_s == 0.0  # nothing has run
+            app.start_trial()
+            assert _until(lambda: app.site.time_s > 0.0)
+        finally:
+            app.stop()
+            runner.join(timeout=5.0)
+        assert not runner.is_alive()
