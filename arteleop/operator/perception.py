@@ -209,8 +209,8 @@ def perceive(
         d = d / np.linalg.norm(d)
         interval = point - reference
         sd = precision(point, float(np.linalg.norm(interval)), grain_rad)
-        glances = errors.glances(stream) + 1
         z = errors.draw_fresh(stream, 3)
+        glances = errors.glances(stream)
         if axis is None:
             a, a_sd = d, sd.depth_sd_m
             lasting = (depth_scale - 1.0) * (interval @ d) * d * stretched
@@ -224,8 +224,8 @@ def perceive(
 
     def planar(stream: str, sd: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """An error in the table's plane with ``sd`` per axis, and its believed covariance."""
-        glances = errors.glances(stream) + 1
         z = errors.draw_fresh(stream, 2) * sd
+        glances = errors.glances(stream)
         return np.append(z, 0.0), np.diag([sd**2, sd**2, 0.0]) / glances
 
     tracked = view.bowl_m
