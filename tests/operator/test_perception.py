@@ -137,8 +137,8 @@ def test_a_coarser_cloud_coarsens_what_is_judged_in_it_and_not_the_beam() -> Non
         "cloud_spacing_rad": 4 * D.pixel_rad,
     }
     for cues, coarser in ((MODALITIES["none"], True), (ArCues(beam=True), False)):
-        _, fine = _grasp_errors(cues, **near)
-        _, coarse = _grasp_errors(cues, **near, **cloud)
+        _, fine = _grasp_errors(cues, n=1500, **near)
+        _, coarse = _grasp_errors(cues, n=1500, **near, **cloud)
         view = display_frame(**near)
         ratio = (
             _split(coarse, _sight(view, view.gripper_m))[1]
@@ -154,7 +154,7 @@ def test_target_mesh_turns_placement_into_a_coincidence_judgement() -> None:
     def target_vs_bowl(cues: ArCues, **kw) -> tuple[DisplayFrame, np.ndarray]:
         noise = _independent(3)
         view = display_frame(cues=cues, **kw)
-        seen = [perceive(view, P, noise) for _ in range(4000)]
+        seen = [perceive(view, P, noise) for _ in range(2500)]
         truth = (view.target_m - view.bowl_m)[:2]
         return view, np.array([(s.target_m - s.bowl_m)[:2] - truth for s in seen])
 
