@@ -209,10 +209,10 @@ def test_a_bowl_the_display_does_not_show_is_not_perceived() -> None:
 def test_ghost_shows_a_gripper_the_camera_cannot() -> None:
     noise = _independent(1)
     hidden = [perceive(display_frame(cues=MODALITIES["none"], gripper_in_camera=False), P, noise)
-              for _ in range(3000)]  # fmt: skip
+              for _ in range(1500)]  # fmt: skip
     ghost = [
         perceive(display_frame(cues=MODALITIES["embodiment"], gripper_in_camera=False), P, noise)
-        for _ in range(3000)
+        for _ in range(1500)
     ]
     assert not hidden[0].gripper_seen and ghost[0].gripper_seen
     err_hidden = np.std([s.gripper_m - display_frame().gripper_m for s in hidden], axis=0)
@@ -259,7 +259,7 @@ def test_a_longer_look_averages_a_judgement_of_the_display() -> None:
     says so."""
     view = display_frame(cues=MODALITIES["none"])
     looks = []
-    for seed in range(1500):
+    for seed in range(1000):
         person = PerceptualErrors(np.random.default_rng(seed), bias_seed=seed, bias_share=0.5)
         for _ in range(4):
             seen = perceive(view, P, person)
