@@ -179,14 +179,13 @@ def perceive(
     the person sees a depth interval in the rendered scene (1: true), a lasting error the person
     does not know of, so it is not in the believed covariances."""
     cues = view.cues
-    p = params
     gripper_seen = view.gripper_in_camera or cues.ghost or cues.predictive_ghost
     shown_gripper = shown_gripper_m(view)
     cloud_grain = view.cloud_spacing_rad or 0.0  # batch frames carry no cloud: the display's
 
     def precision(point: NDArray[np.float64], interval_m: float, grain_rad: float) -> Judgement:
         eye = float(np.linalg.norm(point - view.viewpoint_m))
-        sd = judgement_sd(interval_m, eye, grain_rad, p.display, p.acuities)
+        sd = judgement_sd(interval_m, eye, grain_rad, params.display, params.acuities)
         return Judgement(sd.across_sd_m, sd.depth_sd_m * depth_factor)
 
     def seen(
@@ -238,7 +237,7 @@ def perceive(
         # Judged relative to the bowl. The beam draws the gripper-to-grasp interval with the
         # display's grain; the bar's label gives its length: both show nothing while the bowl
         # is not tracked.
-        grain = p.display.pixel_rad if cues.beam else cloud_grain
+        grain = params.display.pixel_rad if cues.beam else cloud_grain
         beam = view.gripper_m - grasp
         if cues.distance_bar and np.linalg.norm(beam) > 1e-6:
             reading = reading_sd_m(DISTANCE_LABEL_STEP_M)
@@ -256,10 +255,10 @@ def perceive(
         )
         grasp_cov = 2 * gripper_cov
     else:
-        z = errors.draw("proprioception", 3) * p.proprioception_sd_m
+        z = errors.draw("proprioception", 3) * params.proprioception_sd_m
         gripper = view.gripper_m + z
-        scale = p.belief_scale(errors.glances("proprioception"))
-        grasp_cov = np.eye(3) * p.proprioception_sd_m**2 * scale
+        scale = params.belief_scale(errors.glances("proprioception"))
+        grasp_cov = np.eye(3) * params.proprioception_sd_m**2 * scale
         gripper_cov = grasp_cov
         if bowl_cov is not None:
             grasp_cov = grasp_cov + bowl_cov
@@ -267,13 +266,13 @@ def perceive(
     if cues.target_mesh and bowl is not None and tracked is not None:
         # Coincidence of the real and the virtual bowl: their offset, at the mesh's grain.
         offset_m = float(np.linalg.norm((tracked - view.target_m)[:2]))
-        sd = precision(view.target_m, offset_m, max(cloud_grain, p.display.pixel_rad))
+        sd = precision(view.target_m, offset_m, max(cloud_grain, params.display.pixel_rad))
         offset, placement_cov = planar("coincidence", sd.across_sd_m)
         target = bowl + view.target_m - tracked + offset
     elif cues.target_mesh and gripper_seen:
         # The bowl in hand is hidden (the arm is over it): the gripper is put where it would
         # hold the virtual bowl, judged against the mesh beside it, a grasp radius away.
-        sd = precision(view.target_m, view.grasp_radius_m, p.display.pixel_rad)
+        sd = precision(view.target_m, view.grasp_radius_m, params.display.pixel_rad)
         offset, placement_cov = planar("coincidence", sd.across_sd_m)
         target = gripper + view.target_m - shown_gripper + offset
         placed_by_gripper = True

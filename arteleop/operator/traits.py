@@ -54,7 +54,8 @@ class OperatorTraits:
         depth_factor: Scales the SD of depth judged from the point cloud.
         depth_scale: How the person sees a depth interval in the rendered scene (1: true;
             below 1 compressed). A lasting error the person does not know of.
-        bias_seed: Seeds the person's lasting perceptual biases, one per judgement.
+        bias_seed: Seeds the person's lasting proprioceptive biases, one per judgement (a
+            judgement of the display lasts only through ``depth_scale``).
     """
 
     confidence: float = 0.95
