@@ -13,6 +13,8 @@ from typing import TYPE_CHECKING, Any
 
 from arteleop.ar_features.assets import ViewAssets
 from arteleop.ar_features.display_frame import (
+    BAR_LABEL_GAP_M,
+    DISTANCE_BAR_OFFSET_M,
     DISTANCE_LABEL_STEP_M,
     Display,
     DisplayFrame,
@@ -37,6 +39,8 @@ _LAZY = {
 }
 
 __all__ = [
+    "BAR_LABEL_GAP_M",
+    "DISTANCE_BAR_OFFSET_M",
     "DISTANCE_LABEL_STEP_M",
     "LAYER_NAMES",
     "MODALITIES",

@@ -19,6 +19,11 @@ from arteleop.errors import DisplayFrameError
 DISTANCE_LABEL_STEP_M = 0.001
 """The distance bar's label shows :meth:`DisplayFrame.grasp_distance_m` to this step (m): what a
 reader of the label can know of it."""
+DISTANCE_BAR_OFFSET_M = (-0.16, -0.03)
+"""Where the distance bar's left end is drawn relative to the gripper, in the camera's image
+plane (m; x right, y down), so it stays beside the gripper on screen; its label is left of it."""
+BAR_LABEL_GAP_M = 0.01
+"""A bar's label ends this far left of the bar (m, in the image plane)."""
 
 
 @dataclass(frozen=True)
@@ -164,6 +169,17 @@ class DisplayFrame:
     def gripper_m(self) -> NDArray[np.float64]:
         """The gripper's tool-frame position (m)."""
         return self.T_base_gripper[:3, 3]
+
+    def beside_gripper_m(self, offset_m: tuple[float, float]) -> NDArray[np.float64]:
+        """The point ``offset_m`` from the gripper in the camera's image plane (m; x right, y
+        down): where a layer drawn beside the gripper on screen goes (base frame, m)."""
+        R = self.T_base_camera[:3, :3]
+        return self.gripper_m + R @ np.array([offset_m[0], offset_m[1], 0.0])
+
+    def distance_label_m(self) -> NDArray[np.float64]:
+        """Where the distance bar's label is drawn (base frame, m), its right end."""
+        x, y = DISTANCE_BAR_OFFSET_M
+        return self.beside_gripper_m((x - BAR_LABEL_GAP_M, y))
 
     def in_cloud(self, point_m: NDArray[np.float64]) -> NDArray[np.float64]:
         """Where the point cloud shows the real scene's ``point_m`` (base frame, m)."""

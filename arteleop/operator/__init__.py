@@ -11,6 +11,7 @@ from arteleop.operator.acuity import (
     Acuities,
     DisplayGeometry,
     Judgement,
+    fixations,
     judgement_sd,
     reading_sd_m,
 )
@@ -118,6 +119,7 @@ __all__ = [
     "WornSource",
     "check_operator",
     "expected_time_s",
+    "fixations",
     "hand_from_calibration",
     "hand_pose",
     "joint_positions",

@@ -15,12 +15,20 @@ across the line of sight has two parts:
 Along the line of sight the display's stereo disparity gives depth: a disparity error ``d``
 (rad) at viewing distance ``z`` is a depth error ``z**2 d / interocular``, and the interval's
 Weber part applies as across it. A number drawn as a label is read to its last digit.
+
+A judgement takes as many fixations as what it combines needs (:func:`fixations`): a label is
+read only in the fovea; where a thing is, is seen anywhere in the parafovea around a fixation;
+whatever no fixation covers needs the eyes to move.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
 
 from arteleop.checks import Bounds, check_fields
 
@@ -98,3 +106,28 @@ def judgement_sd(
 def reading_sd_m(step_m: float) -> float:
     """The precision of a value read off a label that shows it to ``step_m`` (m): rounding's."""
     return step_m / math.sqrt(12)
+
+
+def fixations(
+    seen_m: Sequence[NDArray[np.float64]],
+    read_m: Sequence[NDArray[np.float64]],
+    viewpoint_m: NDArray[np.float64],
+    parafovea_rad: float,
+    fovea_rad: float,
+) -> int:
+    """How many fixations it takes, from ``viewpoint_m``, to read the labels at ``read_m`` (each
+    must be within ``fovea_rad`` of a fixation) and to see where the things at ``seen_m`` are
+    (within ``parafovea_rad`` of one); base frame, m. Labels are fixated first, things are
+    fixated in order where no fixation covers them. At least one: a judgement looks somewhere."""
+    fixated: list[NDArray[np.float64]] = []
+
+    def fixate(points: Sequence[NDArray[np.float64]], span_rad: float) -> None:
+        for point in points:
+            ray = point - viewpoint_m
+            ray = ray / np.linalg.norm(ray)
+            if all(float(np.arccos(np.clip(ray @ f, -1.0, 1.0))) > span_rad for f in fixated):
+                fixated.append(ray)
+
+    fixate(read_m, fovea_rad)
+    fixate(seen_m, parafovea_rad)
+    return max(len(fixated), 1)

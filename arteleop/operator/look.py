@@ -24,27 +24,31 @@ class Look:
         self.start_s = 0.0
         self.next_glance_s = 0.0
         """When the next glance is due (s), in a look or during a movement."""
+        self._glances = 0
         self._first_variance_m2 = 0.0  # the believed variance at the look's first glance
 
     def start(self, time_s: float) -> None:
         self.start_s = self.next_glance_s = time_s
+        self._glances = 0
 
-    def glanced(self, time_s: float) -> None:
-        """A glance at ``time_s`` (s): the next is a glance's time later."""
-        self.next_glance_s = time_s + self.traits.glance_s
+    def glanced(self, time_s: float, duration_s: float) -> None:
+        """A glance begins at ``time_s`` (s) and takes ``duration_s`` (s): it is judged, and the
+        next begins, when it is over."""
+        self._glances += 1
+        self.next_glance_s = time_s + duration_s
 
     def verdict(self, time_s: float, sure: float, variance_m2: float) -> bool | None:
-        """After a glance at ``time_s`` (s) that leaves the person ``sure`` (a probability) that
-        the error is within the criterion, believing its judgement's variance ``variance_m2``:
-        True to accept, False to correct, None to look again."""
+        """After a glance, over at ``time_s`` (s), that leaves the person ``sure`` (a
+        probability) that the error is within the criterion, believing its judgement's variance
+        ``variance_m2``: True to accept, False to correct, None to look again."""
         confidence = self.traits.confidence
         looked = time_s - self.start_s
-        glances = round(looked / self.traits.glance_s) + 1
+        glances = self._glances
         if glances == 1:
             self._first_variance_m2 = variance_m2
         saturated = averaging_saturated(self._first_variance_m2, variance_m2, glances)
         accept = sure >= confidence
         if not (accept or sure <= 1.0 - confidence or saturated or looked >= self.max_look_s):
             return None
-        self.cost_s = 0.5 * self.cost_s + 0.5 * (looked + self.traits.glance_s)
+        self.cost_s = 0.5 * self.cost_s + 0.5 * looked
         return accept

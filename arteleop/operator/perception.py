@@ -29,6 +29,7 @@ knows how precise a judgement is (its covariance, :class:`Perceived`), not its o
 
 from __future__ import annotations
 
+import math
 import zlib
 from dataclasses import dataclass, field
 
@@ -41,6 +42,7 @@ from arteleop.operator.acuity import (
     Acuities,
     DisplayGeometry,
     Judgement,
+    fixations,
     judgement_sd,
     reading_sd_m,
 )
@@ -60,15 +62,29 @@ class PerceptionParams:
         bias_share: Share of a proprioceptive judgement's variance that lasts (the person's
             bias); the rest is fresh at every glance. Judgements of the display are fresh at
             every glance; their lasting error is the person's depth scale (a trait).
+        parafovea_rad: How far from a fixation where a thing is can be seen (rad).
+        fovea_rad: How far from a fixation a label can be read (rad). A judgement needs a
+            fixation for each label and each thing no other fixation covers
+            (:func:`~arteleop.operator.acuity.fixations`).
+        eye_movement_s: What each fixation after a glance's first adds to its time (s): an
+            eye movement and the fixation it ends in.
     """
 
     display: DisplayGeometry = field(default_factory=DisplayGeometry)
     acuities: Acuities = field(default_factory=Acuities)
     proprioception_sd_m: float = 0.03
     bias_share: float = 0.5
+    parafovea_rad: float = math.radians(5.0)
+    fovea_rad: float = math.radians(1.0)
+    eye_movement_s: float = 0.23
 
     def __post_init__(self) -> None:
-        check_fields(self, {"bias_share": Bounds(0, 1)})
+        check_fields(self, {
+            "bias_share": Bounds(0, 1),
+            "parafovea_rad": Bounds(0, 0.5, "rad", above=True),
+            "fovea_rad": Bounds(0, 0.5, "rad", above=True),
+            "eye_movement_s": Bounds(0, 1, "s"),
+        })  # fmt: skip
 
     def belief_scale(self, glances: int) -> float:
         """The variance of a judgement averaged over ``glances`` glances, as a share of one
@@ -141,6 +157,9 @@ class Perceived:
         lead_m: How far ahead of the frame's own arm the gripper judged is (m): the predictive
             ghost's lead, zero without it. The bowl is seen in the frame, a round trip old: a
             bowl carried by the hand is that much behind where the judged gripper carries it.
+        grasp_fixations: The fixations the gripper's judgement against the bowl took: one
+            per drawn thing it compared that is not within the fovea of another.
+        placement_fixations: ...and the placement's judgement.
     """
 
     gripper_m: NDArray[np.float64]
@@ -152,6 +171,8 @@ class Perceived:
     placement_cov: NDArray[np.float64]
     placed_by_gripper: bool
     lead_m: NDArray[np.float64] = field(default_factory=lambda: np.zeros(3))
+    grasp_fixations: int = 1
+    placement_fixations: int = 1
 
 
 def shown_gripper_m(view: DisplayFrame) -> NDArray[np.float64]:
@@ -182,6 +203,9 @@ def perceive(
     gripper_seen = view.gripper_in_camera or cues.ghost or cues.predictive_ghost
     shown_gripper = shown_gripper_m(view)
     cloud_grain = view.cloud_spacing_rad or 0.0  # batch frames carry no cloud: the display's
+
+    def fixated(*seen_m: NDArray[np.float64], read_m: tuple = ()) -> int:
+        return fixations(seen_m, read_m, view.viewpoint_m, params.parafovea_rad, params.fovea_rad)
 
     def precision(point: NDArray[np.float64], interval_m: float, grain_rad: float) -> Judgement:
         eye = float(np.linalg.norm(point - view.viewpoint_m))
@@ -242,10 +266,13 @@ def perceive(
         if cues.distance_bar and np.linalg.norm(beam) > 1e-6:
             reading = reading_sd_m(DISTANCE_LABEL_STEP_M)
             judged, grasp_cov = seen("gripper", view.gripper_m, grasp, grain, reading, beam)
+            grasp_fixations = fixated(view.gripper_m, grasp, read_m=(view.distance_label_m(),))
         elif cues.beam:
             judged, grasp_cov = seen("gripper", view.gripper_m, grasp, grain)
+            grasp_fixations = fixated(view.gripper_m, grasp)
         else:
             judged, grasp_cov = seen("gripper", shown_gripper, grasp, grain)
+            grasp_fixations = fixated(shown_gripper, grasp)
         gripper = bowl + judged - tracked
         gripper_cov = grasp_cov
     elif gripper_seen:  # against a remembered bowl: seen apart, in other glances
@@ -254,12 +281,14 @@ def perceive(
             "gripper", shown_gripper, reference, cloud_grain, stretched=False
         )
         grasp_cov = 2 * gripper_cov
+        grasp_fixations = 1
     else:
         z = errors.draw("proprioception", 3) * params.proprioception_sd_m
         gripper = view.gripper_m + z
         scale = params.belief_scale(errors.glances("proprioception"))
         grasp_cov = np.eye(3) * params.proprioception_sd_m**2 * scale
         gripper_cov = grasp_cov
+        grasp_fixations = 1  # the bowl, the arm felt
         if bowl_cov is not None:
             grasp_cov = grasp_cov + bowl_cov
     placed_by_gripper = False
@@ -269,6 +298,7 @@ def perceive(
         sd = precision(view.target_m, offset_m, max(cloud_grain, params.display.pixel_rad))
         offset, placement_cov = planar("coincidence", sd.across_sd_m)
         target = bowl + view.target_m - tracked + offset
+        placement_fixations = fixated(view.target_m, tracked)
     elif cues.target_mesh and gripper_seen:
         # The bowl in hand is hidden (the arm is over it): the gripper is put where it would
         # hold the virtual bowl, judged against the mesh beside it, a grasp radius away.
@@ -276,6 +306,7 @@ def perceive(
         offset, placement_cov = planar("coincidence", sd.across_sd_m)
         target = gripper + view.target_m - shown_gripper + offset
         placed_by_gripper = True
+        placement_fixations = fixated(view.target_m, shown_gripper)
     else:
         # The marker is drawn in the cloud (or, as a mesh with nothing to coincide with, over
         # it) and centred on by eye: its centre bisects the circle, a radius from its rim.
@@ -287,6 +318,7 @@ def perceive(
         centring, centring_cov = planar("centring", sd.across_sd_m)
         target = marker + centring
         placement_cov = marker_cov + centring_cov
+        placement_fixations = fixated(point, against)
         if bowl_cov is not None:
             placement_cov = placement_cov + bowl_cov
         else:
@@ -297,7 +329,7 @@ def perceive(
     lead = np.zeros(3) if predicted is None else predicted.gripper_m - view.gripper_m
     return Perceived(
         gripper, bowl, target, gripper_seen, closure_known, grasp_cov, placement_cov,
-        placed_by_gripper, lead,
+        placed_by_gripper, lead, grasp_fixations, placement_fixations,
     )  # fmt: skip
 
 

@@ -103,6 +103,7 @@ class SyntheticOperator:
         self._errors = PerceptualErrors(rng, self.traits.bias_seed, self.p.perception.bias_share)
         self._watch = DisplayWatch(self.p)
         self._look = Look(self.traits, self.p.max_look_s)
+        self._glancing: tuple[Perceived, Goal | None] | None = None  # a look's glance under way
         self._last_amend_s = -np.inf
         self._homing_from_s = 0.0  # in-flight corrections start half-way through the primary
         self._moved_in_phase = False
@@ -191,20 +192,40 @@ class SyntheticOperator:
         t = self.traits
         return perceive(view, self.p.perception, self._errors, t.depth_factor, t.depth_scale)
 
+    def _glance_s(self, goal: Goal | None) -> float:
+        """How long a glance at ``goal`` takes (s): a perceptual cycle, and an eye movement for
+        each further fixation the judgement needs (one, where nothing is shown yet)."""
+        extra = 0 if goal is None else goal.fixations - 1
+        return self.traits.glance_s + extra * self.p.perception.eye_movement_s
+
     # -- deciding --------------------------------------------------------------------------------
     def _start_look(self, t: float) -> None:
         self._mode = _Mode.LOOK
         self._errors.new_look()
         self._look.start(t)
+        self._glancing = None
         self.looks_total += 1
 
     def _take_glance(self, t: float, view: DisplayFrame) -> None:
-        """One glance of a look; decide once sure enough either way."""
+        """A look's glances, one after the other: each sees the display as it is when it
+        begins and is judged when its fixations are over; decide once sure enough either way,
+        else glance again."""
         phase = self._task_phase
         assert phase is not None  # looks are at the task's goals
+        if self._glancing is not None:
+            seen, goal = self._glancing
+            self._glancing = None
+            self._judge(t, phase, seen, goal)
+            if self._mode is not _Mode.LOOK:
+                return
         seen = self._glance(view)
-        self._look.glanced(t)
         goal = self.task.goal(phase, seen)
+        self._glancing = (seen, goal)
+        self._look.glanced(t, self._glance_s(goal))
+
+    def _judge(self, t: float, phase: TaskPhase, seen: Perceived, goal: Goal | None) -> None:
+        """What a glance that ends at ``t`` (s) showed: accept, correct, set back, or nothing
+        (look again)."""
         if goal is None:  # not shown yet: keep looking
             return
         if self.setbacks < self.p.max_setbacks:
@@ -250,10 +271,10 @@ class SyntheticOperator:
             or t < self._homing_from_s
         ):
             return
-        self._look.glanced(t)
         self._errors.new_look()
         seen = self._glance(view)
         goal = self.task.goal(phase, seen)
+        self._look.glanced(t, self._glance_s(goal))
         if goal is None or not goal.visible:
             return
         # Where the gripper will end: as seen now, plus what the hand did over the lag the

@@ -21,7 +21,7 @@ from arteleop.teleop.display_feed import DisplayFeed, display_frame, view_assets
 from arteleop.teleop.hand_filter import HandFilter, HandFilterConfig, filter_hand_path
 from arteleop.teleop.hand_speed import HandSpeed
 from arteleop.teleop.latency import LatencyAccount
-from arteleop.teleop.loop import display_frame_at, run_trial, trial_operator
+from arteleop.teleop.loop import display_frame_at, display_frames_at, run_trial, trial_operator
 from arteleop.teleop.network import NetworkConfig, NetworkLink
 from arteleop.teleop.reconstruction import (
     HandSample,
@@ -81,6 +81,7 @@ __all__ = [
     "calibrate_from_hold",
     "display_frame",
     "display_frame_at",
+    "display_frames_at",
     "filter_hand_path",
     "reconstruct",
     "run_trial",

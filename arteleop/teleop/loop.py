@@ -11,7 +11,7 @@ the gripper's :class:`ArmCommand`) -> ``TeleopController.physics_tick`` (the arm
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 from typing import Any
 
@@ -87,24 +87,49 @@ def display_frame_at(
     """The display frame, point cloud included, that a trial captures at ``time_s`` (s), as it
     reaches the display (a return trip later, with the predicted arm): the trial runs to then,
     rendering every camera frame; for pictures and tests of the view."""
-    end_s = time_s + config.network.delay_s + 1.0 / config.rates.camera_hz
+    return display_frames_at(source, config, (time_s,), site)[0]
+
+
+def display_frames_at(
+    source: OperatorSource,
+    config: TrialConfig,
+    times_s: Sequence[float],
+    site: RemoteSite | None = None,
+) -> tuple[DisplayFrame, ...]:
+    """The display frames one trial captures at each of ``times_s`` (s), in one run (see
+    :func:`display_frame_at`)."""
+    end_s = max(times_s) + config.network.delay_s + 1.0 / config.rates.camera_hz
     config = replace(config, timeout_s=end_s, render_camera=True)
-    frames: list[DisplayFrame] = []
-    run_trial(source, config, site, _FirstFrameFrom(time_s, frames))
-    if not frames:
-        raise ConfigurationError(
-            f"The trial ended before {time_s} s, so it shows nothing then: choose an earlier time."
-        )
-    return frames[0]
+    captures = [_FirstFrameFrom(t) for t in times_s]
+    run_trial(source, config, site, _Displays(captures))
+    for time_s, capture in zip(times_s, captures, strict=True):
+        if capture.frame is None:
+            raise ConfigurationError(
+                f"The trial ended before {time_s} s, so it shows nothing then: choose an "
+                "earlier time."
+            )
+    return tuple(c.frame for c in captures)  # type: ignore[misc]
 
 
 class _FirstFrameFrom:
-    def __init__(self, time_s: float, frames: list[DisplayFrame]) -> None:
-        self._time_s, self._frames = time_s, frames
+    def __init__(self, time_s: float) -> None:
+        self._time_s = time_s
+        self.frame: DisplayFrame | None = None
 
     def show(self, frame: DisplayFrame) -> None:
-        if not self._frames and frame.time_s >= self._time_s - 1e-9:
-            self._frames.append(frame)
+        if self.frame is None and frame.time_s >= self._time_s - 1e-9:
+            self.frame = frame
+
+
+class _Displays:
+    """Shows each frame on every one of ``displays``."""
+
+    def __init__(self, displays: Sequence[Display]) -> None:
+        self._displays = displays
+
+    def show(self, frame: DisplayFrame) -> None:
+        for display in self._displays:
+            display.show(frame)
 
 
 class _Loop:

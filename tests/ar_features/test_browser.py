@@ -1,7 +1,7 @@
 """The operator's view in a real browser: the AR layers' pixels under each modality.
 
-One seeded synthetic trial runs to the reach (the gripper above the bowl, open); its display
-frame at that moment is shown under ``none``, ``full`` and ``full`` without the ghost, and
+One seeded synthetic trial runs into its reach to the bowl (the gripper open); its display
+frames at two moments are shown under ``none``, ``full`` and ``full`` without the ghost, and
 headless Chromium's screenshots are compared pixel by pixel.
 """
 
@@ -26,17 +26,21 @@ from arteleop.ar_features import (
 from arteleop.ar_features.layers.beam import BEAM_WIDTH_PX
 from arteleop.ar_features.live_input import LiveInput
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig, Workspace
-from arteleop.teleop import TrialConfig, display_frame_at, trial_operator, view_assets
+from arteleop.teleop import TrialConfig, display_frames_at, trial_operator, view_assets
 from tests.instruments.browser import BrowserError, browser_page, chromium_path
 
 MOMENT_S = 5.0
-"""Seed 0 has reached over the bowl at the start then, 13 cm above the grasp point: bowl,
-gripper, beam and target all in view."""
+"""Seed 0 is on its reach to the bowl then: bowl, gripper, a long beam and target all in view
+(the tests check what they need of it)."""
+GHOST_MOMENT_S = 5.3
+"""...and a little later, its wrist in view."""
 
 
 @pytest.fixture(scope="module")
-def moment(site_config: SiteConfig) -> tuple[DisplayFrame, ViewAssets, NDArray[np.float64]]:
-    """The display frame at the moment, the view's assets and the gripper at rest (m)."""
+def moments(
+    site_config: SiteConfig,
+) -> tuple[tuple[DisplayFrame, DisplayFrame], ViewAssets, NDArray[np.float64]]:
+    """The display frames at the moments, the view's assets and the gripper at rest (m)."""
     try:
         chromium_path()
     except BrowserError as err:  # CI installs it: there, a missing browser fails
@@ -47,9 +51,18 @@ def moment(site_config: SiteConfig) -> tuple[DisplayFrame, ViewAssets, NDArray[n
     config = TrialConfig(seed=0, site=small)
     with RemoteSite(config.site) as site:
         rest_m = site.observe().gripper_m
-        frame = display_frame_at(trial_operator(site, config), config, MOMENT_S, site)
+        times = (MOMENT_S, GHOST_MOMENT_S)
+        frames = display_frames_at(trial_operator(site, config), config, times, site)
         assets = view_assets(site)
-    assert frame.time_s == pytest.approx(MOMENT_S) and frame.has_cloud
+    for frame, time_s in zip(frames, times, strict=True):
+        assert frame.time_s == pytest.approx(time_s) and frame.has_cloud
+    return frames, assets, rest_m
+
+
+@pytest.fixture(scope="module")
+def moment(moments: tuple) -> tuple[DisplayFrame, ViewAssets, NDArray[np.float64]]:
+    """The display frame at the moment, the view's assets and the gripper at rest (m)."""
+    (frame, _), assets, rest_m = moments
     return frame, assets, rest_m
 
 
@@ -63,6 +76,13 @@ def _classes(shot: NDArray[np.uint8], scene_px: tuple[float, float]) -> dict[str
         "green": int((g - np.maximum(r, b) > 35).sum()),
         "blue": int((b - np.maximum(r, g) > 35).sum()),
     }
+
+
+def _distance_to_segment(points: NDArray, a: NDArray, b: NDArray) -> NDArray:
+    """Each of ``points`` (n, 2)'s distance to the segment from ``a`` to ``b`` (px)."""
+    ab = (b - a).astype(float)
+    share = np.clip((points - a) @ ab / (ab @ ab), 0.0, 1.0)
+    return np.linalg.norm(points - a - share[:, None] * ab, axis=1)
 
 
 class _Egocentric:
@@ -80,19 +100,19 @@ class _Egocentric:
         return np.round(self.size / 2 + self.f * pc[:2] / pc[2]).astype(int)
 
 
-def test_layers_appear_under_full_and_not_under_none(
-    moment: tuple[DisplayFrame, ViewAssets], tmp_path: Path
-) -> None:
-    frame, assets, _ = moment
+def test_layers_appear_under_full_and_not_under_none(moments: tuple, tmp_path: Path) -> None:
+    (frame, later), assets, _ = moments
     config = ViewConfig(port=0)
     no_ghost = replace(MODALITIES["full"], ghost=False)
     shots = {}
     with OperatorView(config, assets) as view:
         view.show(replace(frame, cues=MODALITIES["none"]))
         with browser_page(view.url) as page:
-            for name, cues in (("none", MODALITIES["none"]), ("full", MODALITIES["full"]),
-                               ("no_ghost", no_ghost)):  # fmt: skip
-                view.show(replace(frame, cues=cues))
+            for name, shown, cues in (("none", frame, MODALITIES["none"]),
+                                      ("full", frame, MODALITIES["full"]),
+                                      ("later_full", later, MODALITIES["full"]),
+                                      ("later_no_ghost", later, no_ghost)):  # fmt: skip
+                view.show(replace(shown, cues=cues))
                 shots[name] = page.screenshot(tmp_path / f"{name}.png")
             scene_px = page.scene_size_px()
     pixel = _Egocentric(frame, config, scene_px)
@@ -105,23 +125,27 @@ def test_layers_appear_under_full_and_not_under_none(
     assert full["red"] >= 0.5 * length_px * BEAM_WIDTH_PX, (full, length_px)
     r, g, b = (shots["full"][..., k].astype(int) for k in range(3))
     v_red, u_red = np.nonzero((r > 200) & (g < 70) & (b < 70))
-    midpoint = (ends[0] + ends[1]) / 2
-    assert np.hypot(u_red.mean() - midpoint[0], v_red.mean() - midpoint[1]) < 10
+    # On the segment (its gripper end may hide behind the ghost): within half the beam's
+    # width of it, and 2 px for the projection's rounding.
+    off_px = _distance_to_segment(np.column_stack([u_red, v_red]), *ends)
+    assert np.percentile(off_px, 95) <= BEAM_WIDTH_PX / 2 + 2, np.percentile(off_px, [50, 95])
     assert full["green"] >= 2000, full  # the target mesh and the distance bar
     assert full["blue"] >= 300, full  # the grip bar (open: its translucent full scale)
     # The ghost changes the image where the arm is, and not on the table far from it. It shows
     # most where the cloud cannot: the wrist, 25 cm up the tool's axis, is nearer to the head
-    # camera than the sensor's 0.8 m and reads as no return.
+    # camera than the sensor's 0.8 m and reads as no return. A moment later, the wrist in view.
     # Changed: unlike every pixel within 1 px in the other shot (the browser's camera can
     # settle a pixel apart between two shots, seen once on CI: every edge then differed).
     kernel = np.ones((3, 3), np.uint8)
-    low = cv2.erode(shots["no_ghost"], kernel).astype(int) - 12
-    high = cv2.dilate(shots["no_ghost"], kernel).astype(int) + 12
-    full_px = shots["full"].astype(int)
+    low = cv2.erode(shots["later_no_ghost"], kernel).astype(int) - 12
+    high = cv2.dilate(shots["later_no_ghost"], kernel).astype(int) + 12
+    full_px = shots["later_full"].astype(int)
     changed = ((full_px < low) | (full_px > high)).any(axis=2)
-    wrist = frame.gripper_m - 0.25 * frame.T_base_gripper[:3, 2]  # tool z points out, down
-    u, v = pixel(wrist)
-    u_t, v_t = pixel(frame.target_m)
+    later_pixel = _Egocentric(later, config, scene_px)
+    wrist = later.gripper_m - 0.25 * later.T_base_gripper[:3, 2]  # tool z points out, down
+    u, v = later_pixel(wrist)
+    u_t, v_t = later_pixel(later.target_m)
+    assert 30 <= u <= scene_px[0] - 30 and 30 <= v <= scene_px[1] - 30, "premise: wrist in view"
     assert changed[v - 30 : v + 30, u - 30 : u + 30].mean() > 0.6
     assert changed[v_t - 30 : v_t + 30, u_t - 30 : u_t + 30].mean() < 0.02
     # The cloud covers the table: no light gaps between its points, where the table is far

@@ -221,9 +221,12 @@ def test_without_a_tracked_bowl_the_beam_hides_and_the_distance_bar_greys(
         bar = next(layer for layer in view.layers if isinstance(layer, DistanceBarLayer))
         scale, fill, label = bar._bar.handles
         full = MODALITIES["full"]
-        view.show(display_frame(cues=full))
+        frame = display_frame(cues=full)
+        view.show(frame)
         # Gripper 95 mm from the grasp point: (0, 2, 95) mm away, by frames.py's geometry.
         assert beam._handle.visible and label.text == "95 mm"
+        # The synthetic operator reads the label where the view draws it.
+        np.testing.assert_allclose(label.position, frame.distance_label_m(), atol=1e-6)
         assert tuple(scale.color) == DISTANCE_RGB
         view.show(display_frame(cues=full, bowl_m=None))
         assert not beam._handle.visible

@@ -14,6 +14,7 @@ from arteleop.operator.acuity import (
     ARCMIN_RAD,
     Acuities,
     DisplayGeometry,
+    fixations,
     judgement_sd,
     reading_sd_m,
 )
@@ -24,6 +25,7 @@ from arteleop.operator.perception import (
     PerceptualErrors,
     perceive,
 )
+from arteleop.transforms import make_transform
 from tests.ar_features.frames import display_frame
 
 P = PerceptionParams()
@@ -94,13 +96,50 @@ def test_a_judgement_is_as_fine_as_the_display_and_as_coarse_as_its_interval() -
     assert reading_sd_m(0.001) == pytest.approx(0.001 / math.sqrt(12))
 
 
+def test_a_fixation_covers_labels_in_the_fovea_and_places_in_the_parafovea() -> None:
+    """Analytic cases, seen from the origin at 1 m: places 4 deg apart are seen in one
+    fixation, 7 deg apart in two; a label is fixated itself, and covers places near it."""
+    eye = np.zeros(3)
+
+    def at(deg: float) -> np.ndarray:
+        return np.array([math.sin(math.radians(deg)), 0.0, math.cos(math.radians(deg))])
+
+    para, fovea = math.radians(5), math.radians(1)
+    assert fixations([at(0), at(4)], [], eye, para, fovea) == 1
+    assert fixations([at(0), at(4), at(7)], [], eye, para, fovea) == 2
+    assert fixations([at(0)], [at(3)], eye, para, fovea) == 1  # seen from the label
+    assert fixations([at(0)], [at(8)], eye, para, fovea) == 2
+    assert fixations([], [at(0), at(1.5)], eye, para, fovea) == 2  # two labels to read
+    assert fixations([], [], eye, para, fovea) == 1
+
+
+def test_a_judgement_takes_the_fixations_of_what_it_combines() -> None:
+    """The gripper 3 cm over the grasp point: its place and the grasp point's are seen in one
+    fixation, in the cloud or along the beam; the distance bar's label, beside the gripper on
+    screen, is read in one more. A marker judged against a bowl across the table takes two."""
+    grasp = display_frame().grasp_point_m()
+    near = make_transform(np.diag([1.0, -1.0, -1.0]), grasp + [0.0, 0.0, 0.03])
+    for cues, expected in ((MODALITIES["none"], 1), (ArCues(beam=True), 1),
+                           (MODALITIES["manipulation"], 2)):  # fmt: skip
+        seen = perceive(display_frame(cues=cues, T_base_gripper=near), P, _independent(0))
+        assert seen.grasp_fixations == expected, cues
+    view = display_frame()
+    angle = math.acos(_sight(view, view.target_m) @ _sight(view, view.bowl_m))
+    assert angle > P.parafovea_rad  # the frame's target and bowl are far apart
+    assert perceive(view, P, _independent(0)).placement_fixations == 2
+    beside = display_frame(target_m=view.bowl_m + [0.02, 0.0, 0.0])
+    assert perceive(beside, P, _independent(0)).placement_fixations == 1
+
+
 def test_no_layer_has_a_precision_of_its_own() -> None:
     """Perception's constants are the display's, published acuities and proprioception (not a
     judgement of the display): none names a layer or a cue."""
     names = {f.name for cls in (PerceptionParams, Acuities, DisplayGeometry)
              for f in dataclasses.fields(cls)}  # fmt: skip
     assert names == {"display", "acuities", "proprioception_sd_m", "bias_share", "pixel_rad",
-                     "interocular_m", "interval_fraction", "stereo_pixels"}  # fmt: skip
+                     "interocular_m", "interval_fraction", "stereo_pixels", "fovea_rad",
+                     "parafovea_rad",
+                     "eye_movement_s"}  # fmt: skip
     for layer in ("bar", "beam", "mesh", "ghost", "target", "centring"):
         assert not any(layer in name for name in names)
 

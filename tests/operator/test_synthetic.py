@@ -15,6 +15,7 @@ from arteleop.operator import (
     Expertise,
     OperatorParams,
     OperatorTraits,
+    PerceptionParams,
     TraitDistribution,
     expected_time_s,
     probability_within,
@@ -34,12 +35,32 @@ def _mean(cues: ArCues, **kw) -> dict[str, float]:
 
 def test_a_more_precise_cue_reaches_the_criterion_sooner_and_no_less_accurately() -> None:
     """The bar's label sharpens the grasp judgement in depth: no more looks, less time, and no
-    larger an error than from the cloud alone, where the motor noise now dominates the error
-    (measured: 2.06 against 2.13 looks, 0.69 against 0.84 s, 10.0 against 11.1 mm)."""
-    plain, cued = _mean(MODALITIES["none"]), _mean(MODALITIES["manipulation"])
+    larger an error than from the cloud alone, where the motor noise now dominates the error.
+    Reading the label costs an eye movement per glance (the next test); here it is free, to
+    see the precision alone (measured: 2.06 looks each, 0.91 against 1.05 s, 10 against
+    11 mm)."""
+    free = OperatorParams(familiar_lag_s=0.0, perception=PerceptionParams(eye_movement_s=0.0))
+    plain = _mean(MODALITIES["none"], params=free)
+    cued = _mean(MODALITIES["manipulation"], params=free)
     assert cued["looks"] <= plain["looks"]
     assert cued["duration_s"] < 0.9 * plain["duration_s"]
     assert cued["error_m"] <= plain["error_m"]
+
+
+def test_a_label_to_read_costs_each_glance_an_eye_movement_and_a_beam_in_view_does_not() -> None:
+    """The bar's label lies beside the gripper, outside the fovea: every glance that reads it
+    moves the eyes. The beam's ends stay within the parafovea of one fixation: no eye movement
+    to pay, the same descent to the bit. A strict criterion makes looks of several glances."""
+    strict = OperatorTraits(grasp_criterion_scale=0.5)
+
+    def descent(cues: ArCues, eye_movement_s: float) -> dict[str, float]:
+        perception = PerceptionParams(eye_movement_s=eye_movement_s)
+        params = OperatorParams(familiar_lag_s=0.0, perception=perception)
+        return _mean(cues, traits=strict, params=params)
+
+    label = MODALITIES["manipulation"]
+    assert descent(label, 0.5)["duration_s"] > descent(label, 0.0)["duration_s"] + 0.3
+    assert descent(ArCues(beam=True), 0.5) == descent(ArCues(beam=True), 0.0)
 
 
 def test_a_stricter_criterion_costs_time_with_the_same_cue() -> None:
@@ -51,12 +72,12 @@ def test_a_stricter_criterion_costs_time_with_the_same_cue() -> None:
 
 def test_a_lag_the_operator_has_not_practised_makes_it_overshoot_and_slows_it() -> None:
     """It acts on a view a lag old: a correction planned in flight on it overshoots. A lag it
-    knows costs only the waiting (measured: 12 cm against 3 mm of overshoot)."""
+    knows costs only the waiting (measured: 45 mm against 2 mm of overshoot)."""
     cues = MODALITIES["manipulation"]
     none = _mean(cues)
     known = _mean(cues, lag_s=0.3)  # the operator's familiar lag is the scene's
     unknown = _mean(cues, lag_s=0.3, params=OperatorParams(familiar_lag_s=0.0))
-    assert unknown["overshoot_m"] > 0.05 > 3 * max(none["overshoot_m"], known["overshoot_m"])
+    assert unknown["overshoot_m"] > 0.03 > 3 * max(none["overshoot_m"], known["overshoot_m"])
     assert unknown["duration_s"] > known["duration_s"] > none["duration_s"]
 
 

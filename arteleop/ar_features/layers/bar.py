@@ -9,7 +9,7 @@ import numpy as np
 import viser
 from numpy.typing import NDArray
 
-from arteleop.ar_features.display_frame import DisplayFrame
+from arteleop.ar_features.display_frame import BAR_LABEL_GAP_M, DisplayFrame
 from arteleop.ar_features.layers.colors import NO_ESTIMATE_RGB
 from arteleop.transforms import transform_to_pose
 
@@ -33,7 +33,7 @@ class Bar:
         rgb: tuple[int, int, int],
         offset_m: tuple[float, float],
     ) -> None:
-        self._offset = np.array([offset_m[0], offset_m[1], 0.0])
+        self._offset = offset_m
         self._rgb = rgb
         self._greyed = False
         dims = (BAR_LENGTH_M, BAR_WIDTH_M, BAR_WIDTH_M)
@@ -50,7 +50,7 @@ class Bar:
         """Fill ``fraction`` (0..1) of the bar and write ``text`` beside it; None: no value,
         the bar greyed and empty."""
         R = frame.T_base_camera[:3, :3]
-        start = frame.gripper_m + R @ self._offset
+        start = frame.beside_gripper_m(self._offset)
         wxyz = transform_to_pose(frame.T_base_camera)[1]
         if (fraction is None) != self._greyed:
             self._greyed = fraction is None
@@ -61,7 +61,8 @@ class Bar:
         self._place(self._frame, start + R[:, 0] * BAR_LENGTH_M / 2, wxyz)
         self._place(self._fill, start + R[:, 0] * length / 2, wxyz)
         self._fill.dimensions = (length, BAR_WIDTH_M * 1.2, BAR_WIDTH_M * 1.2)
-        self._label.position = start - R[:, 0] * 0.01
+        x, y = self._offset
+        self._label.position = frame.beside_gripper_m((x - BAR_LABEL_GAP_M, y))
         self._label.text = text
 
     @staticmethod

@@ -4,7 +4,11 @@ from __future__ import annotations
 
 import viser
 
-from arteleop.ar_features.display_frame import DISTANCE_LABEL_STEP_M, DisplayFrame
+from arteleop.ar_features.display_frame import (
+    DISTANCE_BAR_OFFSET_M,
+    DISTANCE_LABEL_STEP_M,
+    DisplayFrame,
+)
 from arteleop.ar_features.layer import Layer
 from arteleop.ar_features.layers.bar import Bar
 from arteleop.ar_features.layers.colors import DISTANCE_RGB
@@ -22,7 +26,7 @@ class DistanceBarLayer(Layer):
 
     def __init__(self, scene: viser.SceneApi) -> None:
         super().__init__()
-        self._bar = Bar(scene, "/ar/distance_bar", DISTANCE_RGB, offset_m=(-0.16, -0.03))
+        self._bar = Bar(scene, "/ar/distance_bar", DISTANCE_RGB, DISTANCE_BAR_OFFSET_M)
 
     def update(self, frame: DisplayFrame) -> None:
         d = frame.grasp_distance_m()

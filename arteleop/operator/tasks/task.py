@@ -59,12 +59,14 @@ class Goal(NamedTuple):
             is within the operator's gross criterion.
         visible: The display shows both ends of the error, so the operator can home in on the
             goal during a movement.
+        fixations: The fixations one glance at the error takes (:class:`Perceived`).
     """
 
     gripper_m: NDArray[np.float64]
     cov_m2: NDArray[np.float64]
     axes: str
     visible: bool
+    fixations: int = 1
 
 
 class Task(Protocol):
@@ -107,7 +109,8 @@ class Task(Protocol):
 def relative_goal(gripper_m: NDArray[np.float64], seen: Perceived) -> Goal:
     """A goal judged as the gripper's place relative to the bowl (grasping, or any goal set
     from the bowl): seen whole where the display shows the gripper and the bowl."""
-    return Goal(gripper_m, seen.grasp_cov, "xyz", seen.gripper_seen and seen.bowl_m is not None)
+    shown = seen.gripper_seen and seen.bowl_m is not None
+    return Goal(gripper_m, seen.grasp_cov, "xyz", shown, seen.grasp_fixations)
 
 
 def planar_goal(
@@ -120,7 +123,7 @@ def planar_goal(
     if seen.placed_by_gripper and held_cov_m2 is not None:
         cov = cov + held_cov_m2
     shown = seen.bowl_m is not None or (seen.placed_by_gripper and seen.gripper_seen)
-    return Goal(gripper_m, cov, "xy", shown and seen.gripper_seen)
+    return Goal(gripper_m, cov, "xy", shown and seen.gripper_seen, seen.placement_fixations)
 
 
 def phase_named(task: Task, name: str) -> TaskPhase:
