@@ -191,6 +191,7 @@ def perceive(
     errors: PerceptualErrors,
     depth_factor: float = 1.0,
     depth_scale: float = 1.0,
+    aims_gripper: bool = False,
 ) -> Perceived:
     """One glance at the display frame ``view``, averaged with this look's earlier glances.
 
@@ -198,7 +199,8 @@ def perceive(
     :func:`judgement_sd` gives for what is drawn: the interval between them, their grain and
     the display's stereo. ``depth_factor`` scales the person's depth SD; ``depth_scale`` is how
     the person sees a depth interval in the rendered scene (1: true), a lasting error the person
-    does not know of, so it is not in the believed covariances."""
+    does not know of, so it is not in the believed covariances. Where the task ``aims_gripper``
+    (pointing), the target is judged against the gripper shown over it, not the bowl."""
     cues = view.cues
     gripper_seen = view.gripper_in_camera or cues.ghost or cues.predictive_ghost
     shown_gripper = shown_gripper_m(view)
@@ -292,7 +294,19 @@ def perceive(
         if bowl_cov is not None:
             grasp_cov = grasp_cov + bowl_cov
     placed_by_gripper = False
-    if cues.target_mesh and bowl is not None and tracked is not None:
+    if aims_gripper and gripper_seen:
+        # The mark (the mesh, or the marker in the cloud) against the gripper over it, its
+        # centre found by bisecting its circle.
+        point = view.target_m if cues.target_mesh else view.in_cloud(view.target_m)
+        grain = params.display.pixel_rad if cues.target_mesh else cloud_grain
+        mark, mark_cov = seen("target", point, shown_gripper, grain)
+        sd = precision(point, view.target_radius_m, grain)
+        centring, centring_cov = planar("centring", sd.across_sd_m)
+        target = gripper + mark - shown_gripper + centring
+        placement_cov = mark_cov + centring_cov
+        placed_by_gripper = True
+        placement_fixations = fixated(point, shown_gripper)
+    elif cues.target_mesh and bowl is not None and tracked is not None:
         # Coincidence of the real and the virtual bowl: their offset, at the mesh's grain.
         offset_m = float(np.linalg.norm((tracked - view.target_m)[:2]))
         sd = precision(view.target_m, offset_m, max(cloud_grain, params.display.pixel_rad))

@@ -190,7 +190,10 @@ class SyntheticOperator:
     # -- seeing ----------------------------------------------------------------------------------
     def _glance(self, view: DisplayFrame) -> Perceived:
         t = self.traits
-        return perceive(view, self.p.perception, self._errors, t.depth_factor, t.depth_scale)
+        return perceive(
+            view, self.p.perception, self._errors, t.depth_factor, t.depth_scale,
+            self.task.aims_gripper,
+        )  # fmt: skip
 
     def _glance_s(self, goal: Goal | None) -> float:
         """How long a glance at ``goal`` takes (s): a perceptual cycle, and an eye movement for

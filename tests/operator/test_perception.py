@@ -259,6 +259,30 @@ def test_ghost_shows_a_gripper_the_camera_cannot() -> None:
     assert not hidden[0].closure_known and ghost[0].closure_known
 
 
+def test_a_task_that_aims_the_gripper_judges_the_target_against_it() -> None:
+    """Pointing: the circle is judged against the gripper 5 cm above it, one fixation, not
+    against the bowl across the table: about 5 times finer here; exact perception with a depth
+    scale of 0.8 shortens that interval's line-of-sight part by 20 %, once."""
+    target = display_frame().target_m
+    over = make_transform(np.diag([1.0, -1.0, -1.0]), target + [0.0, 0.0, 0.05])
+    view = display_frame(T_base_gripper=over)
+    truth = view.target_m - view.gripper_m
+
+    def spread(aims: bool) -> float:
+        noise = _independent(1)
+        seen = [perceive(view, P, noise, aims_gripper=aims) for _ in range(2000)]
+        errors = np.array([(s.target_m - s.gripper_m - truth)[:2] for s in seen])
+        return float(np.sqrt((errors**2).sum(axis=1).mean()))
+
+    assert spread(True) < spread(False) / 4
+    assert perceive(view, P, _independent(0), aims_gripper=True).placement_fixations == 1
+    scaled = perceive(view, _EXACT, _independent(0), depth_scale=0.8, aims_gripper=True)
+    d = _sight(view, view.target_m)
+    np.testing.assert_allclose(
+        scaled.target_m - scaled.gripper_m, truth - 0.2 * (truth @ d) * d, atol=1e-12
+    )
+
+
 def test_a_persons_depth_scale_stretches_depth_intervals_unknown_to_the_person() -> None:
     """Exact perception but a depth scale of 0.8: the gripper is judged 20 % of the interval's
     line-of-sight part nearer the grasp point along the line of sight, and the believed

@@ -78,6 +78,7 @@ class _Press:
 
     phases = (TaskPhase("over"), TaskPhase("press"), TaskPhase("squeeze", Action.CLOSE))
     ends_trial = True
+    aims_gripper = False
 
     def __init__(self, button_m: np.ndarray, rest_m: np.ndarray) -> None:
         self.button_m, self.rest_gripper_m = button_m, rest_m

@@ -50,6 +50,7 @@ class PickAndPlace:
 
     phases = (REACH, DESCEND, CLOSE, LIFT, TRANSPORT, LOWER, OPEN, RETRACT, HOME)
     ends_trial = False
+    aims_gripper = False
 
     def __init__(
         self,

@@ -3,10 +3,9 @@
 
 The person brings the gripper over a start point, then over a target circle drawn on the table
 (its diameter the target's width), and selects it by closing the gripper, which ends the trial.
-The pointing movement is judged as the placement without the target mesh is: the circle as a
-point of the cloud, centred on by eye, against one more point of the cloud (the bowl's or, where
-the bowl is not in view, the gripper's); its criterion is half the target's width (the person
-aims to end inside the circle).
+The pointing movement is judged as a person pointing judges it: the circle, centred on by eye,
+against the gripper above it (the task aims the gripper itself); its criterion is half the
+target's width (the person aims to end inside the circle).
 """
 
 from __future__ import annotations
@@ -44,6 +43,7 @@ class PointingTask:
 
     phases = (TO_START, POINT, SELECT)
     ends_trial = True
+    aims_gripper = True
 
     def __init__(
         self,

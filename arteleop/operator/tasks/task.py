@@ -78,11 +78,15 @@ class Task(Protocol):
             aligns its hand on it to engage.
         ends_trial: The operator's last phase ends the trial (a selection); otherwise the site
             judges when it has ended (the bowl found at rest at its place).
+        aims_gripper: The task brings the gripper itself onto the target drawn on the table
+            (pointing at it), not an object it holds: the target is judged against the
+            gripper, not against the object.
     """
 
     phases: tuple[TaskPhase, ...]
     rest_gripper_m: NDArray[np.float64]
     ends_trial: bool
+    aims_gripper: bool
 
     def criterion_m(self, phase: TaskPhase, traits: OperatorTraits) -> float | None:
         """The person's criterion for the phase's goal (m) before urgency loosens it; None for a
