@@ -158,7 +158,8 @@ class Perceived:
             ghost's lead, zero without it. The bowl is seen in the frame, a round trip old: a
             bowl carried by the hand is that much behind where the judged gripper carries it.
         grasp_fixations: The fixations the gripper's judgement against the bowl took: one
-            per drawn thing it compared that is not within the fovea of another.
+            per label read and per drawn thing no other fixation covers
+            (:func:`~arteleop.operator.acuity.fixations`).
         placement_fixations: ...and the placement's judgement.
     """
 
@@ -247,6 +248,14 @@ def perceive(
         cov = (a_sd**2 * along + sd.across_sd_m**2 * (np.eye(3) - along)) / glances
         return point + a * (z[0] * a_sd) + across + lasting, cov
 
+    def centre(
+        point: NDArray[np.float64], grain_rad: float
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """The target circle's centre found by eye at ``point``, bisecting the circle drawn at
+        ``grain_rad``, a radius from its rim: the error and its believed covariance."""
+        sd = precision(point, view.target_radius_m, grain_rad)
+        return planar("centring", sd.across_sd_m)
+
     def planar(stream: str, sd: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """An error in the table's plane with ``sd`` per axis, and its believed covariance."""
         z = errors.draw_fresh(stream, 2) * sd
@@ -294,18 +303,17 @@ def perceive(
         if bowl_cov is not None:
             grasp_cov = grasp_cov + bowl_cov
     placed_by_gripper = False
+    # The target as drawn: the mesh where the AR layers put it, or the marker in the cloud.
+    mark_point = view.target_m if cues.target_mesh else view.in_cloud(view.target_m)
     if aims_gripper and gripper_seen:
-        # The mark (the mesh, or the marker in the cloud) against the gripper over it, its
-        # centre found by bisecting its circle.
-        point = view.target_m if cues.target_mesh else view.in_cloud(view.target_m)
+        # The mark against the gripper over it.
         grain = params.display.pixel_rad if cues.target_mesh else cloud_grain
-        mark, mark_cov = seen("target", point, shown_gripper, grain)
-        sd = precision(point, view.target_radius_m, grain)
-        centring, centring_cov = planar("centring", sd.across_sd_m)
+        mark, mark_cov = seen("target", mark_point, shown_gripper, grain)
+        centring, centring_cov = centre(mark_point, grain)
         target = gripper + mark - shown_gripper + centring
         placement_cov = mark_cov + centring_cov
         placed_by_gripper = True
-        placement_fixations = fixated(point, shown_gripper)
+        placement_fixations = fixated(mark_point, shown_gripper)
     elif cues.target_mesh and bowl is not None and tracked is not None:
         # Coincidence of the real and the virtual bowl: their offset, at the mesh's grain.
         offset_m = float(np.linalg.norm((tracked - view.target_m)[:2]))
@@ -324,15 +332,15 @@ def perceive(
     else:
         # The marker is drawn in the cloud (or, as a mesh with nothing to coincide with, over
         # it) and centred on by eye: its centre bisects the circle, a radius from its rim.
-        point = view.target_m if cues.target_mesh else view.in_cloud(view.target_m)
         # Against the bowl, their interval was stretched in the bowl's judgement.
         against = bowl if bowl is not None else shown_gripper
-        marker, marker_cov = seen("target", point, against, cloud_grain, stretched=bowl is None)
-        sd = precision(point, view.target_radius_m, cloud_grain)
-        centring, centring_cov = planar("centring", sd.across_sd_m)
+        marker, marker_cov = seen(
+            "target", mark_point, against, cloud_grain, stretched=bowl is None
+        )
+        centring, centring_cov = centre(mark_point, cloud_grain)
         target = marker + centring
         placement_cov = marker_cov + centring_cov
-        placement_fixations = fixated(point, against)
+        placement_fixations = fixated(mark_point, against)
         if bowl_cov is not None:
             placement_cov = placement_cov + bowl_cov
         else:
