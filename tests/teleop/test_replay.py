@@ -10,13 +10,14 @@ from arteleop.scene import RemoteSite, SiteConfig
 from arteleop.teleop import Outcome, TrialConfig, run_trial, trial_operator
 
 
-@pytest.mark.parametrize(("modality", "seed"), [("none", 3), ("full", 0)])
+@pytest.mark.parametrize(("modality", "seed"), [("full", 0)])
 def test_a_recording_replays_its_trial(
     site_config: SiteConfig, tmp_path: Path, modality: str, seed: int
 ) -> None:
-    """none/3 once ended 'operator_stopped' on replay (the recording ends just before the
-    placement check); full/0 replayed 16.7 mm against 9.6 mm live (lost samples, absent from
-    the file, were filled by slerp on replay and sent to the robot)."""
+    """full/0 replayed 16.7 mm against 9.6 mm live (lost samples, absent from the file, were
+    filled by slerp on replay and sent to the robot). Every replay finishes the placement check
+    after the recording ends (none/3 once ended 'operator_stopped' there; that seed no longer
+    ends its recording at that edge since the operator changed, and it cost 20 s of the suite)."""
     config = TrialConfig(modality=modality, seed=seed, site=site_config)
     with RemoteSite(config.site) as site:
         source = trial_operator(site, config)
