@@ -440,6 +440,8 @@ def test_a_misregistered_cloud_misleads_only_the_ar_layers(
          "Acuities.interval_fraction = -0.01: expected 0.0-0.5 (a fraction of the interval)."),
         (lambda: PerceptionParams(bias_share=2.0),
          "PerceptionParams.bias_share = 2.0: expected 0-1."),
+        (lambda: PerceptionParams(eye_movement_s=-0.1),
+         "PerceptionParams.eye_movement_s = -0.1: expected 0-1 (s)."),
     ],
 )  # fmt: skip
 def test_a_perception_constant_out_of_range_is_refused_by_name(build, message: str) -> None:
