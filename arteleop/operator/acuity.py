@@ -122,10 +122,11 @@ def fixations(
     fixated: list[NDArray[np.float64]] = []
 
     def fixate(points: Sequence[NDArray[np.float64]], span_rad: float) -> None:
+        covered = math.cos(span_rad)  # rays closer than the span have a larger cosine
         for point in points:
             ray = point - viewpoint_m
             ray = ray / np.linalg.norm(ray)
-            if all(float(np.arccos(np.clip(ray @ f, -1.0, 1.0))) > span_rad for f in fixated):
+            if all(float(ray @ f) < covered for f in fixated):
                 fixated.append(ray)
 
     fixate(read_m, fovea_rad)

@@ -100,36 +100,30 @@ def display_frames_at(
     :func:`display_frame_at`)."""
     end_s = max(times_s) + config.network.delay_s + 1.0 / config.rates.camera_hz
     config = replace(config, timeout_s=end_s, render_camera=True)
-    captures = [_FirstFrameFrom(t) for t in times_s]
-    run_trial(source, config, site, _Displays(captures))
-    for time_s, capture in zip(times_s, captures, strict=True):
-        if capture.frame is None:
+    captured = _FramesAt(times_s)
+    run_trial(source, config, site, captured)
+    frames = []
+    for time_s, frame in zip(times_s, captured.frames, strict=True):
+        if frame is None:
             raise ConfigurationError(
                 f"The trial ended before {time_s} s, so it shows nothing then: choose an "
                 "earlier time."
             )
-    return tuple(c.frame for c in captures)  # type: ignore[misc]
+        frames.append(frame)
+    return tuple(frames)
 
 
-class _FirstFrameFrom:
-    def __init__(self, time_s: float) -> None:
-        self._time_s = time_s
-        self.frame: DisplayFrame | None = None
+class _FramesAt:
+    """Keeps the first frame shown at or after each of ``times_s`` (s)."""
 
-    def show(self, frame: DisplayFrame) -> None:
-        if self.frame is None and frame.time_s >= self._time_s - 1e-9:
-            self.frame = frame
-
-
-class _Displays:
-    """Shows each frame on every one of ``displays``."""
-
-    def __init__(self, displays: Sequence[Display]) -> None:
-        self._displays = displays
+    def __init__(self, times_s: Sequence[float]) -> None:
+        self._times_s = times_s
+        self.frames: list[DisplayFrame | None] = [None] * len(times_s)
 
     def show(self, frame: DisplayFrame) -> None:
-        for display in self._displays:
-            display.show(frame)
+        for k, time_s in enumerate(self._times_s):
+            if self.frames[k] is None and frame.time_s >= time_s - 1e-9:
+                self.frames[k] = frame
 
 
 class _Loop:
