@@ -14,7 +14,10 @@ from arteleop.operator.wearable import WearableSimulator
 
 
 def test_orientation_error_is_gauss_markov_with_the_stated_correlation() -> None:
-    errors = ImuErrorConfig(heading_drift_deg_per_sqrt_s=0.0, drop_probability=0.0)
+    # The form, at a correlation time short enough for 400 s to pin its SD down.
+    errors = ImuErrorConfig(
+        noise_correlation_s=0.2, heading_drift_deg_per_sqrt_s=0.0, drop_probability=0.0
+    )
     n = 40_000
     still = np.stack([segment_rotations(ArmAngles())] * n)
     sim = WearableSimulator(WearableConfig(errors=errors), np.random.default_rng(0))
@@ -34,7 +37,9 @@ def _still(n: int = 20_000) -> np.ndarray:
 
 
 def test_orientation_noise_is_1_deg_rms() -> None:
-    errors = ImuErrorConfig(heading_drift_deg_per_sqrt_s=0.0, drop_probability=0.0)
+    errors = ImuErrorConfig(
+        noise_correlation_s=0.2, heading_drift_deg_per_sqrt_s=0.0, drop_probability=0.0
+    )
     cfg = WearableConfig(errors=errors)
     noisy = simulate_wearable(_still(), np.zeros(20_000), cfg, np.random.default_rng(1))
     clean = simulate_wearable(
