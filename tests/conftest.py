@@ -3,7 +3,6 @@ so the tests also exercise mesh decimation and URDF rewriting from a clean state
 
 from __future__ import annotations
 
-import os
 from collections.abc import Iterator
 from dataclasses import replace
 from pathlib import Path
@@ -12,6 +11,7 @@ import pytest
 
 from arteleop.robot import BaxterDescription, BaxterDescriptionConfig, load_baxter_description
 from arteleop.scene import RemoteSite, SiteConfig
+from tests.helpers import unavailable
 
 
 @pytest.fixture(scope="session")
@@ -38,9 +38,7 @@ def gl_site_config(site_config: SiteConfig) -> SiteConfig:
     try:
         gl_context()
     except RendererUnavailableError as err:
-        if os.environ.get("CI"):
-            pytest.fail(str(err))
-        pytest.skip(str(err))
+        unavailable(err)
     return replace(site_config, camera=replace(site_config.camera, renderer="gl"))
 
 

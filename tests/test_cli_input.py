@@ -307,3 +307,32 @@ def test_trial_options_reach_the_operator_and_the_filter() -> None:
     assert (hand_filter.enabled, hand_filter.beta_per_m) == (False, 2.0)
     # The defaults are the model's median novice and the study's filter.
     assert _operator_options(TrialCommand()) == (OperatorTraits(), HandFilterConfig())
+
+
+def test_study_serve_refuses_what_it_cannot_serve_into(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    """A file for the run folder, a folder of other files, a host it cannot bind (before any
+    folder is begun), a simulated run's folder."""
+    (tmp_path / "file").write_text("x")
+    (tmp_path / "notes").mkdir()
+    (tmp_path / "notes" / "a.txt").write_text("mine")
+    assert _error(capsys, ["study", "serve", "--out", str(tmp_path / "file")]) == (
+        f"--out {tmp_path / 'file'}: a file, not a folder; give a new folder."
+    )
+    assert _error(capsys, ["study", "serve", "--out", str(tmp_path / "notes")]) == (
+        f"{tmp_path / 'notes'} exists and is not empty: give --out a new or empty folder."
+    )
+    assert (tmp_path / "notes" / "a.txt").read_text() == "mine"
+    out = tmp_path / "new"
+    message = _error(capsys, ["study", "serve", "--out", str(out), "--host", "192.0.2.1"])
+    assert message.startswith("--host 192.0.2.1: this machine cannot serve on 192.0.2.1")
+    assert not out.exists()
+    simulated = tmp_path / "simulated"
+    simulated.mkdir()
+    (simulated / "study.toml").write_text('name = "sim"\n')
+    (simulated / "manifest.json").write_text('{"format_version": 4}\n')
+    assert _error(capsys, ["study", "serve", "--out", str(simulated)]) == (
+        f"{simulated} holds a simulated run: 'arteleop study resume {simulated}' continues it; "
+        "give 'study serve' a new folder."
+    )

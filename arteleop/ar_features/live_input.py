@@ -16,13 +16,14 @@ GIZMO_SCALE_M = 0.15
 
 
 class LiveInput:
-    """The gizmo and the slider; ``on_change(gripper_m, grip)`` hears every change. The slider's
+    """The gizmo and the slider, for every tab of ``server`` or one ``ClientHandle``'s;
+    ``on_change(gripper_m, grip)`` hears every change. The slider's
     ends read open and closed, and ticks mark where the robot side closes (``close_at``) and
     opens (``open_at``) the gripper; its hint says so."""
 
     def __init__(
         self,
-        server: viser.ViserServer,
+        server: viser.ViserServer | viser.ClientHandle,
         start_m: ArrayLike,
         on_change: Callable[[NDArray[np.float64] | None, float | None], None],
         close_at: float = 0.6,

@@ -51,6 +51,8 @@ class ViewConfig:
         horizontal_fov_deg: The head camera's horizontal field of view: a browser whose scene
             is narrower than the camera's 4:3 widens its vertical field until the whole
             camera image fits beside the docked panel.
+        layer_panel: A panel to switch the AR layers live; off where the layers are a
+            study's condition, not the viewer's choice (``arteleop study serve``).
     """
 
     host: str = "127.0.0.1"
@@ -58,6 +60,7 @@ class ViewConfig:
     point_overlap: float = 1.25
     vertical_fov_deg: float = 44.3
     horizontal_fov_deg: float = 57.0
+    layer_panel: bool = True
 
     def fitting_fov_rad(self, aspect: float) -> float:
         """The vertical field of view (rad) that shows the whole camera image in a scene of
@@ -110,7 +113,8 @@ class OperatorView(Closeable):
                 DistanceBarLayer(server.scene),
                 GripBarLayer(server.scene),
             ]
-        self._panel = ModalityPanel(server.gui, [layer.cue for layer in self.layers if layer.cue])
+        cues = [layer.cue for layer in self.layers if layer.cue]
+        self._panel = ModalityPanel(server.gui, cues) if config.layer_panel else None
         self._T_base_camera: NDArray[np.float64] | None = None
         server.gui.add_button("Egocentric view").on_click(lambda _: self._egocentric(True))
         server.on_client_connect(self._follow_shape)
@@ -137,7 +141,7 @@ class OperatorView(Closeable):
     @property
     def cues(self) -> ArCues | None:
         """The layers the panel chose, or None while the frames' own cues are drawn."""
-        return self._panel.cues
+        return None if self._panel is None else self._panel.cues
 
     def show(self, frame: DisplayFrame) -> None:
         """Draw ``frame``: each layer its modality turns on, the others hidden.
@@ -148,9 +152,9 @@ class OperatorView(Closeable):
         if self._T_base_camera is None:
             self._T_base_camera = frame.T_base_camera
             self._egocentric(move_clients=True)
-        if (cues := self._panel.cues) is not None:
+        if (cues := self.cues) is not None:
             frame = replace(frame, cues=cues)
-        else:
+        elif self._panel is not None:
             self._panel.follow(frame.cues)
         for layer in self.layers:
             layer.draw(frame)

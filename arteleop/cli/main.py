@@ -28,11 +28,13 @@ from arteleop.cli.study import (
     StudyReplayCommand,
     StudyResumeCommand,
     StudyRunCommand,
+    StudyServeCommand,
     study_answer,
     study_init,
     study_replay,
     study_resume,
     study_run,
+    study_serve,
 )
 from arteleop.cli.trial import TeleopCommand, TrialCommand, teleop, trial
 from arteleop.errors import ArteleopError
@@ -58,6 +60,7 @@ GROUPS: dict[str, dict[str, Command]] = {
         "init": (StudyInitCommand, study_init),
         "run": (StudyRunCommand, study_run),
         "resume": (StudyResumeCommand, study_resume),
+        "serve": (StudyServeCommand, study_serve),
         "answer": (StudyAnswerCommand, study_answer),
         "replay": (StudyReplayCommand, study_replay),
         "power": (StudyPowerCommand, study_power),

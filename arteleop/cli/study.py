@@ -168,6 +168,61 @@ def _write_run_report(folder: Path) -> int:
 
 
 @dataclass(frozen=True)
+class StudyServeCommand:
+    """Serve a study to people in their browser, one participant after another, into RUN_DIR."""
+
+    file: Annotated[tyro.conf.Positional[Path | None], tyro.conf.arg(metavar="[STUDY.toml]")] = None
+    """the study definition; none: the default (or, for a RUN_DIR that holds a served run, its own)"""
+    out: Path = Path("arteleop-served")
+    """the run folder: a new or empty one begins the run; one that holds a served run carries on with its next participant"""
+    host: str = "127.0.0.1"
+    """interface to serve the page on; 0.0.0.0 lets other machines connect (and so drive the robot)"""
+    port: int = 8080
+    """port to serve the page on; the next free one if it is taken"""
+    width_px: int = 640
+    """camera image width (px): the simulated cohort's; 320x240 keeps 30 frames/s on a loaded two-core machine"""
+    height_px: int = 480
+    """camera image height (px)"""
+
+
+def study_serve(cmd: StudyServeCommand) -> int:
+    from arteleop.ar_features import ViewConfig
+    from arteleop.ar_features.host import check_host
+    from arteleop.scene import HeadCameraConfig
+    from arteleop.study import load_study_file
+    from arteleop.study.serve import StudyServer
+    from arteleop.study.session import served_run
+
+    study = None if cmd.file is None else load_study_file(cmd.file)[0]
+    camera = HeadCameraConfig(width_px=cmd.width_px, height_px=cmd.height_px)
+    check_host(cmd.host)  # before the run folder is begun
+    with (
+        served_run(cmd.out, study) as run,
+        StudyServer(run, ViewConfig(host=cmd.host, port=cmd.port), camera) as server,
+    ):
+        for notice in server.view.notices():
+            print(notice, file=sys.stderr)
+        person = run.current()
+        if person is None:
+            print(f"{cmd.out}: every session is done; nothing to serve.")
+            return 0
+        done = run.people.index(person)  # sessions end in plan order
+        print(f"serving {run.study.name!r} into {cmd.out} at {server.url}: participant "
+              f"{person.id} next, {done} of {len(run.people)} sessions done; Ctrl-C stops, "
+              f"'arteleop study serve --out {cmd.out}' carries on")  # fmt: skip
+        try:
+            finished = server.serve()
+        except KeyboardInterrupt:
+            finished = False
+    if not finished:
+        print(f"stopped; 'arteleop study serve --out {cmd.out}' carries on (a trial under way "
+              "runs again)")  # fmt: skip
+        return 130
+    print(f"every session is done: arteleop analyze {cmd.out} --out {cmd.out / 'report'}")
+    return 0
+
+
+@dataclass(frozen=True)
 class StudyAnswerCommand:
     """Merge real questionnaire answers into a run folder's questionnaire.csv."""
 

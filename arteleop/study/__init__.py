@@ -1,5 +1,10 @@
 """Studies: a definition, its counterbalanced plan, simulated participants, the protocol of a
-trial, durable run folders, and the runner that drives them on any executor."""
+trial, durable run folders, the runner that drives them on any executor, and the server that
+gives the same study to people in their browser (``StudyServer``, imported on first use: it
+pulls in viser's server)."""
+
+import importlib
+from typing import TYPE_CHECKING, Any
 
 from arteleop.study.cohort import participants
 from arteleop.study.counterbalancing import (
@@ -21,6 +26,12 @@ from arteleop.study.questionnaire import simulated_answers
 from arteleop.study.run_folder import FORMAT_VERSION, TRIAL_COLUMNS, RunFolder
 from arteleop.study.run_lock import run_lock
 from arteleop.study.runner import RunComplete, StudyRun, resume_study, run_study
+from arteleop.study.session import (
+    Demographics,
+    ServedRun,
+    SessionInputError,
+    served_run,
+)
 from arteleop.study.sites import StudySite
 from arteleop.study.study_file import (
     first_difference,
@@ -29,19 +40,26 @@ from arteleop.study.study_file import (
     study_text,
 )
 
+if TYPE_CHECKING:
+    from arteleop.study.serve import StudyServer
+
 __all__ = [
     "FORMAT_VERSION",
     "MODALITY_NAMES",
     "ORDER_SCHEMES",
     "TRIAL_COLUMNS",
     "CohortConfig",
+    "Demographics",
     "FamiliarizationConfig",
     "ParticipantSpec",
     "PracticePoints",
     "RunComplete",
     "RunFolder",
+    "ServedRun",
+    "SessionInputError",
     "StudyConfig",
     "StudyRun",
+    "StudyServer",
     "StudySite",
     "TrialRecord",
     "TrialSpec",
@@ -57,8 +75,15 @@ __all__ = [
     "run_lock",
     "run_planned_trial",
     "run_study",
+    "served_run",
     "simulated_answers",
     "study_text",
     "trial_seed",
     "williams_sequences",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    if name == "StudyServer":
+        return importlib.import_module("arteleop.study.serve").StudyServer
+    raise AttributeError(f"module 'arteleop.study' has no attribute {name!r}")

@@ -215,6 +215,8 @@ class StudyConfig:
 
     Attributes:
         name: A name for the report.
+        consent: The information and consent page shown to people (``arteleop study serve``),
+            in Markdown; empty: the built-in page (:data:`arteleop.study.serve.CONSENT`).
         seed: Seed of everything random in the study: the cohort, the orders, the practice
             positions and every trial (each trial's seed derives from it and the trial's place).
         modalities: The conditions, in the order the order schemes number them: modalities
@@ -256,6 +258,7 @@ class StudyConfig:
     """
 
     name: str = "arteleop default study"
+    consent: str = ""
     seed: int = 0
     modalities: tuple[str, ...] = MODALITY_NAMES
     order: str = "williams"

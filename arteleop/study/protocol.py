@@ -20,7 +20,14 @@ from arteleop.scene import RemoteSite
 from arteleop.study.definition import ParticipantSpec, StudyConfig
 from arteleop.study.plan import TrialSpec
 from arteleop.study.sites import StudySite
-from arteleop.teleop import ControllerConfig, NetworkConfig, TrialConfig, run_trial, trial_operator
+from arteleop.teleop import (
+    ControllerConfig,
+    NetworkConfig,
+    TrialConfig,
+    TrialResult,
+    run_trial,
+    trial_operator,
+)
 
 
 @dataclass(frozen=True)
@@ -85,18 +92,30 @@ def run_planned_trial(
             traits=operator_traits(study, person),
         )
         result = run_trial(source, config, remote)
-    row = {
+    return trial_record(spec, result, time.perf_counter() - start)
+
+
+def trial_record(spec: TrialSpec, result: TrialResult, wall_s: float) -> TrialRecord:
+    """What a study keeps of a planned trial's result, whoever the participant was."""
+    if result.trace is None:
+        raise SimulationError("The trial recorded no trace although its config asked for one.")
+    return TrialRecord(spec, trial_row(spec, result.to_row()), result.trace,
+                       result.duration_s, wall_s)  # fmt: skip
+
+
+def trial_row(spec: TrialSpec, measured: dict[str, object]) -> dict[str, object]:
+    """A planned trial's row of ``trials.csv``: the plan's columns around what was measured
+    (:meth:`~arteleop.teleop.TrialResult.to_row`'s columns; absent ones stay empty)."""
+    return {
         "participant": spec.participant,
         "phase": spec.phase,
         "trial_index": spec.trial_index,
         "position": spec.position,
-        **result.to_row(),
+        "modality": spec.modality,
+        "seed": spec.seed,
+        **measured,
         "round_trip_ms": spec.round_trip_ms,
         "jitter_ms": spec.jitter_ms,
         "loss": spec.loss,
         "trajectory_file": trajectory_file(spec),
     }
-    if result.trace is None:
-        raise SimulationError("The trial recorded no trace although its config asked for one.")
-    wall_s = time.perf_counter() - start
-    return TrialRecord(spec, row, result.trace, result.duration_s, wall_s)

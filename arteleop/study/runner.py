@@ -66,6 +66,10 @@ class StudyRun:
     notes: tuple[str, ...] = ()
 
 
+REAL = "real"
+"""A run folder's ``cohort`` (manifest.json) when people take part (``arteleop study serve``)."""
+
+
 class RunComplete(RunFolderError):
     """``resume`` found every planned trial in the folder: nothing to do."""
 
@@ -86,22 +90,37 @@ def run_study(
         progress: Told of each trial written.
     """
     folder = RunFolder(out)
-    _check_new(folder)
+    check_new(folder)
     site = StudySite()
-    plan, people = _plan(study, site)
+    plan, people = plan_run(study, site)
     text = study_text(study)
-    manifest = {
+    manifest = new_manifest(study, text, plan, len(people))
+    try:
+        folder.path.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise RunFolderError(f"Cannot create {folder.path}: {err.strerror or err}.") from err
+    with run_lock(folder.path):
+        check_new(folder)  # again, holding the lock: another run may have begun meanwhile
+        folder.start(text, manifest, _participants_text(people))
+        return _execute(study, site, folder, plan, people, workers, executor, progress)
+
+
+def new_manifest(
+    study: StudyConfig, text: str, plan: Sequence[TrialSpec], participants: int
+) -> dict[str, object]:
+    """A new run's manifest.json: what it is and what it ran on."""
+    return {
         "format_version": FORMAT_VERSION,
         "seed": study.seed,
         "trials_planned": len(plan),
-        "participants": len(people),
+        "participants": participants,
         "packages": _versions(),
         "python": platform.python_version(),
         # OpenBLAS's kernels round in their own way: trials differ between them.
         "blas": blas_description(),
         # The final tracker looks are rendered: a GPU and Mesa may differ in a pixel's last bit.
         "head_camera": renderer_description(resolve_renderer("auto")),
-        "started": _now(),
+        "started": utc_now(),
         "finished": None,
         # What the run is, so that resume can refuse a folder whose definition was edited or
         # whose plan this arteleop would make otherwise.
@@ -110,17 +129,9 @@ def run_study(
         "plan_sha256": _plan_digest(plan),
         "report_finished": None,
     }
-    try:
-        folder.path.mkdir(parents=True, exist_ok=True)
-    except OSError as err:
-        raise RunFolderError(f"Cannot create {folder.path}: {err.strerror or err}.") from err
-    with run_lock(folder.path):
-        _check_new(folder)  # again, holding the lock: another run may have begun meanwhile
-        folder.start(text, manifest, _participants_text(people))
-        return _execute(study, site, folder, plan, people, workers, executor, progress)
 
 
-def _check_new(folder: RunFolder) -> None:
+def check_new(folder: RunFolder) -> None:
     """Refuse a folder that holds anything but a lock or a start that a kill cut short."""
     if folder.path.exists() and not folder.path.is_dir():
         raise RunFolderError(f"--out {folder.path}: a file, not a folder; give a new folder.")
@@ -145,36 +156,15 @@ def resume_study(
     """Continue the run in ``out`` after a crash, Ctrl-C or ``kill -9``: the trials it lacks
     run, the rest are kept. With ``study``, refuses a folder made from another definition."""
     folder = RunFolder(out)
-    if not folder.is_run_folder():
-        raise RunFolderError(
-            f"{folder.path} is not a run folder (it has no {STUDY_FILE} and manifest.json): "
-            "'arteleop study run --out DIR' starts one."
-        )
+    _require_run_folder(folder)
     with run_lock(folder.path):
-        manifest = folder.manifest()
-        recorded = _recorded_definition(folder, manifest)
-        if study is not None and (key := first_difference(study, recorded)) is not None:
+        recorded, plan, people, manifest = open_run(folder, study)
+        if manifest.get("cohort") == REAL:
             raise RunFolderError(
-                f"{folder.path} was made from another definition: its key {key!r} is "
-                f"{_value(recorded, key)!r}, the given one {_value(study, key)!r}. Resume it "
-                "without a definition, or start a new run in another folder."
-            )
-        if manifest.get("format_version") != FORMAT_VERSION:
-            raise RunFolderError(
-                f"{folder.path / 'manifest.json'}: format_version "
-                f"{manifest.get('format_version')!r}, this arteleop writes {FORMAT_VERSION}; "
-                "resume it with the version that began it "
-                f"({_get(manifest, 'packages', {}).get('arteleop', 'unknown')})."
+                f"{folder.path} is a study served to people: 'arteleop study serve --out "
+                f"{folder.path}' continues it with the next participant."
             )
         site = StudySite()
-        plan, people = _plan(recorded, site)
-        planned = manifest.get("plan_sha256")
-        if planned is not None and planned != _plan_digest(plan):
-            raise RunFolderError(
-                f"{folder.path}: this arteleop plans the run's definition otherwise than the "
-                "version that began it (its plan's digest differs); resume it with that version "
-                f"({_get(manifest, 'packages', {}).get('arteleop', 'unknown')})."
-            )
         if manifest.get("finished") and len(folder.done_rows(repair=True)) == len(plan):
             notes = "".join(f"\nnote: {note}" for note in folder.notes)
             raise RunComplete(
@@ -182,6 +172,47 @@ def resume_study(
                 + notes
             )
         return _execute(recorded, site, folder, plan, people, workers, executor, progress)
+
+
+def open_run(
+    folder: RunFolder, study: StudyConfig | None = None
+) -> tuple[StudyConfig, list[TrialSpec], list[ParticipantSpec], dict[str, object]]:
+    """A run folder to continue, checked: its definition, plan and participants, and its
+    manifest. With ``study``, refuses a folder made from another definition. The caller holds
+    the folder's lock."""
+    _require_run_folder(folder)
+    manifest = folder.manifest()
+    recorded = _recorded_definition(folder, manifest)
+    if study is not None and (key := first_difference(study, recorded)) is not None:
+        raise RunFolderError(
+            f"{folder.path} was made from another definition: its key {key!r} is "
+            f"{_value(recorded, key)!r}, the given one {_value(study, key)!r}. Resume it "
+            "without a definition, or start a new run in another folder."
+        )
+    if manifest.get("format_version") != FORMAT_VERSION:
+        raise RunFolderError(
+            f"{folder.path / 'manifest.json'}: format_version "
+            f"{manifest.get('format_version')!r}, this arteleop writes {FORMAT_VERSION}; "
+            "resume it with the version that began it "
+            f"({_get(manifest, 'packages', {}).get('arteleop', 'unknown')})."
+        )
+    plan, people = plan_run(recorded)
+    planned = manifest.get("plan_sha256")
+    if planned is not None and planned != _plan_digest(plan):
+        raise RunFolderError(
+            f"{folder.path}: this arteleop plans the run's definition otherwise than the "
+            "version that began it (its plan's digest differs); resume it with that version "
+            f"({_get(manifest, 'packages', {}).get('arteleop', 'unknown')})."
+        )
+    return recorded, plan, people, manifest
+
+
+def _require_run_folder(folder: RunFolder) -> None:
+    if not folder.is_run_folder():
+        raise RunFolderError(
+            f"{folder.path} is not a run folder (it has no {STUDY_FILE} and manifest.json): "
+            "'arteleop study run --out DIR' starts one."
+        )
 
 
 def _begun_only(folder: RunFolder) -> bool:
@@ -232,7 +263,12 @@ def _get(manifest: dict[str, object], key: str, default: dict) -> dict:
     return value if isinstance(value, dict) else default
 
 
-def _plan(study: StudyConfig, site: StudySite) -> tuple[list[TrialSpec], list[ParticipantSpec]]:
+def plan_run(
+    study: StudyConfig, site: StudySite | None = None
+) -> tuple[list[TrialSpec], list[ParticipantSpec]]:
+    """The run's plan and participants; ``site`` probes the practice points (a new one if
+    none), and is closed after."""
+    site = site or StudySite()
     problem = site.problem(study.start_xy_m, study.target_xy_m)
     if problem is not None:
         raise StudyDefinitionError(f"start_xy_m / target_xy_m: {problem}")
@@ -302,7 +338,7 @@ def _execute(
     # Answers come from the finished trials.csv, so they depend only on its bytes.
     folder.write_questionnaire(_questionnaire_text(study, folder, people))
     manifest = folder.manifest()
-    manifest["finished"] = _now()
+    manifest["finished"] = utc_now()
     folder.write_manifest(manifest)
     return StudyRun(folder.path, folder.trials(), len(pending), speed, tuple(folder.notes))
 
@@ -375,7 +411,7 @@ def _versions() -> dict[str, str]:
     return versions
 
 
-def _now() -> str:
+def utc_now() -> str:
     return datetime.now(UTC).isoformat(timespec="seconds")
 
 

@@ -269,7 +269,8 @@ def _toml_value(value: Any) -> str:
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, str):
-        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+        escaped = value.replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n")
+        return '"' + escaped + '"'
     if isinstance(value, tuple | list):
         return "[" + ", ".join(_toml_value(v) for v in value) + "]"
     if isinstance(value, float):
@@ -279,6 +280,8 @@ def _toml_value(value: Any) -> str:
 
 _COMMENTS = {
     "name": "a name for the report",
+    "consent": "the information and consent page of 'arteleop study serve' (Markdown; \\n is a "
+    "new line); empty: the built-in one",
     "seed": "seed of the cohort, the orders, the practice positions and every trial",
     "modalities": "AR modalities compared: none, manipulation, embodiment, task, full",
     "order": "williams (balanced Latin square), cyclic, random (seeded) or listed (in orders)",

@@ -17,7 +17,7 @@ from arteleop.teleop.controller import (
     OperatorBody,
     TeleopController,
 )
-from arteleop.teleop.display_feed import DisplayFeed, display_frame, view_assets
+from arteleop.teleop.display_feed import DisplayFeed, display_frame, site_frame, view_assets
 from arteleop.teleop.hand_filter import HandFilter, HandFilterConfig, filter_hand_path
 from arteleop.teleop.hand_speed import HandSpeed
 from arteleop.teleop.latency import LatencyAccount
@@ -85,6 +85,7 @@ __all__ = [
     "filter_hand_path",
     "reconstruct",
     "run_trial",
+    "site_frame",
     "trial_operator",
     "view_assets",
 ]

@@ -95,6 +95,16 @@ def display_frame(
     )
 
 
+def site_frame(site: RemoteSite, cues: ArCues) -> DisplayFrame:
+    """The display of ``site`` as it is now, its cloud rendered: what a view shows between
+    trials (the arm at rest, the bowl where the next trial starts), before any operator."""
+    frame = display_frame(
+        site.observe(), site.sight_bowl(), site.frames, site.config.workspace, cues, False,
+        site.T_cloud_true,
+    )  # fmt: skip
+    return with_cloud(frame, site.capture())
+
+
 def view_assets(site: RemoteSite) -> ViewAssets:
     """What the view of ``site`` draws besides its frames: the robot as the camera renders it
     (left arm at the rest pose, head forward) and the bowl's mesh."""

@@ -5,7 +5,6 @@ frames at two moments are shown under ``none``, ``full`` and ``full`` without th
 headless Chromium's screenshots are compared pixel by pixel.
 """
 
-import os
 from dataclasses import replace
 from pathlib import Path
 
@@ -27,7 +26,7 @@ from arteleop.ar_features.layers.beam import BEAM_WIDTH_PX
 from arteleop.ar_features.live_input import LiveInput
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig, Workspace
 from arteleop.teleop import TrialConfig, display_frames_at, trial_operator, view_assets
-from tests.instruments.browser import BrowserError, browser_page, chromium_path
+from tests.instruments.browser import browser_page, require_chromium
 
 MOMENT_S = 5.0
 """Seed 0 is on its reach to the bowl then: bowl, gripper, a long beam and target all in view
@@ -41,12 +40,7 @@ def moments(
     site_config: SiteConfig,
 ) -> tuple[tuple[DisplayFrame, DisplayFrame], ViewAssets, NDArray[np.float64]]:
     """The display frames at the moments, the view's assets and the gripper at rest (m)."""
-    try:
-        chromium_path()
-    except BrowserError as err:  # CI installs it: there, a missing browser fails
-        if os.environ.get("CI"):
-            pytest.fail(str(err))
-        pytest.skip(str(err))
+    require_chromium()
     small = replace(site_config, camera=HeadCameraConfig(width_px=320, height_px=240))
     config = TrialConfig(seed=0, site=small)
     with RemoteSite(config.site) as site:

@@ -11,6 +11,7 @@ import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
+from typing import Any
 
 import cv2
 import numpy as np
@@ -41,11 +42,30 @@ def chromium_path() -> str:
     return path
 
 
+def require_chromium() -> None:
+    """Skip the calling test without Chromium; fail it under CI, which installs it."""
+    from tests.helpers import unavailable
+
+    try:
+        chromium_path()
+    except BrowserError as err:
+        unavailable(err)
+
+
 class Page:
     """One browser tab on a view; screenshots once the drawing has settled."""
 
     def __init__(self, page: object) -> None:
         self._page = page
+
+    @property
+    def playwright(self) -> Any:
+        """The tab's playwright page, to click and type on."""
+        return self._page
+
+    def close(self) -> None:
+        """Close the tab: its viser client goes."""
+        self._page.close()  # type: ignore[attr-defined]
 
     def scene_size_px(self) -> tuple[float, float]:
         """The 3D scene's width and height on the page (CSS pixels): the page beside the
@@ -83,20 +103,39 @@ class Page:
         raise BrowserError(f"The view's page never stopped changing in {timeout_s} s.")
 
 
+class Browser:
+    """A headless Chromium; each :meth:`open` is a tab of its own (a viser client)."""
+
+    def __init__(self, browser: object) -> None:
+        self._browser = browser
+
+    def open(self, url: str, for_pictures: bool = True) -> Page:
+        """A new tab on ``url``; ``for_pictures``: once the software-WebGL notice, which
+        covers a corner of the scene, has come and been dismissed."""
+        page = self._browser.new_page(viewport=VIEWPORT)  # type: ignore[attr-defined]
+        page.goto(url)
+        if for_pictures:
+            notice = page.get_by_text("Software WebGL rendering detected")
+            notice.wait_for(timeout=15_000)
+            page.locator(".mantine-Notification-root button").first.click()
+        return Page(page)
+
+
 @contextmanager
-def browser_page(url: str) -> Iterator[Page]:
-    """A headless Chromium tab on ``url``, the software-WebGL notice dismissed."""
+def chromium() -> Iterator[Browser]:
+    """Headless Chromium, closed on leaving."""
     from playwright.sync_api import sync_playwright
 
     with sync_playwright() as pw:
         browser = pw.chromium.launch(executable_path=chromium_path(), args=CHROMIUM_ARGS)
         try:
-            page = browser.new_page(viewport=VIEWPORT)
-            page.goto(url)
-            # The notice that WebGL runs in software covers a corner of the scene.
-            notice = page.get_by_text("Software WebGL rendering detected")
-            notice.wait_for(timeout=15_000)
-            page.locator(".mantine-Notification-root button").first.click()
-            yield Page(page)
+            yield Browser(browser)
         finally:
             browser.close()
+
+
+@contextmanager
+def browser_page(url: str) -> Iterator[Page]:
+    """A headless Chromium tab on ``url``, the software-WebGL notice dismissed."""
+    with chromium() as browser:
+        yield browser.open(url)

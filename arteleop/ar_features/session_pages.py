@@ -1,0 +1,143 @@
+"""A participant's pages in the browser: consent, questions, trials, questionnaire, the end.
+
+One page at a time, in the side panel of one browser tab (a viser client's GUI), beside the
+robot's view. The pages only show and collect: what an answer means and where it goes is the
+study server's (:mod:`arteleop.study.serve`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+
+import viser
+
+CHOOSE = "(choose)"
+"""A dropdown's first entry: no answer yet."""
+HOURS = ("under 1 h", "2-5 h", "over 5 h")
+"""The weekly-hours buckets 1, 2 and 3, as the original questionnaire asked them."""
+LIKERT_MARKS = ((1, "1"), (4, "4"), (7, "7"))
+
+Form = Mapping[str, object]
+"""A page's answers by question key, as the browser gave them."""
+
+
+class SessionPages:
+    """The pages of one tab; each call replaces the page shown."""
+
+    def __init__(self, gui: viser.GuiApi) -> None:
+        self._gui = gui
+        self._page: viser.GuiFolderHandle | None = None
+        self._error: viser.GuiMarkdownHandle | None = None
+        self._timer: viser.GuiTextHandle | None = None
+        self._state: viser.GuiTextHandle | None = None
+
+    def message(
+        self,
+        title: str,
+        text: str,
+        button: str | None = None,
+        on_click: Callable[[], None] | None = None,
+    ) -> None:
+        """A page of text, and a button if given."""
+        with self._new(title):
+            self._gui.add_markdown(text)
+            if button is not None and on_click is not None:
+                self._button(button, on_click)
+
+    def consent(self, text: str, agree: str, on_agree: Callable[[], None]) -> None:
+        """The information and consent text; continuing needs the box ticked."""
+        with self._new("Information and consent"):
+            self._gui.add_markdown(text)
+            box = self._gui.add_checkbox(agree, False)
+            self._error = self._gui.add_markdown("")
+
+            def go() -> None:
+                if box.value:
+                    on_agree()
+                else:
+                    self.error("Tick the box to agree, or close this page to leave.")
+
+            self._button("Continue", go)
+
+    def demographics(self, on_submit: Callable[[Form], None], genders: Sequence[str],
+                     handedness: Sequence[str]) -> None:  # fmt: skip
+        """The questions before the trials; ``on_submit`` gets the answers by key
+        (``age`` as typed; experience 1-7; hours as 1-3, 0 unanswered)."""
+        with self._new("About you"):
+            age = self._gui.add_text("Age (years)", "")
+            gender = self._gui.add_dropdown("Gender", (CHOOSE, *genders))
+            hand = self._gui.add_dropdown("Handedness", (CHOOSE, *handedness))
+            avr = self._likert("AR/VR experience", "1: none, 7: a great deal")
+            avr_hours = self._gui.add_dropdown("AR/VR per week", (CHOOSE, *HOURS))
+            games = self._likert("Video-game experience", "1: none, 7: a great deal")
+            games_hours = self._gui.add_dropdown("Video games per week", (CHOOSE, *HOURS))
+            self._error = self._gui.add_markdown("")
+
+            def submit() -> None:
+                on_submit({
+                    "age": age.value.strip(),
+                    "gender": "" if gender.value == CHOOSE else gender.value,
+                    "handedness": "" if hand.value == CHOOSE else hand.value,
+                    "avr_experience": int(avr.value),
+                    "avr_hours": _bucket(avr_hours.value),
+                    "games_experience": int(games.value),
+                    "games_hours": _bucket(games_hours.value),
+                })  # fmt: skip
+
+            self._button("Continue", submit)
+
+    def trial(self, heading: str, text: str, on_start: Callable[[], None]) -> None:
+        """Before and during a trial: what it is, its timer and state, and Start."""
+        with self._new(heading):
+            self._gui.add_markdown(text)
+            self._timer = self._gui.add_text("Timer", "0.0 s", disabled=True)
+            self._state = self._gui.add_text("State", "press Start when ready", disabled=True)
+            self._button("Start", on_start)
+
+    def running(self, elapsed_s: float, state: str) -> None:
+        """The trial's timer (s) and state, on its page."""
+        for handle, text in ((self._timer, f"{elapsed_s:.1f} s"), (self._state, state)):
+            if handle is not None and handle.value != text:  # each change is a message
+                handle.value = text
+
+    def questionnaire(
+        self,
+        classes: Sequence[tuple[str, str]],
+        items: Sequence[tuple[str, str]],
+        on_submit: Callable[[Mapping[tuple[str, str], int]], None],
+    ) -> None:
+        """A 1-7 rating of each item for each class: ``classes`` and ``items`` are (key, what
+        the participant reads)."""
+        with self._new("Questionnaire"):
+            self._gui.add_markdown(
+                "Rate each kind of display aid you saw, from 1 (not at all) to 7 (very much)."
+            )
+            sliders = {}
+            for class_key, class_text in classes:
+                self._gui.add_markdown(f"**{class_text}**")
+                for item_key, item_text in items:
+                    sliders[class_key, item_key] = self._likert(item_text)
+            self._button("Submit", lambda: on_submit({k: int(s.value) for k, s in sliders.items()}))
+
+    def error(self, text: str) -> None:
+        """What is wrong with the page's answers, shown on it."""
+        if self._error is not None:
+            self._error.content = f"**{text}**" if text else ""
+
+    def _new(self, title: str) -> viser.GuiFolderHandle:
+        if self._page is not None:
+            self._page.remove()
+        self._error = self._timer = self._state = None
+        self._page = self._gui.add_folder(title, order=-1.0)
+        return self._page
+
+    def _likert(self, label: str, hint: str | None = None) -> viser.GuiSliderHandle[int]:
+        """A 1-7 rating, at the scale's middle until moved."""
+        return self._gui.add_slider(label, 1, 7, 1, 4, marks=LIKERT_MARKS, hint=hint)
+
+    def _button(self, label: str, on_click: Callable[[], None]) -> None:
+        self._gui.add_button(label).on_click(lambda _: on_click())
+
+
+def _bucket(value: str) -> int:
+    return HOURS.index(value) + 1 if value in HOURS else 0

@@ -1,0 +1,313 @@
+"""A study served to people in their browser (``arteleop study serve``), one at a time.
+
+Each person takes the next planned participant's place (:mod:`arteleop.study.session`) and goes
+through the pages: information and consent, the questions about them, how to drive the robot,
+the practice trials, the experimental trials in their counterbalanced order, the
+questionnaire, the end. A trial runs in real time through the same loop as a simulated one,
+driven by the gizmo and the Grip slider (:class:`~arteleop.ar_features.live_input.LiveInput`),
+its condition's AR layers and network delay, its timer from motion onset; it starts when the
+person presses Start.
+
+One browser tab controls the session, the first to connect; another sees the robot's view and
+"a session is in progress". When the controlling tab goes (closed, reloaded, the connection
+lost) during a trial, the attempt is recorded as interrupted and the trial runs again from its
+start once a tab is back; between trials nothing is lost, and the next tab carries on where
+the session was. A server stopped and started again on the folder carries on the same way.
+"""
+
+from __future__ import annotations
+
+import queue
+import threading
+import time
+from collections.abc import Callable
+from dataclasses import replace
+from typing import Any
+
+import viser
+
+from arteleop.analysis.data import AR_CLASSES, QUESTIONNAIRE_ITEMS
+from arteleop.ar_features import OperatorView, ViewConfig, modality_cues
+from arteleop.ar_features.live_input import LiveInput
+from arteleop.ar_features.session_pages import SessionPages
+from arteleop.errors import ArteleopError
+from arteleop.lifetime import Closeable
+from arteleop.operator import HandTarget, live_source
+from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
+from arteleop.study.plan import FAMILIARIZATION, TrialSpec
+from arteleop.study.protocol import trial_config, trial_record
+from arteleop.study.session import GENDERS, HANDEDNESS, Demographics, ServedRun, SessionInputError
+from arteleop.study.sites import StudySite
+from arteleop.teleop import (
+    ControllerConfig,
+    TrialProgress,
+    run_trial,
+    site_frame,
+    view_assets,
+)
+
+CONSENT = """\
+You are invited to take part in a study of how drawings over a robot's camera view help people
+steer a robot arm from a distance. The robot, the table and the bowl are simulated.
+
+**What you do.** With the mouse you move the gripper of a robot arm, pick up a bowl and put it
+on a target, in a few practice trials and then once under each of several displays. It takes
+about half an hour. Afterwards you rate the displays.
+
+**What is recorded.** Your movements, each trial's time and accuracy, your answers about
+yourself and your ratings, under a participant number: never your name.
+
+**Your choice.** Taking part is voluntary. You may stop at any time, without giving a reason,
+by closing this page; what was recorded until then is kept unless you ask the researcher to
+delete it.
+
+Ask the researcher who runs the study about anything that is not clear before you go on.
+"""
+"""The information and consent page when the study file gives none (its key ``consent``)."""
+AGREE = "I have read the information above and agree to take part."
+TUTORIAL = """\
+**Drive the robot.** Drag the arrows of the handle at the gripper: the robot's gripper follows
+the handle. The robot is seen through its head camera, a moment late; move, then watch the
+gripper arrive.
+
+**Grip.** Move the Grip slider to *closed* to close the gripper on the bowl (it closes past
+the first mark) and back to *open* to let go (it opens below the second mark).
+
+**The timer** starts when your hand first moves towards the bowl and stops when the bowl,
+released, stands still. Be as quick and as accurate as you can: put the bowl's centre on the
+target.
+
+The practice trials come first; they teach the controls and are not compared.
+"""
+IN_PROGRESS = (
+    "A session is in progress in another browser tab. This page shows the robot's view only; "
+    "close the other tab to take over."
+)
+CUT_SHORT = ("Trial cut short", "The page was closed or lost during the trial: the trial starts "
+             "again from its beginning in a moment.")  # fmt: skip
+AR_CLASS_TEXT = {
+    "embodiment": "The robot's ghost: a model of the arm drawn over the camera view",
+    "manipulation": "The red beam to the grasp point, and the green and blue bars (distance "
+    "and grip)",
+    "task": "The green bowl drawn at the target",
+}
+ITEM_TEXT = {
+    "presence": "I felt present at the robot's place",
+    "embodiment": "The robot arm felt like my own arm",
+    "ease": "The task was easy to do",
+}
+
+
+class SessionInterrupted(ArteleopError):
+    """The controlling tab went during a trial: the attempt is recorded, the trial repeated."""
+
+
+class StudyServer(Closeable):
+    """Serves a :class:`ServedRun` to people until every session is over or :meth:`stop`.
+
+    Args:
+        run: The served run (its lock held by the caller).
+        view: Where the page is served.
+        camera: The head camera of every trial (its registration stays the study's).
+    """
+
+    def __init__(
+        self, run: ServedRun, view: ViewConfig, camera: HeadCameraConfig | None = None
+    ) -> None:
+        self.run = run
+        self._site = StudySite(SiteConfig(camera=camera) if camera else None)
+        with RemoteSite(self._site.base) as site:
+            # The layers are the trial's condition: no panel to switch them.
+            self.view = OperatorView(replace(view, layer_panel=False), view_assets(site))
+            self._rest_gripper_m = site.observe().gripper_m
+            self.view.show(site_frame(site, modality_cues("none")))  # the robot's view, plain
+        self._target = HandTarget(self._rest_gripper_m)
+        self._actions: queue.Queue[tuple[str, Any]] = queue.Queue()
+        self._lock = threading.Lock()
+        self._controller: viser.ClientHandle | None = None
+        self._watching: dict[int, tuple[viser.ClientHandle, viser.GuiMarkdownHandle]] = {}
+        self._pages: SessionPages | None = None
+        self._live: LiveInput | None = None
+        self._page: Callable[[SessionPages], None] = lambda pages: None
+        self._trial_running = threading.Event()
+        self._lost = threading.Event()
+        self._stopped = threading.Event()
+        server = self.view.server
+        server.on_client_connect(self._connect)
+        server.on_client_disconnect(self._disconnect)
+
+    @property
+    def url(self) -> str:
+        return self.view.url
+
+    def serve(self) -> bool:
+        """Session after session until every planned participant is done (True) or
+        :meth:`stop` (False)."""
+        try:
+            while (person := self.run.current()) is not None:
+                self._session(person.id)
+        except SessionStopped:
+            return False
+        self.run.finish_if_done()
+        self._show(lambda p: p.message("Thank you", "Every session of this study is done. The "
+                                       "researcher can close this page."))  # fmt: skip
+        return True
+
+    def stop(self) -> None:
+        self._stopped.set()
+        self._actions.put(("stop", None))
+
+    def close(self) -> None:
+        self.stop()
+        self.view.close()
+
+    # The session, on the serving thread: each step shows a page, then waits for its answer.
+
+    def _session(self, participant: str) -> None:
+        run = self.run
+        if not run.consented(participant):
+            text = run.study.consent or CONSENT
+            self._show(lambda p: p.consent(text, AGREE, lambda: self._act("agree")))
+            self._wait("agree")
+            self._ask_demographics(participant)
+            self._show(lambda p: p.message("How to drive the robot", TUTORIAL, "Continue",
+                                           lambda: self._act("next")))  # fmt: skip
+            self._wait("next")
+        while pending := run.pending(participant):
+            self._trial(pending[0])
+        if not run.answered(participant):
+            classes = [(c, AR_CLASS_TEXT[c]) for c in AR_CLASSES]
+            items = [(i, ITEM_TEXT[i]) for i in QUESTIONNAIRE_ITEMS]
+            self._show(lambda p: p.questionnaire(classes, items, lambda r: self._act("rate", r)))
+            run.answer(participant, self._wait("rate"))
+        if run.current() is not None:
+            self._show(lambda p: p.message("Thank you", "Your session is over: thank you for "
+                                           "taking part. Please tell the researcher.",
+                                           "Next participant (researcher)",
+                                           lambda: self._act("next")))  # fmt: skip
+            self._wait("next")
+
+    def _ask_demographics(self, participant: str) -> None:
+        self._show(lambda p: p.demographics(lambda f: self._act("about", f), GENDERS, HANDEDNESS))
+        while True:
+            form = self._wait("about")
+            try:
+                answers = Demographics.from_form(form)
+            except SessionInputError as err:
+                self._on_pages(lambda p, message=str(err): p.error(message))
+                continue
+            self.run.consent(participant, answers)
+            return
+
+    def _trial(self, spec: TrialSpec) -> None:
+        trials = self.run.trials_of(spec.participant)
+        k, n = trials.index(spec) + 1, len(trials)
+        kind = "practice trial" if spec.phase == FAMILIARIZATION else "trial"
+        heading = f"Trial {k} of {n}"
+        text = f"This is a {kind}. Press **Start** when you are ready."
+        config = replace(trial_config(self.run.study, self._site, spec),
+                         realtime=True, render_camera=True)  # fmt: skip
+        with RemoteSite(config.site) as site:
+            # The scene as the trial will begin, its layers on, while the person gets ready.
+            self.view.show(site_frame(site, modality_cues(spec.modality)))
+            self._show(lambda p: p.trial(heading, text, lambda: self._act("start")))
+            self._wait("start")
+            if self._live is not None:
+                self._live.reset()
+            self._lost.clear()
+            start = time.perf_counter()
+            self._trial_running.set()
+            try:
+                source = live_source(self._target, config.controller.mapping, config.seed)
+                result = run_trial(source, config, site, self.view, self._tick)
+            except SessionInterrupted:
+                self.run.keep_interrupted(spec)
+                return
+            finally:
+                self._trial_running.clear()
+        record = trial_record(spec, result, time.perf_counter() - start)
+        self.run.keep(record)
+        row = record.row
+        if row["outcome"] == "success":
+            error_mm = float(row["placement_error_m"]) * 1000  # type: ignore[arg-type]
+            time_s = row["completion_time_s"]
+            result_text = f"Placed in {time_s:.1f} s, {error_mm:.0f} mm from the target."
+        else:
+            result_text = f"Not placed: {str(row['outcome']).replace('_', ' ')}."
+        self._show(lambda p: p.message(heading, result_text, "Next", lambda: self._act("next")))
+        self._wait("next")
+
+    def _tick(self, status: TrialProgress) -> None:
+        if self._lost.is_set() or self._stopped.is_set():
+            raise SessionInterrupted("the controlling tab went during the trial")
+        self._on_pages(lambda p: p.running(status.elapsed_s, status.state))
+        if self._live is not None:
+            self._live.show_reach(status.reachable)
+
+    # Pages and clients: callbacks come on viser's threads.
+
+    def _show(self, page: Callable[[SessionPages], None]) -> None:
+        """Show ``page`` now and to any tab that takes control later; clicks on the pages
+        before it are dropped (a double click must not answer the next page)."""
+        while not self._actions.empty():
+            kind, _ = self._actions.get_nowait()
+            if kind == "stop":
+                self._actions.put((kind, None))
+                break
+        with self._lock:
+            self._page = page
+            if self._pages is not None:
+                page(self._pages)
+
+    def _on_pages(self, change: Callable[[SessionPages], None]) -> None:
+        with self._lock:
+            if self._pages is not None:
+                change(self._pages)
+
+    def _act(self, kind: str, value: Any = None) -> None:
+        self._actions.put((kind, value))
+
+    def _wait(self, kind: str) -> Any:
+        """The next answer of ``kind`` (others are stale clicks: dropped)."""
+        while True:
+            got, value = self._actions.get()
+            if got == "stop" or self._stopped.is_set():
+                self._stopped.set()
+                raise SessionStopped("the server was stopped")
+            if got == kind:
+                return value
+
+    def _connect(self, client: viser.ClientHandle) -> None:
+        with self._lock:
+            if self._controller is None:
+                self._take_control(client)
+            else:
+                self._watching[client.client_id] = (client, client.gui.add_markdown(IN_PROGRESS))
+
+    def _disconnect(self, client: viser.ClientHandle) -> None:
+        with self._lock:
+            self._watching.pop(client.client_id, None)
+            if self._controller is None or client.client_id != self._controller.client_id:
+                return
+            self._controller = self._pages = self._live = None
+            if self._trial_running.is_set():
+                self._lost.set()
+                # Not the trial's page again: its Start belongs to the attempt that went.
+                self._page = lambda p: p.message(CUT_SHORT[0], CUT_SHORT[1])
+            if self._watching:  # the longest-waiting tab takes over
+                watcher, notice = self._watching.pop(next(iter(self._watching)))
+                notice.remove()
+                self._take_control(watcher)
+
+    def _take_control(self, client: viser.ClientHandle) -> None:
+        """``client``'s tab controls the session from now on (the caller holds the lock)."""
+        self._controller = client
+        self._pages = SessionPages(client.gui)
+        grip = ControllerConfig().grip
+        self._live = LiveInput(client, self._rest_gripper_m, self._target.set,
+                               grip.close_at, grip.open_at)  # fmt: skip
+        self._page(self._pages)
+
+
+class SessionStopped(ArteleopError):
+    """The server was stopped while it waited for a participant."""

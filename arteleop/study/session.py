@@ -1,0 +1,277 @@
+"""A study served to people (``arteleop study serve``): its run folder and what a person adds.
+
+The served run has the plan a simulated run of the same definition has: the same participant
+ids, counterbalanced orders, practice points and network conditions. People take the planned
+participants' places one after another, in plan order. Beside a simulated run's files it keeps:
+
+- ``participants.csv``: a row for each person once they have consented, with their own answers
+  to the demographic questions and ``source`` ``real``;
+- ``questionnaire.csv``: their own ratings, never a simulated participant's;
+- ``interrupted.csv``: each attempt of a trial that a closed tab, a lost connection or a reload
+  cut short, with the columns of ``trials.csv`` and the outcome ``interrupted``. The trial is
+  then run again from its start; ``trials.csv`` keeps the attempt that ended.
+
+Every file is written whole (a temporary file renamed over it) or grows by whole rows, as a
+simulated run's do; the server holds the folder's lock while it serves.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import csv
+import io
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+from arteleop.analysis.data import (
+    AR_CLASSES,
+    PARTICIPANT_COLUMNS,
+    QUESTIONNAIRE_COLUMNS,
+    QUESTIONNAIRE_ITEMS,
+    TRIAL_COLUMNS,
+)
+from arteleop.errors import ArteleopError, RunFolderError
+from arteleop.study.definition import ParticipantSpec, StudyConfig
+from arteleop.study.plan import TrialSpec
+from arteleop.study.protocol import TrialRecord, trial_row
+from arteleop.study.run_folder import (
+    PARTICIPANTS_FILE,
+    QUESTIONNAIRE_FILE,
+    RunFolder,
+    csv_line,
+    table_text,
+    write_atomic,
+)
+from arteleop.study.run_lock import run_lock
+from arteleop.study.runner import REAL, check_new, new_manifest, open_run, plan_run, utc_now
+from arteleop.study.study_file import study_text
+
+INTERRUPTED_FILE = "interrupted.csv"
+GENDERS = ("female", "male", "diverse", "prefer not to say")
+HANDEDNESS = ("right", "left", "both")
+AGE_RANGE = (18, 99)
+"""Ages a participant may give (years): adults, as an ethics board asks by default."""
+
+
+class SessionInputError(ArteleopError):
+    """A participant's answer is out of its range; the message names the question."""
+
+
+@dataclass(frozen=True)
+class Demographics:
+    """A participant's answers to the questions before the trials (docs/study.md §4).
+
+    Attributes:
+        age: Years.
+        gender: One of :data:`GENDERS`.
+        handedness: One of :data:`HANDEDNESS`.
+        avr_experience: Experience with AR/VR, Likert 1-7.
+        avr_hours: Weekly AR/VR hours: 1 = under 1 h, 2 = 2-5 h, 3 = over 5 h.
+        games_experience: Experience with video games, Likert 1-7.
+        games_hours: Weekly video-game hours, the same buckets.
+    """
+
+    age: int
+    gender: str
+    handedness: str
+    avr_experience: int
+    avr_hours: int
+    games_experience: int
+    games_hours: int
+
+    def __post_init__(self) -> None:
+        _whole("age", self.age, *AGE_RANGE, "years")
+        _choice("gender", self.gender, GENDERS)
+        _choice("handedness", self.handedness, HANDEDNESS)
+        for name in ("avr_experience", "games_experience"):
+            _whole(name, getattr(self, name), 1, 7, "on the 1-7 scale")
+        for name in ("avr_hours", "games_hours"):
+            _whole(name, getattr(self, name), 1, 3, "a weekly-hours bucket")
+
+    @classmethod
+    def from_form(cls, form: Mapping[str, object]) -> Demographics:
+        """The answers as the page gave them (``age`` as typed, an unanswered choice empty or
+        0); :class:`SessionInputError` names the first question to answer again."""
+        age = str(form.get("age", "")).strip()
+        _whole("age", int(age) if age.isdigit() else age, *AGE_RANGE, "years")
+        for key, label in (("gender", "gender"), ("handedness", "handedness"),
+                           ("avr_hours", "AR/VR per week"),
+                           ("games_hours", "video games per week")):  # fmt: skip
+            if form.get(key) in ("", 0, None):
+                raise SessionInputError(f"{label}: choose one of the answers.")
+        keys = ("gender", "handedness", "avr_experience", "avr_hours", "games_experience",
+                "games_hours")  # fmt: skip
+        return cls(int(age), **{key: form[key] for key in keys})  # type: ignore[arg-type]
+
+    def row(self, participant: str) -> tuple[object, ...]:
+        """The participant's row of ``participants.csv``."""
+        return (participant, self.age, self.gender, self.handedness, self.avr_experience,
+                self.avr_hours, self.games_experience, self.games_hours, REAL)  # fmt: skip
+
+
+def _whole(name: str, value: object, low: int, high: int, unit: str) -> None:
+    if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
+        raise SessionInputError(f"{name} {value!r}: expected a whole number {low}-{high} ({unit}).")
+
+
+def _choice(name: str, value: object, options: tuple[str, ...]) -> None:
+    if value not in options:
+        raise SessionInputError(f"{name} {value!r}: expected one of {', '.join(options)}.")
+
+
+Ratings = Mapping[tuple[str, str], int]
+"""A participant's questionnaire: (AR class, item) -> score 1-7, every pair answered."""
+
+
+class ServedRun:
+    """The run folder of a study served to people; see the module's docstring.
+
+    Made by :meth:`create` or :meth:`open`; the caller holds the folder's lock throughout.
+    """
+
+    def __init__(
+        self,
+        folder: RunFolder,
+        study: StudyConfig,
+        plan: list[TrialSpec],
+        people: list[ParticipantSpec],
+    ) -> None:
+        self.folder = folder
+        self.study = study
+        self.plan = plan
+        self.people = people
+
+    @classmethod
+    def create(cls, study: StudyConfig, out: Path) -> ServedRun:
+        """A new served run of ``study`` in the new or empty folder ``out``, which exists."""
+        folder = RunFolder(out)
+        check_new(folder)
+        plan, people = plan_run(study)
+        text = study_text(study)
+        manifest = {**new_manifest(study, text, plan, len(people)), "cohort": REAL}
+        folder.start(text, manifest, table_text(PARTICIPANT_COLUMNS, []))
+        return cls(folder, study, plan, people)
+
+    @classmethod
+    def open(cls, out: Path, study: StudyConfig | None = None) -> ServedRun:
+        """The served run in ``out``, to go on with its next participant; with ``study``,
+        refused if the run was made from another definition."""
+        folder = RunFolder(out)
+        study, plan, people, manifest = open_run(folder, study)
+        if manifest.get("cohort") != REAL:
+            raise RunFolderError(
+                f"{folder.path} holds a simulated run: 'arteleop study resume {folder.path}' "
+                "continues it; give 'study serve' a new folder."
+            )
+        folder.done_rows(repair=True)  # a row a kill cut short is set aside now, and said
+        return cls(folder, study, plan, people)
+
+    def current(self) -> ParticipantSpec | None:
+        """The participant whose session is under way or next: the first, in plan order, with
+        trials or answers missing; None when every session is over."""
+        done = self.folder.done_rows()
+        answered = self._answered()
+        for person in self.people:
+            if any(spec.key not in done for spec in self.trials_of(person.id)):
+                return person
+            if person.id not in answered:
+                return person
+        return None
+
+    def trials_of(self, participant: str) -> list[TrialSpec]:
+        """The participant's planned trials, in session order."""
+        return [spec for spec in self.plan if spec.participant == participant]
+
+    def pending(self, participant: str) -> list[TrialSpec]:
+        """The participant's trials not yet in ``trials.csv``, in session order."""
+        done = self.folder.done_rows()
+        return [spec for spec in self.trials_of(participant) if spec.key not in done]
+
+    def consented(self, participant: str) -> bool:
+        return participant in self._participant_rows()
+
+    def consent(self, participant: str, answers: Demographics) -> None:
+        """The participant has agreed and answered the questions before the trials."""
+        rows = self._participant_rows()
+        rows[participant] = [str(v) for v in answers.row(participant)]
+        order = [p.id for p in self.people]
+        ordered = [rows[pid] for pid in order if pid in rows]
+        write_atomic(self.folder.path / PARTICIPANTS_FILE, table_text(PARTICIPANT_COLUMNS, ordered))
+
+    def keep(self, record: TrialRecord) -> None:
+        """A trial that ended, its outcome whatever it was."""
+        self.folder.append_trial(record.row, record.trace)
+
+    def keep_interrupted(self, spec: TrialSpec) -> None:
+        """An attempt at ``spec`` cut short before it ended: recorded, to be run again."""
+        row = trial_row(spec, {"outcome": "interrupted"})
+        row["trajectory_file"] = ""  # an attempt cut short keeps no trajectory
+        path = self.folder.path / INTERRUPTED_FILE
+        old = path.read_text(encoding="utf-8") if path.exists() else csv_line(TRIAL_COLUMNS)
+        write_atomic(path, old + csv_line(row.get(c) for c in TRIAL_COLUMNS))
+
+    def answered(self, participant: str) -> bool:
+        return participant in self._answered()
+
+    def answer(self, participant: str, ratings: Ratings) -> None:
+        """The participant's questionnaire, every AR class and item rated 1-7."""
+        rows = []
+        for ar_class in AR_CLASSES:
+            for item in QUESTIONNAIRE_ITEMS:
+                score = ratings.get((ar_class, item))
+                _whole(f"{item} of {ar_class}", score, 1, 7, "on the 1-7 scale")
+                rows.append((participant, ar_class, item, score))
+        path = self.folder.path / QUESTIONNAIRE_FILE
+        kept = [row for row in _table(path) if row[0] != participant]
+        order = [p.id for p in self.people]
+        every = sorted([*kept, *rows], key=lambda row: order.index(str(row[0])))
+        write_atomic(path, table_text(QUESTIONNAIRE_COLUMNS, every))
+
+    def finish_if_done(self) -> bool:
+        """When every session is over: ``trials.csv`` in plan order and the manifest's
+        ``finished``; whether it was."""
+        if self.current() is not None:
+            return False
+        self.folder.finish([spec.key for spec in self.plan])
+        manifest = self.folder.manifest()
+        if not manifest.get("finished"):
+            manifest["finished"] = utc_now()
+            self.folder.write_manifest(manifest)
+        return True
+
+    def _participant_rows(self) -> dict[str, list[str]]:
+        return {row[0]: row for row in _table(self.folder.path / PARTICIPANTS_FILE)}
+
+    def _answered(self) -> set[str]:
+        return {row[0] for row in _table(self.folder.path / QUESTIONNAIRE_FILE)}
+
+
+@contextlib.contextmanager
+def served_run(out: Path, study: StudyConfig | None = None) -> Iterator[ServedRun]:
+    """The served run in ``out``, its lock held: carried on where ``out`` holds one (made from
+    ``study`` when given), else begun in the new or empty folder from ``study`` (the default
+    study when none)."""
+    folder = RunFolder(out)
+    if folder.is_run_folder():
+        with run_lock(folder.path):
+            yield ServedRun.open(out, study)
+        return
+    check_new(folder)
+    try:
+        folder.path.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise RunFolderError(f"Cannot create {folder.path}: {err.strerror or err}.") from err
+    with run_lock(folder.path):
+        yield ServedRun.create(study or StudyConfig(), out)
+
+
+def _table(path: Path) -> list[list[str]]:
+    """A CSV's rows below its header; none when the file is not there yet."""
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        return []
+    except (OSError, UnicodeDecodeError) as err:
+        raise RunFolderError(f"Cannot read {path}: {err}.") from err
+    return list(csv.reader(io.StringIO(text)))[1:]

@@ -1,0 +1,218 @@
+"""A study served to people: the run folder's files, and a participant's path in a real browser."""
+
+import csv
+import json
+import os
+import threading
+import time
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from arteleop.errors import RunFolderError
+from arteleop.scene import HeadCameraConfig
+from arteleop.study import CohortConfig, FamiliarizationConfig, StudyConfig, plan_study
+from arteleop.study.plan import EXPERIMENTAL
+from arteleop.study.runner import resume_study
+from arteleop.study.serve import IN_PROGRESS, StudyServer
+from arteleop.study.session import (
+    INTERRUPTED_FILE,
+    Demographics,
+    ServedRun,
+    SessionInputError,
+    served_run,
+)
+
+STUDY = StudyConfig(
+    name="served",
+    modalities=("full", "none"),
+    timeout_s=1.0,
+    familiarization=FamiliarizationConfig(trials=0),
+    cohort=CohortConfig(size=2, avr_experts=0, games_experts=0, both_experts=0),
+)
+"""Two people, two trials of a second each, no practice."""
+ANSWERS = Demographics(31, "female", "right", 5, 2, 3, 1)
+
+
+def _rows(path: Path) -> list[dict[str, str]]:
+    with open(path, encoding="utf-8", newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def test_answers_out_of_range_are_refused_naming_the_question() -> None:
+    form = {"age": "31", "gender": "male", "handedness": "left", "avr_experience": 4,
+            "avr_hours": 1, "games_experience": 4, "games_hours": 3}  # fmt: skip
+    assert Demographics.from_form(form) == Demographics(31, "male", "left", 4, 1, 4, 3)
+    cases = {
+        "age": ("17", "age 17: expected a whole number 18-99 (years)."),
+        "gender": ("", "gender: choose one of the answers."),
+        "games_hours": (0, "video games per week: choose one of the answers."),
+    }
+    for key, (value, message) in cases.items():
+        with pytest.raises(SessionInputError) as err:
+            Demographics.from_form({**form, key: value})
+        assert str(err.value) == message
+    with pytest.raises(SessionInputError, match=r"^age 'thirty': expected a whole number"):
+        Demographics.from_form({**form, "age": "thirty"})
+    with pytest.raises(SessionInputError, match=r"^avr_experience 8: expected a whole number 1-7"):
+        Demographics(31, "male", "left", 8, 1, 4, 3)
+
+
+def test_people_take_the_places_of_a_simulated_runs_plan(tmp_path: Path) -> None:
+    """The same plan as ``study run``; consent, interrupted attempts and answers land in the
+    files in plan order, and a run carries on where it was."""
+    with served_run(tmp_path / "run", STUDY) as run:
+        assert run.plan == plan_study(STUDY)
+        assert json.loads((tmp_path / "run" / "manifest.json").read_text())["cohort"] == "real"
+        assert run.current() is not None and run.current().id == "P01"
+        run.consent("P02", ANSWERS)  # out of order: the file keeps plan order
+        run.consent("P01", Demographics(40, "male", "left", 2, 1, 7, 3))
+        first = run.pending("P01")[0]
+        run.keep_interrupted(first)
+        assert run.pending("P01")[0] == first, "an interrupted trial runs again"
+        with pytest.raises(SessionInputError, match=r"^ease of task 0: expected a whole number"):
+            run.answer("P01", {**dict.fromkeys(_pairs(), 4), ("task", "ease"): 0})
+        run.answer("P01", dict.fromkeys(_pairs(), 6))
+    people = _rows(tmp_path / "run" / "participants.csv")
+    assert [(p["participant"], p["age"], p["source"]) for p in people] == [
+        ("P01", "40", "real"),
+        ("P02", "31", "real"),
+    ]
+    (interrupted,) = _rows(tmp_path / "run" / INTERRUPTED_FILE)
+    assert (interrupted["participant"], interrupted["trial_index"]) == ("P01", "1")
+    assert interrupted["outcome"] == "interrupted" and interrupted["modality"] == first.modality
+    answers = _rows(tmp_path / "run" / "questionnaire.csv")
+    assert len(answers) == 9 and {a["score"] for a in answers} == {"6"}
+    with served_run(tmp_path / "run") as again:  # a restarted server: the same session
+        assert again.consented("P01") and again.current().id == "P01"
+        assert [s.key for s in again.pending("P01")] == [("P01", 1), ("P01", 2)]
+
+
+def test_a_served_run_is_not_resumed_as_a_simulated_one(tmp_path: Path) -> None:
+    with served_run(tmp_path / "run", STUDY):
+        pass
+    with pytest.raises(RunFolderError, match="a study served to people: 'arteleop study serve"):
+        resume_study(tmp_path / "run")
+    with pytest.raises(RunFolderError, match="made from another definition: its key 'timeout_s'"):
+        ServedRun.open(tmp_path / "run", replace(STUDY, timeout_s=5.0))
+
+
+def _pairs() -> list[tuple[str, str]]:
+    return [(c, i) for c in ("embodiment", "manipulation", "task")
+            for i in ("presence", "embodiment", "ease")]  # fmt: skip
+
+
+def _field(tab, label: str):
+    """A text input by its label (viser's text inputs are not linked to their labels)."""
+    row = f"//label[text()='{label}']/ancestor::div[contains(@class,'mantine-Flex-root')][1]"
+    return tab.locator(f"xpath={row}//input").first
+
+
+def _click(tab, name: str, timeout_s: float = 60.0) -> None:
+    tab.get_by_role("button", name=name, exact=True).click(timeout=timeout_s * 1000)
+
+
+SHOTS = Path(os.environ.get("ARTELEOP_SHOTS", "/tmp"))
+
+
+def _green_pixels(shot: np.ndarray) -> int:
+    """Pixels of the target mesh's green (and the gizmo's) in an RGB screenshot."""
+    r, g, b = (shot[..., k].astype(int) for k in range(3))
+    return int((g - np.maximum(r, b) > 35).sum())
+
+
+def _take_part(browser, url: str, greens: list[int]) -> None:
+    first_tab = browser.open(url, for_pictures=False)
+    first = first_tab.playwright
+    first.get_by_text("Information and consent").wait_for()
+    greens.append(_green_pixels(first_tab.screenshot(SHOTS / "consent.png")))
+    watching_tab = browser.open(url, for_pictures=False)
+    watcher = watching_tab.playwright
+    watcher.get_by_text(IN_PROGRESS).wait_for()
+    first.get_by_text("I have read the information above").click()
+    _click(first, "Continue")
+    _field(first, "Age (years)").fill("17")
+    _click(first, "Continue")
+    first.get_by_text("age 17: expected a whole number 18-99 (years).").wait_for()
+    _field(first, "Age (years)").fill("31")
+    choices = {"Gender": "female", "Handedness": "right", "AR/VR per week": "2-5 h",
+               "Video games per week": "under 1 h"}  # fmt: skip
+    for label, option in choices.items():
+        first.get_by_role("combobox", name=label).click()
+        first.get_by_role("option", name=option, exact=True).click()
+    _click(first, "Continue")
+    first.get_by_text("How to drive the robot").wait_for()
+    _click(first, "Continue")
+    first.get_by_text("Trial 1 of 2").wait_for()
+    _click(first, "Start")
+    time.sleep(1.0)  # the trial under way
+    first.close()
+    for k in (1, 2):
+        watcher.get_by_text(f"Trial {k} of 2").wait_for(timeout=30_000)
+        if k == 1:  # the trial cut short, again, its scene shown as it will start
+            greens.append(_green_pixels(watching_tab.screenshot(SHOTS / "before-start.png")))
+        _click(watcher, "Start")
+        watcher.get_by_text("Not placed: timeout.").wait_for(timeout=60_000)
+        _click(watcher, "Next")
+    watcher.get_by_text("Questionnaire").wait_for(timeout=30_000)
+    _click(watcher, "Submit")
+    watcher.get_by_text("Your session is over", exact=False).wait_for(timeout=30_000)
+    _click(watcher, "Next participant (researcher)")
+    watcher.get_by_text("Information and consent").wait_for(timeout=30_000)
+
+
+def test_a_participant_goes_through_the_study_in_a_real_browser(tmp_path: Path) -> None:
+    """Consent, questions (a wrong answer told), a trial cut short by closing the tab (a second
+    tab, which had seen "in progress", takes over and the trial runs again, its scene and
+    layers shown before Start), both trials, the questionnaire, the end; then the next
+    participant's consent page. The files hold what the person gave."""
+    from tests.instruments.browser import chromium, require_chromium
+
+    require_chromium()
+    from arteleop.ar_features import ViewConfig
+
+    camera = HeadCameraConfig(width_px=320, height_px=240)
+    failures: list[BaseException] = []
+    greens: list[int] = []
+    with (
+        served_run(tmp_path / "run", STUDY) as run,
+        StudyServer(run, ViewConfig(port=0), camera) as server,
+    ):
+        # The server on this thread (its sites' OpenGL contexts are this thread's), the
+        # participant on another.
+        def participant() -> None:
+            try:
+                with chromium() as browser:
+                    _take_part(browser, server.url, greens)
+            except BaseException as err:  # reported by the test's thread
+                failures.append(err)
+            finally:
+                server.stop()
+
+        person = threading.Thread(target=participant, daemon=True)
+        person.start()
+        server.serve()
+        person.join(timeout=60)
+    if failures:
+        raise failures[0]
+    # Before the first trial the robot's view without layers (the gizmo's green handles
+    # only); before a trial under full AR, its target mesh and distance bar (measured: 159
+    # and 11,918 pixels).
+    assert greens[0] < 1000 and greens[1] > 5000, greens
+    folder = tmp_path / "run"
+    (person,) = _rows(folder / "participants.csv")
+    assert person == {"participant": "P01", "age": "31", "gender": "female",
+                      "handedness": "right", "avr_experience": "4", "avr_hours": "2",
+                      "games_experience": "4", "games_hours": "1", "source": "real"}  # fmt: skip
+    trials = _rows(folder / "trials.csv")
+    planned = [s for s in plan_study(STUDY) if s.participant == "P01"]
+    assert [(t["trial_index"], t["modality"], t["phase"], t["outcome"]) for t in trials] == [
+        (str(s.trial_index), s.modality, EXPERIMENTAL, "timeout") for s in planned
+    ]
+    assert all((folder / t["trajectory_file"]).is_file() for t in trials)
+    (cut,) = _rows(folder / INTERRUPTED_FILE)
+    assert (cut["participant"], cut["trial_index"], cut["outcome"]) == ("P01", "1", "interrupted")
+    answers = _rows(folder / "questionnaire.csv")
+    assert len(answers) == 9 and {a["participant"] for a in answers} == {"P01"}
