@@ -44,7 +44,8 @@ class LiveInput:
                 hint=f"The gripper closes when the grip reaches {close_at:g} and opens again "
                 f"when it falls to {open_at:g}.",
             )  # fmt: skip
-            self._reach = server.gui.add_text("Reach", "", disabled=True)
+            # Markdown wraps: a read-only text field cut the warning off at the panel's edge.
+            self._reach = server.gui.add_markdown("")
         self._gizmo.on_update(lambda _: on_change(np.array(self._gizmo.position), None))
         self._grip.on_update(lambda _: on_change(None, float(self._grip.value)))
 
@@ -57,6 +58,6 @@ class LiveInput:
         self._on_change(self._start.copy(), 0.0)
 
     def show_reach(self, reachable: bool) -> None:
-        text = "" if reachable else "out of reach: the arm stops at the nearest pose"
-        if self._reach.value != text:
-            self._reach.value = text
+        text = "" if reachable else "**Out of reach:** the arm stops at the nearest pose."
+        if self._reach.content != text:
+            self._reach.content = text

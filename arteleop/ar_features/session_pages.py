@@ -28,8 +28,7 @@ class SessionPages:
         self._gui = gui
         self._page: viser.GuiFolderHandle | None = None
         self._error: viser.GuiMarkdownHandle | None = None
-        self._timer: viser.GuiTextHandle | None = None
-        self._state: viser.GuiTextHandle | None = None
+        self._status: viser.GuiMarkdownHandle | None = None
 
     def message(
         self,
@@ -90,15 +89,15 @@ class SessionPages:
         """Before and during a trial: what it is, its timer and state, and Start."""
         with self._new(heading):
             self._gui.add_markdown(text)
-            self._timer = self._gui.add_text("Timer", "0.0 s", disabled=True)
-            self._state = self._gui.add_text("State", "press Start when ready", disabled=True)
+            # Markdown wraps: a read-only text field cut long states off at the panel's edge.
+            self._status = self._gui.add_markdown(_status(0.0, "press Start when ready"))
             self._button("Start", on_start)
 
     def running(self, elapsed_s: float, state: str) -> None:
         """The trial's timer (s) and state, on its page."""
-        for handle, text in ((self._timer, f"{elapsed_s:.1f} s"), (self._state, state)):
-            if handle is not None and handle.value != text:  # each change is a message
-                handle.value = text
+        text = _status(elapsed_s, state)
+        if self._status is not None and self._status.content != text:  # a change is a message
+            self._status.content = text
 
     def questionnaire(
         self,
@@ -127,7 +126,7 @@ class SessionPages:
     def _new(self, title: str) -> viser.GuiFolderHandle:
         if self._page is not None:
             self._page.remove()
-        self._error = self._timer = self._state = None
+        self._error = self._status = None
         self._page = self._gui.add_folder(title, order=-1.0)
         return self._page
 
@@ -137,6 +136,10 @@ class SessionPages:
 
     def _button(self, label: str, on_click: Callable[[], None]) -> None:
         self._gui.add_button(label).on_click(lambda _: on_click())
+
+
+def _status(elapsed_s: float, state: str) -> str:
+    return f"**Timer** {elapsed_s:.1f} s: {state}"
 
 
 def _bucket(value: str) -> int:

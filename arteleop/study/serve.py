@@ -212,8 +212,8 @@ class StudyServer(Closeable):
             self.view.show(site_frame(site, modality_cues(spec.modality)))
             self._show(lambda p: p.trial(heading, text, lambda: self._act("start")))
             self._wait("start")
-            if self._live is not None:
-                self._live.reset()
+            if (live := self._live) is not None:  # a tab may go meanwhile
+                live.reset()
             self._lost.clear()
             start = time.perf_counter()
             self._trial_running.set()
@@ -241,8 +241,8 @@ class StudyServer(Closeable):
         if self._lost.is_set() or self._stopped.is_set():
             raise SessionInterrupted("the controlling tab went during the trial")
         self._on_pages(lambda p: p.running(status.elapsed_s, status.state))
-        if self._live is not None:
-            self._live.show_reach(status.reachable)
+        if (live := self._live) is not None:
+            live.show_reach(status.reachable)
 
     # Pages and clients: callbacks come on viser's threads.
 

@@ -12,6 +12,7 @@ from arteleop.scene import RemoteSite, SiteConfig
 from arteleop.teleop import NetworkConfig, TrialConfig, run_trial, trial_operator
 
 CONTROL_PERIOD_S = 0.01
+CAMERA_PERIOD_S = 1 / 30
 
 
 class _Scripted:
@@ -86,8 +87,9 @@ def test_the_predictive_ghost_leads_the_delayed_ghost_by_the_round_trip(runs: di
     lead = {d: _lead_s(frames) for d, frames in runs.items()}
     # Without delay it leads by the arm's own tracking of its targets and a camera frame.
     assert 0.1 <= lead[0.0] <= 0.3, lead
+    # The shown gripper moves only at the camera's frames: a lead is read to within one.
     for d in (0.1, 0.2):
-        assert lead[d] - lead[0.0] == pytest.approx(2 * d, abs=CONTROL_PERIOD_S + 1e-9), lead
+        assert lead[d] - lead[0.0] == pytest.approx(2 * d, abs=CAMERA_PERIOD_S), lead
 
 
 def test_before_the_arm_engages_the_two_ghosts_coincide(runs: dict) -> None:
