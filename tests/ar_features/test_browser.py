@@ -5,6 +5,7 @@ frames at two moments are shown under ``none``, ``full`` and ``full`` without th
 headless Chromium's screenshots are compared pixel by pixel.
 """
 
+from collections.abc import Iterator
 from dataclasses import replace
 from pathlib import Path
 
@@ -26,13 +27,21 @@ from arteleop.ar_features.layers.beam import BEAM_WIDTH_PX
 from arteleop.ar_features.live_input import LiveInput
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig, Workspace
 from arteleop.teleop import TrialConfig, display_frames_at, trial_operator, view_assets
-from tests.instruments.browser import browser_page, require_chromium
+from tests.instruments.browser import Browser, chromium, require_chromium
 
 MOMENT_S = 5.0
 """Seed 0 is on its reach to the bowl then: bowl, gripper, a long beam and target all in view
 (the tests check what they need of it)."""
 GHOST_MOMENT_S = 5.3
 """...and a little later, its wrist in view."""
+
+
+@pytest.fixture(scope="module")
+def browser() -> Iterator[Browser]:
+    """One Chromium for the module's tests, a tab each: its shaders compile once."""
+    require_chromium()
+    with chromium() as launched:
+        yield launched
 
 
 @pytest.fixture(scope="module")
@@ -94,14 +103,16 @@ class _Egocentric:
         return np.round(self.size / 2 + self.f * pc[:2] / pc[2]).astype(int)
 
 
-def test_layers_appear_under_full_and_not_under_none(moments: tuple, tmp_path: Path) -> None:
+def test_layers_appear_under_full_and_not_under_none(
+    moments: tuple, tmp_path: Path, browser: Browser
+) -> None:
     (frame, later), assets, _ = moments
     config = ViewConfig(port=0)
     no_ghost = replace(MODALITIES["full"], ghost=False)
     shots = {}
     with OperatorView(config, assets) as view:
         view.show(replace(frame, cues=MODALITIES["none"]))
-        with browser_page(view.url) as page:
+        with browser.tab(view.url) as page:
             for name, shown, cues in (("none", frame, MODALITIES["none"]),
                                       ("full", frame, MODALITIES["full"]),
                                       ("later_full", later, MODALITIES["full"]),
@@ -151,7 +162,7 @@ def test_layers_appear_under_full_and_not_under_none(moments: tuple, tmp_path: P
 
 
 def test_the_page_opens_on_the_head_cameras_view(
-    moment: tuple[DisplayFrame, ViewAssets], tmp_path: Path
+    moment: tuple[DisplayFrame, ViewAssets], tmp_path: Path, browser: Browser
 ) -> None:
     """Egocentric: the target marker's circle (the target mesh) lands where the head camera
     sees the target, and the cloud fills most of the page, not a patch of it."""
@@ -159,7 +170,7 @@ def test_the_page_opens_on_the_head_cameras_view(
     config = ViewConfig(port=0)
     with OperatorView(config, assets) as view:
         view.show(replace(frame, cues=ArCues(target_mesh=True)))
-        with browser_page(view.url) as page:
+        with browser.tab(view.url) as page:
             shot = page.screenshot(tmp_path / "task.png")
             scene_px = page.scene_size_px()
     # Left of the panel, whose "connected" icon is green too.
@@ -177,7 +188,7 @@ def test_the_page_opens_on_the_head_cameras_view(
 
 
 def test_live_input_shows_beside_the_docked_panel(
-    moment: tuple[DisplayFrame, ViewAssets, NDArray[np.float64]], tmp_path: Path
+    moment: tuple[DisplayFrame, ViewAssets, NDArray[np.float64]], tmp_path: Path, browser: Browser
 ) -> None:
     """``arteleop teleop --operator live``: the gizmo at the gripper's rest position (at the
     right edge of the head camera's image) and the Grip slider, its thresholds marked, are in
@@ -188,7 +199,7 @@ def test_live_input_shows_beside_the_docked_panel(
     with OperatorView(config, assets) as view:
         LiveInput(view.server, rest_m, lambda gripper_m, grip: None)
         view.show(replace(frame, cues=MODALITIES["none"]))
-        with browser_page(view.url) as page:
+        with browser.tab(view.url) as page:
             shot = page.screenshot(tmp_path / "live.png")
             scene_px = page.scene_size_px()
             assert page.shows("Grip")
@@ -217,7 +228,7 @@ def _amber(shot: NDArray[np.uint8], scene_px: tuple[float, float]) -> NDArray[np
 
 
 def test_the_predictive_ghost_shows_in_its_colour_under_predictive_only(
-    moment: tuple[DisplayFrame, ViewAssets], tmp_path: Path
+    moment: tuple[DisplayFrame, ViewAssets], tmp_path: Path, browser: Browser
 ) -> None:
     """Where the commands sent will put the arm (here its shoulder swung 0.35 rad ahead of
     the delayed frame), drawn under ``predictive`` and not under ``none`` or ``embodiment``."""
@@ -229,7 +240,7 @@ def test_the_predictive_ghost_shows_in_its_colour_under_predictive_only(
     shots = {}
     with OperatorView(config, assets) as view:
         view.show(replace(frame, cues=MODALITIES["none"]))
-        with browser_page(view.url) as page:
+        with browser.tab(view.url) as page:
             for name in ("none", "embodiment", "predictive"):
                 view.show(replace(frame, cues=MODALITIES[name]))
                 shots[name] = page.screenshot(tmp_path / f"{name}.png")
@@ -240,7 +251,7 @@ def test_the_predictive_ghost_shows_in_its_colour_under_predictive_only(
 
 
 def test_each_frame_replaces_the_cloud_in_the_browser(
-    moment: tuple[DisplayFrame, ViewAssets], tmp_path: Path
+    moment: tuple[DisplayFrame, ViewAssets], tmp_path: Path, browser: Browser
 ) -> None:
     """The cloud's nodes outlive a frame: a frame of other colours, then one of fewer points,
     redraw them in the browser, colours and points together."""
@@ -256,7 +267,7 @@ def test_each_frame_replaces_the_cloud_in_the_browser(
     shares = []
     with OperatorView(ViewConfig(port=0), assets) as view:
         view.show(replace(frame, cues=MODALITIES["none"]))
-        with browser_page(view.url) as page:
+        with browser.tab(view.url) as page:
             for name, shown in (("grey", frame), ("magenta", replace(frame, cloud_colors=magenta)),
                                 ("fewer", fewer)):  # fmt: skip
                 view.show(replace(shown, cues=MODALITIES["none"]))

@@ -120,6 +120,15 @@ class Browser:
             page.locator(".mantine-Notification-root button").first.click()
         return Page(page)
 
+    @contextmanager
+    def tab(self, url: str) -> Iterator[Page]:
+        """:meth:`open`, closed on leaving."""
+        page = self.open(url)
+        try:
+            yield page
+        finally:
+            page.close()
+
 
 @contextmanager
 def chromium() -> Iterator[Browser]:

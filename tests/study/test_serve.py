@@ -27,7 +27,8 @@ from arteleop.study.session import (
 
 STUDY = StudyConfig(
     name="served",
-    modalities=("full", "none"),
+    # The first (P01's) without the ghost, whose meshes take software WebGL seconds to load.
+    modalities=("task", "none"),
     timeout_s=1.0,
     familiarization=FamiliarizationConfig(trials=0),
     cohort=CohortConfig(size=2, avr_experts=0, games_experts=0, both_experts=0),
@@ -198,8 +199,7 @@ def test_a_participant_goes_through_the_study_in_a_real_browser(tmp_path: Path) 
     if failures:
         raise failures[0]
     # Before the first trial the robot's view without layers (the gizmo's green handles
-    # only); before a trial under full AR, its target mesh and distance bar (measured: 159
-    # and 11,918 pixels).
+    # only); before a trial under task AR, its target mesh.
     assert greens[0] < 1000 and greens[1] > 5000, greens
     folder = tmp_path / "run"
     (person,) = _rows(folder / "participants.csv")
