@@ -37,7 +37,8 @@ class LiveInput:
             disable_rotations=True,
             position=self._start,
         )
-        with server.gui.add_folder("Drive the robot"):
+        self._folder = server.gui.add_folder("Drive the robot")
+        with self._folder:
             self._grip = server.gui.add_slider(
                 "Grip", 0.0, 1.0, 0.05, 0.0,
                 marks=((0.0, "open"), open_at, close_at, (1.0, "closed")),
@@ -56,6 +57,11 @@ class LiveInput:
         self._gizmo.position = self._start
         self._grip.value = 0.0
         self._on_change(self._start.copy(), 0.0)
+
+    def show(self, visible: bool) -> None:
+        """Show or hide the gizmo and the panel (hidden: nothing to drag by mistake)."""
+        self._gizmo.visible = visible
+        self._folder.visible = visible
 
     def show_reach(self, reachable: bool) -> None:
         text = "" if reachable else "**Out of reach:** the arm stops at the nearest pose."

@@ -129,6 +129,7 @@ class StudyServer(Closeable):
         self._pages: SessionPages | None = None
         self._live: LiveInput | None = None
         self._page: Callable[[SessionPages], None] = lambda pages: None
+        self._driving = False
         self._trial_running = threading.Event()
         self._lost = threading.Event()
         self._stopped = threading.Event()
@@ -171,7 +172,7 @@ class StudyServer(Closeable):
             self._wait("agree")
             self._ask_demographics(participant)
             self._show(lambda p: p.message("How to drive the robot", TUTORIAL, "Continue",
-                                           lambda: self._act("next")))  # fmt: skip
+                                           lambda: self._act("next")), driving=True)  # fmt: skip
             self._wait("next")
         while pending := run.pending(participant):
             self._trial(pending[0])
@@ -210,7 +211,7 @@ class StudyServer(Closeable):
         with RemoteSite(config.site) as site:
             # The scene as the trial will begin, its layers on, while the person gets ready.
             self.view.show(site_frame(site, modality_cues(spec.modality)))
-            self._show(lambda p: p.trial(heading, text, lambda: self._act("start")))
+            self._show(lambda p: p.trial(heading, text, lambda: self._act("start")), driving=True)
             self._wait("start")
             if (live := self._live) is not None:  # a tab may go meanwhile
                 live.reset()
@@ -246,18 +247,20 @@ class StudyServer(Closeable):
 
     # Pages and clients: callbacks come on viser's threads.
 
-    def _show(self, page: Callable[[SessionPages], None]) -> None:
-        """Show ``page`` now and to any tab that takes control later; clicks on the pages
-        before it are dropped (a double click must not answer the next page)."""
+    def _show(self, page: Callable[[SessionPages], None], driving: bool = False) -> None:
+        """Show ``page`` now and to any tab that takes control later, with the gizmo and the
+        Grip slider if ``driving``; clicks on the pages before it are dropped (a double click
+        must not answer the next page)."""
         while not self._actions.empty():
             kind, _ = self._actions.get_nowait()
             if kind == "stop":
                 self._actions.put((kind, None))
                 break
         with self._lock:
-            self._page = page
-            if self._pages is not None:
+            self._page, self._driving = page, driving
+            if self._pages is not None and self._live is not None:
                 page(self._pages)
+                self._live.show(driving)
 
     def _on_pages(self, change: Callable[[SessionPages], None]) -> None:
         with self._lock:
@@ -294,6 +297,7 @@ class StudyServer(Closeable):
                 self._lost.set()
                 # Not the trial's page again: its Start belongs to the attempt that went.
                 self._page = lambda p: p.message(CUT_SHORT[0], CUT_SHORT[1])
+                self._driving = False
             if self._watching:  # the longest-waiting tab takes over
                 watcher, notice = self._watching.pop(next(iter(self._watching)))
                 notice.remove()
@@ -307,6 +311,7 @@ class StudyServer(Closeable):
         self._live = LiveInput(client, self._rest_gripper_m, self._target.set,
                                grip.close_at, grip.open_at)  # fmt: skip
         self._page(self._pages)
+        self._live.show(self._driving)
 
 
 class SessionStopped(ArteleopError):

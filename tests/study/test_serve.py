@@ -128,6 +128,7 @@ def _take_part(browser, url: str, greens: list[int]) -> None:
     first_tab = browser.open(url, for_pictures=False)
     first = first_tab.playwright
     first.get_by_text("Information and consent").wait_for()
+    first.get_by_text("Drive the robot").wait_for(state="hidden")  # nothing to drag yet
     greens.append(_green_pixels(first_tab.screenshot(SHOTS / "consent.png")))
     watching_tab = browser.open(url, for_pictures=False)
     watcher = watching_tab.playwright
@@ -152,6 +153,7 @@ def _take_part(browser, url: str, greens: list[int]) -> None:
     first.close()
     for k in (1, 2):
         watcher.get_by_text(f"Trial {k} of 2").wait_for(timeout=30_000)
+        watcher.get_by_text("Drive the robot").wait_for()
         if k == 1:  # the trial cut short, again, its scene shown as it will start
             greens.append(_green_pixels(watching_tab.screenshot(SHOTS / "before-start.png")))
         _click(watcher, "Start")
