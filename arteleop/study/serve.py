@@ -210,7 +210,7 @@ class StudyServer(Closeable):
                          realtime=True, render_camera=True)  # fmt: skip
         with RemoteSite(config.site) as site:
             # The scene as the trial will begin, its layers on, while the person gets ready.
-            self.view.show(site_frame(site, modality_cues(spec.modality)))
+            self.view.show(site_frame(site, modality_cues(spec.modality), in_background=True))
             self._show(lambda p: p.trial(heading, text, lambda: self._act("start")), driving=True)
             self._wait("start")
             if (live := self._live) is not None:  # a tab may go meanwhile

@@ -22,6 +22,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from arteleop.ar_features import ArCues, Display, DisplayFrame, PredictedArm, ViewAssets
+from arteleop.errors import SimulationError
 from arteleop.robot import (
     GRIPPER_FRAME,
     HEAD_PAN_JOINT,
@@ -95,14 +96,35 @@ def display_frame(
     )
 
 
-def site_frame(site: RemoteSite, cues: ArCues) -> DisplayFrame:
+RENDER_TIMEOUT_S = 30.0
+"""The longest wait for the render process's frame (s): its start takes a few seconds."""
+
+
+def site_frame(site: RemoteSite, cues: ArCues, in_background: bool = False) -> DisplayFrame:
     """The display of ``site`` as it is now, its cloud rendered: what a view shows between
-    trials (the arm at rest, the bowl where the next trial starts), before any operator."""
+    trials (the arm at rest, the bowl where the next trial starts), before any operator.
+    ``in_background``: rendered by the site's render process, as a real-time trial's frames
+    are (a thread other than the site's own cannot use its OpenGL context)."""
     frame = display_frame(
         site.observe(), site.sight_bowl(), site.frames, site.config.workspace, cues, False,
         site.T_cloud_true,
     )  # fmt: skip
-    return with_cloud(frame, site.capture())
+    if not in_background:
+        return with_cloud(frame, site.capture())
+    end = time.monotonic() + RENDER_TIMEOUT_S
+    while site.frame_pending:  # a stopped trial's frame still rendering: not this one
+        site.poll_frame()
+        _wait_for_render(end)
+    site.request_frame(CLOUD_STRIDE)
+    while (rgbd := site.poll_frame()) is None:
+        _wait_for_render(end)
+    return with_cloud(frame, rgbd, stride=1)  # the render process thinned it already
+
+
+def _wait_for_render(end: float) -> None:
+    if time.monotonic() > end:
+        raise SimulationError(f"The render process gave no frame in {RENDER_TIMEOUT_S:g} s.")
+    time.sleep(0.005)
 
 
 def view_assets(site: RemoteSite) -> ViewAssets:

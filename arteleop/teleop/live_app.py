@@ -13,7 +13,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
-from arteleop.ar_features import OperatorView, ViewConfig
+from arteleop.ar_features import OperatorView, ViewConfig, modality_cues
 from arteleop.ar_features.live_input import LiveInput
 from arteleop.ar_features.trial_panel import TrialPanel
 from arteleop.errors import ArteleopError
@@ -27,7 +27,7 @@ from arteleop.operator import (
     load_recording,
 )
 from arteleop.scene import RemoteSite
-from arteleop.teleop.display_feed import view_assets
+from arteleop.teleop.display_feed import site_frame, view_assets
 from arteleop.teleop.loop import run_trial, trial_operator
 from arteleop.teleop.trial import TrialConfig, TrialProgress, TrialResult
 
@@ -102,6 +102,7 @@ class TeleopApp(Closeable):
         if self._live is None:
             self._start.set()  # a simulated or recorded operator's first trial starts at once
         else:  # a person starts when ready, the page open
+            self._show_rest()
             self.panel.finished(READY, "")
         while not self._stopped.is_set():
             if not self._start.wait(timeout=0.1):
@@ -116,6 +117,9 @@ class TeleopApp(Closeable):
                 result = run_trial(self._source(config), config, self.site, self.view, self._tick)
             except TrialInterrupted:
                 self.site.reset()
+                if self._live is not None:
+                    self._live.reset()
+                self._show_rest()  # not "at the rest pose" over the stopped trial's last frame
                 self.panel.finished(AT_REST, "")
                 continue
             self.results.append(result)
@@ -145,6 +149,11 @@ class TeleopApp(Closeable):
         """End the run after the current control tick."""
         self._stopped.set()
         self._interrupt.set()
+
+    def _show_rest(self) -> None:
+        """The robot at rest on the view, the trial's layers on."""
+        cues = modality_cues(self._trial.modality)
+        self.view.show(site_frame(self.site, cues, in_background=True))
 
     def _source(self, config: TrialConfig) -> OperatorSource:
         mapping = config.controller.mapping

@@ -11,7 +11,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from arteleop.ar_features import ViewConfig
+from arteleop.ar_features import DisplayFrame, ViewConfig
 from arteleop.operator import HandTarget, live_source
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
 from arteleop.teleop import (
@@ -102,12 +102,20 @@ def test_the_app_runs_trial_after_trial_with_the_next_seed(app: TeleopApp) -> No
 
 
 def test_reset_stops_the_trial_and_waits_for_start(app: TeleopApp) -> None:
+    """...and the view shows the robot at rest when the panel says so, not the stopped
+    trial's last frame."""
+    shown: list[DisplayFrame] = []
+    show = app.view.show
+    app.view.show = lambda frame: (shown.append(frame), show(frame))  # type: ignore[method-assign]
+    rest_m = app.site.observe().gripper_m
     runner = threading.Thread(target=app.run)
     runner.start()
     try:
-        assert _until(lambda: app.panel._state.value != "starting")  # the first trial runs
+        assert _until(lambda: len(shown) > 3 and shown[-1].time_s > 0.0)  # the first trial runs
         app.reset()
         assert _until(lambda: app.panel._state.value == "at the rest pose: press Start trial")
+        assert shown[-1].time_s == 0.0 and shown[-1].has_cloud
+        np.testing.assert_allclose(shown[-1].gripper_m, rest_m, atol=1e-3)
         threading.Event().wait(0.5)
         assert app.results == []  # interrupted, not finished
         assert app.site.time_s == 0.0  # and no trial has started since
