@@ -4,7 +4,6 @@ import csv
 import json
 import os
 import threading
-import time
 from dataclasses import replace
 from pathlib import Path
 
@@ -29,11 +28,11 @@ STUDY = StudyConfig(
     name="served",
     # The first (P01's) without the ghost, whose meshes take software WebGL seconds to load.
     modalities=("task", "none"),
-    timeout_s=1.0,
+    timeout_s=2.0,
     familiarization=FamiliarizationConfig(trials=0),
     cohort=CohortConfig(size=2, avr_experts=0, games_experts=0, both_experts=0),
 )
-"""Two people, two trials of a second each, no practice."""
+"""Two people, two trials of two seconds each, no practice."""
 ANSWERS = Demographics(31, "female", "right", 5, 2, 3, 1)
 
 
@@ -149,7 +148,8 @@ def _take_part(browser, url: str, greens: list[int]) -> None:
     _click(first, "Continue")
     first.get_by_text("Trial 1 of 2").wait_for()
     _click(first, "Start")
-    time.sleep(1.0)  # the trial under way
+    # Closed as soon as the trial shows it runs (its page's heading outlives it, on the outcome).
+    first.get_by_text("waiting for the hand to align", exact=False).wait_for()
     first.close()
     for k in (1, 2):
         watcher.get_by_text(f"Trial {k} of 2").wait_for(timeout=30_000)
