@@ -261,3 +261,27 @@ class RunFolder:
     def trials(self) -> pd.DataFrame:
         """trials.csv as a table."""
         return pd.read_csv(self.trials_path, keep_default_na=True)
+
+
+def read_table(path: Path, columns: tuple[str, ...] | None) -> list[list[str]]:
+    """A CSV's rows, header first, each checked to have the header's fields; the header must
+    be ``columns`` when given."""
+    try:
+        with open(path, newline="", encoding="utf-8") as f:
+            rows = [row for row in csv.reader(f) if row]
+    except FileNotFoundError:
+        raise RunFolderError(f"{path}: no such file.") from None
+    except (OSError, UnicodeDecodeError) as err:
+        raise RunFolderError(f"{path}: cannot read it ({err}).") from err
+    if not rows:
+        raise RunFolderError(f"{path} is empty; expected a header line.")
+    if columns is not None and tuple(rows[0]) != columns:
+        raise RunFolderError(
+            f"{path} line 1: header {','.join(rows[0])}; expected {','.join(columns)}."
+        )
+    for number, row in enumerate(rows[1:], start=2):
+        if len(row) != len(rows[0]):
+            raise RunFolderError(
+                f"{path} line {number}: {len(row)} fields, expected {len(rows[0])}."
+            )
+    return rows

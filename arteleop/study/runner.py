@@ -95,10 +95,7 @@ def run_study(
     plan, people = plan_run(study, site)
     text = study_text(study)
     manifest = new_manifest(study, text, plan, len(people))
-    try:
-        folder.path.mkdir(parents=True, exist_ok=True)
-    except OSError as err:
-        raise RunFolderError(f"Cannot create {folder.path}: {err.strerror or err}.") from err
+    make_folder(folder)
     with run_lock(folder.path):
         check_new(folder)  # again, holding the lock: another run may have begun meanwhile
         folder.start(text, manifest, _participants_text(people))
@@ -131,6 +128,14 @@ def new_manifest(
     }
 
 
+def make_folder(folder: RunFolder) -> None:
+    """Create the run folder (and its parents), or say why it cannot be."""
+    try:
+        folder.path.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise RunFolderError(f"Cannot create {folder.path}: {err.strerror or err}.") from err
+
+
 def check_new(folder: RunFolder) -> None:
     """Refuse a folder that holds anything but a lock or a start that a kill cut short."""
     if folder.path.exists() and not folder.path.is_dir():
@@ -158,13 +163,13 @@ def resume_study(
     folder = RunFolder(out)
     _require_run_folder(folder)
     with run_lock(folder.path):
-        recorded, plan, people, manifest = open_run(folder, study)
+        site = StudySite()  # plans the run, then runs its trials: its robot model loads once
+        recorded, plan, people, manifest = open_run(folder, study, site)
         if manifest.get("cohort") == REAL:
             raise RunFolderError(
                 f"{folder.path} is a study served to people: 'arteleop study serve --out "
                 f"{folder.path}' continues it with the next participant."
             )
-        site = StudySite()
         if manifest.get("finished") and len(folder.done_rows(repair=True)) == len(plan):
             notes = "".join(f"\nnote: {note}" for note in folder.notes)
             raise RunComplete(
@@ -175,11 +180,11 @@ def resume_study(
 
 
 def open_run(
-    folder: RunFolder, study: StudyConfig | None = None
+    folder: RunFolder, study: StudyConfig | None = None, site: StudySite | None = None
 ) -> tuple[StudyConfig, list[TrialSpec], list[ParticipantSpec], dict[str, object]]:
     """A run folder to continue, checked: its definition, plan and participants, and its
-    manifest. With ``study``, refuses a folder made from another definition. The caller holds
-    the folder's lock."""
+    manifest. With ``study``, refuses a folder made from another definition; ``site`` plans
+    it (see :func:`plan_run`). The caller holds the folder's lock."""
     _require_run_folder(folder)
     manifest = folder.manifest()
     recorded = _recorded_definition(folder, manifest)
@@ -196,7 +201,7 @@ def open_run(
             "resume it with the version that began it "
             f"({_get(manifest, 'packages', {}).get('arteleop', 'unknown')})."
         )
-    plan, people = plan_run(recorded)
+    plan, people = plan_run(recorded, site)
     planned = manifest.get("plan_sha256")
     if planned is not None and planned != _plan_digest(plan):
         raise RunFolderError(

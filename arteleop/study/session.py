@@ -18,8 +18,6 @@ simulated run's do; the server holds the folder's lock while it serves.
 from __future__ import annotations
 
 import contextlib
-import csv
-import io
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -40,11 +38,20 @@ from arteleop.study.run_folder import (
     QUESTIONNAIRE_FILE,
     RunFolder,
     csv_line,
+    read_table,
     table_text,
     write_atomic,
 )
 from arteleop.study.run_lock import run_lock
-from arteleop.study.runner import REAL, check_new, new_manifest, open_run, plan_run, utc_now
+from arteleop.study.runner import (
+    REAL,
+    check_new,
+    make_folder,
+    new_manifest,
+    open_run,
+    plan_run,
+    utc_now,
+)
 from arteleop.study.study_file import study_text
 
 INTERRUPTED_FILE = "interrupted.csv"
@@ -223,7 +230,7 @@ class ServedRun:
                 _whole(f"{item} of {ar_class}", score, 1, 7, "on the 1-7 scale")
                 rows.append((participant, ar_class, item, score))
         path = self.folder.path / QUESTIONNAIRE_FILE
-        kept = [row for row in _table(path) if row[0] != participant]
+        kept = [row for row in self._rows(path, QUESTIONNAIRE_COLUMNS) if row[0] != participant]
         order = [p.id for p in self.people]
         every = sorted([*kept, *rows], key=lambda row: order.index(str(row[0])))
         write_atomic(path, table_text(QUESTIONNAIRE_COLUMNS, every))
@@ -241,10 +248,17 @@ class ServedRun:
         return True
 
     def _participant_rows(self) -> dict[str, list[str]]:
-        return {row[0]: row for row in _table(self.folder.path / PARTICIPANTS_FILE)}
+        path = self.folder.path / PARTICIPANTS_FILE
+        return {row[0]: row for row in self._rows(path, PARTICIPANT_COLUMNS)}
+
+    @staticmethod
+    def _rows(path: Path, columns: tuple[str, ...]) -> list[list[str]]:
+        """A table's rows below its header; none before the file is written."""
+        return read_table(path, columns)[1:] if path.exists() else []
 
     def _answered(self) -> set[str]:
-        return {row[0] for row in _table(self.folder.path / QUESTIONNAIRE_FILE)}
+        path = self.folder.path / QUESTIONNAIRE_FILE
+        return {row[0] for row in self._rows(path, QUESTIONNAIRE_COLUMNS)}
 
 
 @contextlib.contextmanager
@@ -258,20 +272,6 @@ def served_run(out: Path, study: StudyConfig | None = None) -> Iterator[ServedRu
             yield ServedRun.open(out, study)
         return
     check_new(folder)
-    try:
-        folder.path.mkdir(parents=True, exist_ok=True)
-    except OSError as err:
-        raise RunFolderError(f"Cannot create {folder.path}: {err.strerror or err}.") from err
+    make_folder(folder)
     with run_lock(folder.path):
         yield ServedRun.create(study or StudyConfig(), out)
-
-
-def _table(path: Path) -> list[list[str]]:
-    """A CSV's rows below its header; none when the file is not there yet."""
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        return []
-    except (OSError, UnicodeDecodeError) as err:
-        raise RunFolderError(f"Cannot read {path}: {err}.") from err
-    return list(csv.reader(io.StringIO(text)))[1:]
