@@ -312,8 +312,8 @@ def test_trial_options_reach_the_operator_and_the_filter() -> None:
 def test_study_serve_refuses_what_it_cannot_serve_into(
     capsys: pytest.CaptureFixture[str], tmp_path: Path
 ) -> None:
-    """A file for the run folder, a folder of other files, a host it cannot bind (before any
-    folder is begun), a simulated run's folder."""
+    """A file for the run folder, a folder of other files, a host it cannot bind or a port
+    taken (before any folder is begun), a simulated run's folder."""
     (tmp_path / "file").write_text("x")
     (tmp_path / "notes").mkdir()
     (tmp_path / "notes" / "a.txt").write_text("mine")
@@ -327,6 +327,14 @@ def test_study_serve_refuses_what_it_cannot_serve_into(
     out = tmp_path / "new"
     message = _error(capsys, ["study", "serve", "--out", str(out), "--host", "192.0.2.1"])
     assert message.startswith("--host 192.0.2.1: this machine cannot serve on 192.0.2.1")
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen()
+        port = taken.getsockname()[1]
+        assert _error(capsys, ["study", "serve", "--out", str(out), "--port", str(port)]) == (
+            f"--port {port}: taken on 127.0.0.1 (Address already in use). Stop what serves "
+            "there, or give another port (0: any free one)."
+        )
     assert not out.exists()
     simulated = tmp_path / "simulated"
     simulated.mkdir()

@@ -27,8 +27,9 @@ class HostCheck:
     addresses: tuple[str, ...]
 
 
-def check_host(host: str) -> HostCheck:
-    """Resolve ``host`` and try binding it; raise :class:`ViewHostError` if it cannot be."""
+def check_host(host: str, port: int = 0) -> HostCheck:
+    """Resolve ``host`` and try binding it; raise :class:`ViewHostError` if it cannot be, or,
+    given a ``port``, if that port is taken there."""
     try:
         infos = socket.getaddrinfo(host, None, type=socket.SOCK_STREAM)
     except OSError as err:
@@ -38,14 +39,16 @@ def check_host(host: str) -> HostCheck:
         ) from None
     family, _, _, _, address = infos[0]
     ip = address[0]
-    with socket.socket(family, socket.SOCK_STREAM) as probe:
-        try:
-            probe.bind((ip, 0))
-        except OSError as err:
-            raise ViewHostError(
-                f"--host {host}: this machine cannot serve on {ip} ({err.strerror}). Use "
-                "127.0.0.1 (this machine only) or an address of one of its network interfaces."
-            ) from None
+    if (err := _bind(family, ip, 0)) is not None:
+        raise ViewHostError(
+            f"--host {host}: this machine cannot serve on {ip} ({err.strerror}). Use "
+            "127.0.0.1 (this machine only) or an address of one of its network interfaces."
+        )
+    if port and (err := _bind(family, ip, port)) is not None:
+        raise ViewHostError(
+            f"--port {port}: taken on {ip} ({err.strerror}). Stop what serves there, or give "
+            "another port (0: any free one)."
+        )
     unspecified = ipaddress.ip_address(ip).is_unspecified
     loopback = ipaddress.ip_address(ip).is_loopback
     addresses: tuple[str, ...] = (ip,)
@@ -53,3 +56,15 @@ def check_host(host: str) -> HostCheck:
         names = {i[4][0] for i in socket.getaddrinfo(socket.gethostname(), None, family)}
         addresses = tuple(sorted(names - {ip})) or ("127.0.0.1",)
     return HostCheck(loopback, addresses)
+
+
+def _bind(family: socket.AddressFamily, ip: str, port: int) -> OSError | None:
+    """Why ``(ip, port)`` cannot be bound, None if it can."""
+    with socket.socket(family, socket.SOCK_STREAM) as probe:
+        # As the server binds: a port that a server just stopped left in TIME_WAIT is free.
+        probe.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+        try:
+            probe.bind((ip, port))
+        except OSError as err:
+            return err
+    return None

@@ -29,6 +29,7 @@ from arteleop.ar_features.layers import (
     PredictiveGhostLayer,
     TargetLayer,
 )
+from arteleop.ar_features.links import LinkGate, link_url
 from arteleop.ar_features.modalities import ArCues
 from arteleop.ar_features.panel import ModalityPanel
 from arteleop.errors import ConfigurationError
@@ -53,6 +54,8 @@ class ViewConfig:
             camera image fits beside the docked panel.
         layer_panel: A panel to switch the AR layers live; off where the layers are a
             study's condition, not the viewer's choice (``arteleop study serve``).
+        links: Admit only browsers that open a link with an allowed token
+            (:attr:`OperatorView.gate`); none until tokens are allowed.
     """
 
     host: str = "127.0.0.1"
@@ -61,6 +64,7 @@ class ViewConfig:
     vertical_fov_deg: float = 44.3
     horizontal_fov_deg: float = 57.0
     layer_panel: bool = True
+    links: bool = False
 
     def fitting_fov_rad(self, aspect: float) -> float:
         """The vertical field of view (rad) that shows the whole camera image in a scene of
@@ -98,6 +102,8 @@ class OperatorView(Closeable):
             self.server = server = viser.ViserServer(
                 host=config.host, port=config.port, verbose=False
             )
+        # Before anything is drawn: a browser without a link must never be sent the scene.
+        self.gate = LinkGate(server) if config.links else None
         server.scene.set_up_direction("+z")  # Baxter's base frame
         server.gui.configure_theme(show_logo=False, show_share_button=False)
         # Docked beside the scene, the panel hides none of the camera image (floating, it
@@ -126,15 +132,20 @@ class OperatorView(Closeable):
         """Address to open in a browser (a real address of this machine for 0.0.0.0)."""
         return f"http://{self.host.addresses[0]}:{self.server.get_port()}"
 
+    def link(self, token: str) -> str:
+        """The address that admits a browser with ``token`` (see :attr:`ViewConfig.links`)."""
+        return link_url(self.url, token)
+
     def notices(self) -> list[str]:
         """What the user should know about where the view is served, one line each."""
         out = []
         if self.config.port and self.server.get_port() != self.config.port:
             out.append(f"port {self.config.port} is taken; serving on {self.server.get_port()}")
         if not self.host.loopback:
+            who = "anyone on that network" + (" with a link" if self.gate else "")
             out.append(
-                f"warning: the view is served on {self.config.host}: anyone on that network "
-                "can see it and drive the robot"
+                f"warning: the view is served on {self.config.host}: {who} can see it and drive "
+                "the robot"
             )
         return out
 

@@ -176,9 +176,11 @@ class StudyServeCommand:
     out: Path = Path("arteleop-served")
     """the run folder: a new or empty one begins the run; one that holds a served run carries on with its next participant"""
     host: str = "127.0.0.1"
-    """interface to serve the page on; 0.0.0.0 lets other machines connect (and so drive the robot)"""
+    """interface to serve the page on; another than this machine's (0.0.0.0: every interface) lets other machines connect, each participant by their own link"""
     port: int = 8080
-    """port to serve the page on; the next free one if it is taken"""
+    """port to serve the page on; refused if it is taken (0: any free one)"""
+    links: bool = False
+    """each participant joins by a link of their own (printed as their session begins); always so when --host lets other machines connect"""
     width_px: int = 640
     """camera image width (px): the simulated cohort's; 320x240 keeps 30 frames/s on a loaded two-core machine"""
     height_px: int = 480
@@ -195,10 +197,15 @@ def study_serve(cmd: StudyServeCommand) -> int:
 
     study = None if cmd.file is None else load_study_file(cmd.file)[0]
     camera = HeadCameraConfig(width_px=cmd.width_px, height_px=cmd.height_px)
-    check_host(cmd.host)  # before the run folder is begun
+    host = check_host(cmd.host, cmd.port)  # before the run folder is begun
+    view = ViewConfig(host=cmd.host, port=cmd.port, links=cmd.links or not host.loopback)
+
+    def tell_link(participant: str, url: str) -> None:
+        print(f"participant {participant}'s link: {url}", flush=True)
+
     with (
         served_run(cmd.out, study) as run,
-        StudyServer(run, ViewConfig(host=cmd.host, port=cmd.port), camera) as server,
+        StudyServer(run, view, camera, tell_link) as server,
     ):
         for notice in server.view.notices():
             print(notice, file=sys.stderr)
@@ -207,7 +214,8 @@ def study_serve(cmd: StudyServeCommand) -> int:
             print(f"{cmd.out}: every session is done; nothing to serve.")
             return 0
         done = run.people.index(person)  # sessions end in plan order
-        print(f"serving {run.study.name!r} into {cmd.out} at {server.url}: participant "
+        where = "by links" if server.view.gate else f"at {server.url}"
+        print(f"serving {run.study.name!r} into {cmd.out} {where}: participant "
               f"{person.id} next, {done} of {len(run.people)} sessions done; Ctrl-C stops, "
               f"'arteleop study serve --out {cmd.out}' carries on")  # fmt: skip
         try:

@@ -9,10 +9,15 @@ its condition's AR layers and network delay, its timer from motion onset; it sta
 person presses Start.
 
 One browser tab controls the session, the first to connect; another sees the robot's view and
-"a session is in progress". When the controlling tab goes (closed, reloaded, the connection
-lost) during a trial, the attempt is recorded as interrupted and the trial runs again from its
-start once a tab is back; between trials nothing is lost, and the next tab carries on where
-the session was. A server stopped and started again on the folder carries on the same way.
+"a session is in progress". Served with links (:attr:`ViewConfig.links`), a browser connects
+only through the session's participant's own link (:meth:`ServedRun.token`): any other address
+gets nothing, and a session's link stops working when the next participant's session begins;
+an ended session's tab keeps its last page until the next participant's tab connects.
+
+When the controlling tab goes (closed, reloaded, the connection lost) during a trial, the
+attempt is recorded as interrupted and the trial runs again from its start once a tab is back;
+between trials nothing is lost, and the next tab carries on where the session was. A server
+stopped and started again on the folder carries on the same way.
 """
 
 from __future__ import annotations
@@ -107,14 +112,21 @@ class StudyServer(Closeable):
 
     Args:
         run: The served run (its lock held by the caller).
-        view: Where the page is served.
+        view: Where the page is served; with ``links``, each session by its participant's link.
         camera: The head camera of every trial (its registration stays the study's).
+        on_link: Told each session's participant and link as the session begins (with links).
     """
 
     def __init__(
-        self, run: ServedRun, view: ViewConfig, camera: HeadCameraConfig | None = None
+        self,
+        run: ServedRun,
+        view: ViewConfig,
+        camera: HeadCameraConfig | None = None,
+        on_link: Callable[[str, str], None] = lambda participant, url: None,
     ) -> None:
         self.run = run
+        self._on_link = on_link
+        self._token: str | None = None
         self._site = StudySite(SiteConfig(camera=camera) if camera else None)
         with RemoteSite(self._site.base) as site:
             # The layers are the trial's condition: no panel to switch them.
@@ -166,6 +178,11 @@ class StudyServer(Closeable):
 
     def _session(self, participant: str) -> None:
         run = self.run
+        if (gate := self.view.gate) is not None:
+            with self._lock:
+                self._token = run.token(participant)
+            gate.allow({self._token})
+            self._on_link(participant, self.view.link(self._token))
         if not run.consented(participant):
             text = run.study.consent or CONSENT
             self._show(lambda p: p.consent(text, AGREE, lambda: self._act("agree")))
@@ -181,7 +198,12 @@ class StudyServer(Closeable):
             items = [(i, ITEM_TEXT[i]) for i in QUESTIONNAIRE_ITEMS]
             self._show(lambda p: p.questionnaire(classes, items, lambda r: self._act("rate", r)))
             run.answer(participant, self._wait("rate"))
-        if run.current() is not None:
+        if self.view.gate is not None:  # the next participant comes by their own link
+            self._show(lambda p: p.message("Thank you", "Your session is over: thank you for "
+                                           "taking part. You can close this page."))  # fmt: skip
+            with self._lock:  # the tab keeps its page and controls nothing more
+                self._controller = self._pages = self._live = None
+        elif run.current() is not None:
             self._show(lambda p: p.message("Thank you", "Your session is over: thank you for "
                                            "taking part. Please tell the researcher.",
                                            "Next participant (researcher)",
@@ -282,6 +304,10 @@ class StudyServer(Closeable):
 
     def _connect(self, client: viser.ClientHandle) -> None:
         with self._lock:
+            if (gate := self.view.gate) is not None:
+                gate.expel(keep=self._token)  # the ended sessions' tabs, with this one's arrival
+                if gate.token_of(client.client_id) != self._token:
+                    return
             if self._controller is None:
                 self._take_control(client)
             else:

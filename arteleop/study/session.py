@@ -7,6 +7,9 @@ participants' places one after another, in plan order. Beside a simulated run's 
 - ``participants.csv``: a row for each person once they have consented, with their own answers
   to the demographic questions and ``source`` ``real``;
 - ``questionnaire.csv``: their own ratings, never a simulated participant's;
+- ``links.key``: where participants join by link (``study serve --links``), the key their
+  links' tokens are made from: a participant's link stays the same across server restarts.
+  Only this file makes links: it holds no data, and deleting it after the study ends them all;
 - ``interrupted.csv``: each attempt of a trial that a closed tab, a lost connection or a reload
   cut short, with the columns of ``trials.csv`` and the outcome ``interrupted``. The trial is
   then run again from its start; ``trials.csv`` keeps the attempt that ended.
@@ -17,7 +20,12 @@ simulated run's do; the server holds the folder's lock while it serves.
 
 from __future__ import annotations
 
+import base64
 import contextlib
+import hashlib
+import hmac
+import os
+import secrets
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -29,6 +37,7 @@ from arteleop.analysis.data import (
     QUESTIONNAIRE_ITEMS,
     TRIAL_COLUMNS,
 )
+from arteleop.ar_features.links import TOKEN_BYTES
 from arteleop.errors import ArteleopError, RunFolderError
 from arteleop.study.definition import ParticipantSpec, StudyConfig
 from arteleop.study.plan import TrialSpec
@@ -55,6 +64,7 @@ from arteleop.study.runner import (
 from arteleop.study.study_file import study_text
 
 INTERRUPTED_FILE = "interrupted.csv"
+LINKS_KEY_FILE = "links.key"
 GENDERS = ("female", "male", "diverse", "prefer not to say")
 HANDEDNESS = ("right", "left", "both")
 AGE_RANGE = (18, 99)
@@ -194,6 +204,19 @@ class ServedRun:
         """The participant's trials not yet in ``trials.csv``, in session order."""
         done = self.folder.done_rows()
         return [spec for spec in self.trials_of(participant) if spec.key not in done]
+
+    def token(self, participant: str) -> str:
+        """The token of ``participant``'s link: unguessable without the folder's key (made on
+        first use, readable by its owner only), the same each time it is asked for."""
+        path = self.folder.path / LINKS_KEY_FILE
+        if not path.exists():
+            with contextlib.suppress(FileExistsError):
+                fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+                with os.fdopen(fd, "w", encoding="ascii") as key_file:
+                    key_file.write(secrets.token_hex(32))
+        key = bytes.fromhex(path.read_text(encoding="ascii").strip())
+        digest = hmac.new(key, participant.encode(), hashlib.sha256).digest()[:TOKEN_BYTES]
+        return base64.urlsafe_b64encode(digest).decode().rstrip("=")
 
     def consented(self, participant: str) -> bool:
         return participant in self._participant_rows()

@@ -3,7 +3,10 @@
 import csv
 import json
 import os
+import queue
+import re
 import threading
+import time
 from dataclasses import replace
 from pathlib import Path
 
@@ -18,11 +21,13 @@ from arteleop.study.runner import resume_study
 from arteleop.study.serve import IN_PROGRESS, StudyServer
 from arteleop.study.session import (
     INTERRUPTED_FILE,
+    LINKS_KEY_FILE,
     Demographics,
     ServedRun,
     SessionInputError,
     served_run,
 )
+from tests.instruments.view_probe import ViewProbe
 
 STUDY = StudyConfig(
     name="served",
@@ -90,6 +95,19 @@ def test_people_take_the_places_of_a_simulated_runs_plan(tmp_path: Path) -> None
         assert [s.key for s in again.pending("P01")] == [("P01", 1), ("P01", 2)]
 
 
+def test_a_participants_link_is_their_own_and_survives_a_restart(tmp_path: Path) -> None:
+    with served_run(tmp_path / "run", STUDY) as run:
+        first, second = run.token("P01"), run.token("P02")
+    key = tmp_path / "run" / LINKS_KEY_FILE
+    assert key.stat().st_mode & 0o777 == 0o600, "only its owner reads the key"
+    assert first != second and all(re.fullmatch(r"[A-Za-z0-9_-]{22}", t) for t in (first, second))
+    with served_run(tmp_path / "run") as again:
+        assert again.token("P01") == first
+    key.write_text("00" * 32)  # another key: every link changes
+    with served_run(tmp_path / "run") as rekeyed:
+        assert rekeyed.token("P01") != first
+
+
 def test_a_served_run_is_not_resumed_as_a_simulated_one(tmp_path: Path) -> None:
     with served_run(tmp_path / "run", STUDY):
         pass
@@ -123,13 +141,24 @@ def _green_pixels(shot: np.ndarray) -> int:
     return int((g - np.maximum(r, b) > 35).sum())
 
 
-def _take_part(browser, url: str, greens: list[int]) -> None:
-    first_tab = browser.open(url, for_pictures=False)
+def _take_part(browser, server: StudyServer, links: queue.Queue, greens: list[int]) -> None:
+    gate = server.view.gate
+    stranger = browser.open(server.url, for_pictures=False)  # the address, without a link
+    deadline = time.monotonic() + 30
+    while not gate.refused and time.monotonic() < deadline:
+        time.sleep(0.05)
+    # Every tab let in gets the view's own controls; this one got nothing.
+    assert gate.refused
+    assert stranger.playwright.get_by_role("button", name="Egocentric view").count() == 0
+    stranger.close()
+    participant, link = links.get(timeout=60)
+    assert participant == "P01"
+    first_tab = browser.open(link, for_pictures=False)
     first = first_tab.playwright
     first.get_by_text("Information and consent").wait_for()
     first.get_by_text("Drive the robot").wait_for(state="hidden")  # nothing to drag yet
     greens.append(_green_pixels(first_tab.screenshot(SHOTS / "consent.png")))
-    watching_tab = browser.open(url, for_pictures=False)
+    watching_tab = browser.open(link, for_pictures=False)
     watcher = watching_tab.playwright
     watcher.get_by_text(IN_PROGRESS).wait_for()
     first.get_by_text("I have read the information above").click()
@@ -161,16 +190,22 @@ def _take_part(browser, url: str, greens: list[int]) -> None:
         _click(watcher, "Next")
     watcher.get_by_text("Questionnaire").wait_for(timeout=30_000)
     _click(watcher, "Submit")
-    watcher.get_by_text("Your session is over", exact=False).wait_for(timeout=30_000)
-    _click(watcher, "Next participant (researcher)")
-    watcher.get_by_text("Information and consent").wait_for(timeout=30_000)
+    watcher.get_by_text("You can close this page", exact=False).wait_for(timeout=30_000)
+    participant, next_link = links.get(timeout=30)
+    assert participant == "P02" and next_link != link
+    # The next link admits its participant; P01's, no one now.
+    for admitted, address in ((True, next_link), (False, link)):
+        with ViewProbe(address.rpartition("=")[2].replace("ws://", "http://", 1)) as probe:
+            time.sleep(0.5)
+            assert bool(probe.messages()) == admitted, address
 
 
 def test_a_participant_goes_through_the_study_in_a_real_browser(tmp_path: Path) -> None:
-    """Consent, questions (a wrong answer told), a trial cut short by closing the tab (a second
-    tab, which had seen "in progress", takes over and the trial runs again, its scene and
-    layers shown before Start), both trials, the questionnaire, the end; then the next
-    participant's consent page. The files hold what the person gave."""
+    """By the participant's link (the server's bare address shows nothing): consent,
+    questions (a wrong answer told), a trial cut short by closing the tab (a second tab, which
+    had seen "in progress", takes over and the trial runs again, its scene and layers shown
+    before Start), both trials, the questionnaire, the end; then the next participant's link
+    admits them, and the first link no one. The files hold what the person gave."""
     from tests.instruments.browser import chromium, require_chromium
 
     require_chromium()
@@ -179,16 +214,22 @@ def test_a_participant_goes_through_the_study_in_a_real_browser(tmp_path: Path) 
     camera = HeadCameraConfig(width_px=320, height_px=240)
     failures: list[BaseException] = []
     greens: list[int] = []
+    links: queue.Queue[tuple[str, str]] = queue.Queue()
     with (
         served_run(tmp_path / "run", STUDY) as run,
-        StudyServer(run, ViewConfig(port=0), camera) as server,
+        StudyServer(
+            run,
+            ViewConfig(port=0, links=True),
+            camera,
+            lambda participant, url: links.put((participant, url)),
+        ) as server,  # fmt: skip
     ):
         # The server on this thread (its sites' OpenGL contexts are this thread's), the
         # participant on another.
         def participant() -> None:
             try:
                 with chromium() as browser:
-                    _take_part(browser, server.url, greens)
+                    _take_part(browser, server, links, greens)
             except BaseException as err:  # reported by the test's thread
                 failures.append(err)
             finally:

@@ -1,0 +1,84 @@
+"""Links that admit a browser to the view: a token in the address, checked before any data.
+
+A browser that opens :func:`link_url` connects its socket to ``ws://HOST:PORT/TOKEN`` (viser's
+client takes the socket's address from the page's ``websocket`` parameter). :class:`LinkGate`
+looks at that path as the socket opens, before the server has sent it anything, and closes
+every socket whose token is not allowed: such a browser gets the page's empty frame, never the
+robot's view, a page of the study or a control.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Iterable
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import viser
+
+TOKEN_BYTES = 16
+"""A token's length: 128 random bits, beyond guessing."""
+
+
+def link_url(url: str, token: str) -> str:
+    """The address that admits a browser with ``token`` to the view served at ``url``
+    (``http://HOST:PORT``)."""
+    return f"{url}/?websocket={url.replace('http://', 'ws://', 1)}/{token}"
+
+
+class LinkGate:
+    """Admits only the sockets that carry an allowed token to ``server``; none at first.
+
+    Works on viser's socket server itself (pinned 1.1.1): its connection callbacks run as a
+    socket opens, before the scene's messages are sent, where the server's public callbacks
+    run only after the browser has been sent the scene.
+    """
+
+    def __init__(self, server: viser.ViserServer) -> None:
+        self._sockets = server._websock_server
+        self._allowed: frozenset[str] = frozenset()
+        self._tokens: dict[int, str] = {}
+        self._lock = threading.Lock()
+        self.refused = 0
+        """Sockets closed so far for want of an allowed token."""
+        self._sockets.on_client_connect(self._check)
+        self._sockets.on_client_disconnect(self._forget)
+
+    def allow(self, tokens: Iterable[str]) -> None:
+        """From now on only sockets with one of ``tokens`` open; those open stay."""
+        with self._lock:
+            self._allowed = frozenset(tokens)
+
+    def token_of(self, client_id: int) -> str | None:
+        """The token of an open socket (a viser client's id)."""
+        with self._lock:
+            return self._tokens.get(client_id)
+
+    def expel(self, keep: str | None) -> None:
+        """Close every open socket whose token is not ``keep``."""
+        loop = self._sockets._background_event_loop
+        with self._lock:
+            gone = [cid for cid, token in self._tokens.items() if token != keep]
+        for client_id in gone:
+            if loop is not None:
+                loop.call_soon_threadsafe(self._abort, client_id)
+
+    def _check(self, client: viser.infra.WebsockClientConnection) -> None:
+        """On viser's event loop, as a socket opens."""
+        socket = self._sockets._live_connections[client.client_id]
+        token = socket.request.path.lstrip("/") if socket.request is not None else ""
+        with self._lock:
+            if token in self._allowed:
+                self._tokens[client.client_id] = token
+                return
+            self.refused += 1
+        socket.transport.abort()  # nothing sent, nothing more can be
+
+    def _forget(self, client: viser.infra.WebsockClientConnection) -> None:
+        with self._lock:
+            self._tokens.pop(client.client_id, None)
+
+    def _abort(self, client_id: int) -> None:
+        socket = self._sockets._live_connections.get(client_id)
+        if socket is not None:
+            socket.transport.abort()
