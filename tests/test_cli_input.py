@@ -216,9 +216,9 @@ def test_ctrl_c_ends_a_trial_cleanly() -> None:
 
 def test_ctrl_c_stops_a_parallel_study_at_once_and_resume_finishes_it(tmp_path) -> None:
     definition = tmp_path / "s.toml"
-    # Without AR a trial takes 25-40 simulated seconds, 5-10 s of wall at today's speed: the
-    # Ctrl-C, 3 s into the trials, comes while both run, not during the report.
-    definition.write_text('modalities = ["none"]\ntimeout_s = 60.0\n[familiarization]\n'
+    # Without AR a trial takes 25-40 simulated seconds, cut at 30 (5-7 s of wall at today's
+    # speed): the Ctrl-C, 3 s into the trials, comes while both run, not during the report.
+    definition.write_text('modalities = ["none"]\ntimeout_s = 30.0\n[familiarization]\n'
                           "trials = 0\n[cohort]\nsize = 2\navr_experts = 0\n"
                           "games_experts = 0\nboth_experts = 0\n")  # fmt: skip
     run = tmp_path / "run"

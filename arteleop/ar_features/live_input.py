@@ -1,11 +1,15 @@
-"""Live input for users without IMUs: a gizmo for the gripper's target and a grip slider.
+"""Live input for users without IMUs: a gizmo for the gripper's target, step buttons, a grip slider.
 
-Both only set a target; the loop drives the robot towards it through the same mapping, IK and
-trajectory as a wearable's samples. The gizmo starts at the gripper's rest position.
+Each only sets a target; the loop drives the robot towards it through the same mapping, IK and
+trajectory as a wearable's samples. The gizmo starts at the gripper's rest position. The step
+buttons move the target as the head camera sees it (left and right in its image, away and
+nearer on the table, up and down), for a person who cannot or would rather not drag; they work
+from the keyboard too (Tab to a button, Space or Enter to press it).
 """
 
 from __future__ import annotations
 
+import threading
 from collections.abc import Callable
 
 import numpy as np
@@ -13,6 +17,27 @@ import viser
 from numpy.typing import ArrayLike, NDArray
 
 GIZMO_SCALE_M = 0.15
+STEPS_M = {"5 cm": 0.05, "1 cm": 0.01}
+"""The step buttons' sizes: a reach's scale, and the bowl's placement tolerance's."""
+ACROSS = ("left", "away", "nearer", "right")
+HEIGHT = ("up", "down")
+GIZMO, BUTTONS = "gizmo", "buttons"
+"""The input devices a trial can be driven with (:meth:`LiveInput.take_devices`)."""
+
+
+def step_directions(T_base_camera: ArrayLike) -> dict[str, NDArray[np.float64]]:
+    """Unit directions in the base frame (z up) of each step button: left and right along the
+    camera image's rows, away and nearer along its line of sight, both flattened onto the
+    table; up and down along z. ``T_base_camera`` is the optical frame's pose (z forward, x
+    right in the image)."""
+    R = np.asarray(T_base_camera, dtype=np.float64)[:3, :3]
+    right, forward = R[:, 0].copy(), R[:, 2].copy()
+    right[2] = forward[2] = 0.0
+    right /= np.linalg.norm(right)
+    forward /= np.linalg.norm(forward)
+    up = np.array([0.0, 0.0, 1.0])
+    return {"left": -right, "right": right, "away": forward, "nearer": -forward, "up": up,
+            "down": -up}  # fmt: skip
 
 
 class LiveInput:
@@ -28,13 +53,18 @@ class LiveInput:
         on_change: Callable[[NDArray[np.float64] | None, float | None], None],
         close_at: float = 0.6,
         open_at: float = 0.4,
+        T_base_camera: ArrayLike | None = None,
     ) -> None:
         self._start = np.asarray(start_m, dtype=np.float64)
         self._on_change = on_change
+        self._used: set[str] = set()
+        self._stepping = threading.Lock()
         self._gizmo = server.scene.add_transform_controls(
             "/live/gripper_target",
             scale=GIZMO_SCALE_M,
             disable_rotations=True,
+            # Over the cloud: at the gripper its own points would hide most of the handles.
+            depth_test=False,
             position=self._start,
         )
         self._folder = server.gui.add_folder("Drive the robot")
@@ -45,18 +75,47 @@ class LiveInput:
                 hint=f"The gripper closes when the grip reaches {close_at:g} and opens again "
                 f"when it falls to {open_at:g}.",
             )  # fmt: skip
+            if T_base_camera is not None:
+                self._add_steps(server.gui, step_directions(T_base_camera))
             # Markdown wraps: a read-only text field cut the warning off at the panel's edge.
             self._reach = server.gui.add_markdown("")
-        self._gizmo.on_update(lambda _: on_change(np.array(self._gizmo.position), None))
+        self._gizmo.on_update(lambda _: self._moved(GIZMO, np.array(self._gizmo.position)))
         self._grip.on_update(lambda _: on_change(None, float(self._grip.value)))
 
+    def _add_steps(self, gui: viser.GuiApi, directions: dict[str, NDArray[np.float64]]) -> None:
+        size = gui.add_dropdown("Step", tuple(STEPS_M), hint="How far each button moves the "
+                                "gripper's target.")  # fmt: skip
+        for label, names in (("Move", ACROSS), ("Height", HEIGHT)):
+            group = gui.add_button_group(label, names)
+
+            def step(event: viser.GuiEvent[viser.GuiButtonGroupHandle]) -> None:
+                delta = STEPS_M[size.value] * directions[event.target.value]
+                with self._stepping:  # clicks come on a pool's threads: none may be lost
+                    position = np.asarray(self._gizmo.position) + delta
+                    self._gizmo.position = position  # set from here: on_update is not called
+                    self._moved(BUTTONS, position)
+
+            group.on_click(step)
+
+    def _moved(self, device: str, position: NDArray[np.float64]) -> None:
+        self._used.add(device)
+        self._on_change(position, None)
+
+    def take_devices(self) -> str:
+        """The devices that moved the target since the last call, ``+``-joined in a fixed
+        order (``gizmo``, ``buttons``); empty if none did."""
+        used, self._used = self._used, set()
+        return "+".join(d for d in (GIZMO, BUTTONS) if d in used)
+
     def reset(self) -> None:
-        """Back to the rest position, the grip open, and the listener told so: viser calls
+        """Back to the rest position, the grip open, no device used, and the listener told so:
+        viser calls
         ``on_update`` only for a change made in the browser, so a target last dragged elsewhere
         would otherwise outlive the reset (the robot aimed for it, the trial waited for ever)."""
         self._gizmo.position = self._start
         self._grip.value = 0.0
         self._on_change(self._start.copy(), 0.0)
+        self._used.clear()
 
     def show(self, visible: bool) -> None:
         """Show or hide the gizmo and the panel (hidden: nothing to drag by mistake)."""

@@ -27,6 +27,7 @@ from arteleop.study.run_folder import FORMAT_VERSION, TRIAL_COLUMNS, RunFolder
 from arteleop.study.run_lock import run_lock
 from arteleop.study.runner import RunComplete, StudyRun, resume_study, run_study
 from arteleop.study.session import (
+    BrowserCheck,
     Demographics,
     ServedRun,
     SessionInputError,
@@ -48,6 +49,7 @@ __all__ = [
     "MODALITY_NAMES",
     "ORDER_SCHEMES",
     "TRIAL_COLUMNS",
+    "BrowserCheck",
     "CohortConfig",
     "Demographics",
     "FamiliarizationConfig",

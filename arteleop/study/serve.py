@@ -22,7 +22,9 @@ stopped and started again on the folder carries on the same way.
 
 from __future__ import annotations
 
+import math
 import queue
+import statistics
 import threading
 import time
 from collections.abc import Callable
@@ -41,7 +43,14 @@ from arteleop.operator import HandTarget, live_source
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
 from arteleop.study.plan import FAMILIARIZATION, TrialSpec
 from arteleop.study.protocol import trial_config, trial_record
-from arteleop.study.session import GENDERS, HANDEDNESS, Demographics, ServedRun, SessionInputError
+from arteleop.study.session import (
+    GENDERS,
+    HANDEDNESS,
+    BrowserCheck,
+    Demographics,
+    ServedRun,
+    SessionInputError,
+)
 from arteleop.study.sites import StudySite
 from arteleop.teleop import (
     ControllerConfig,
@@ -72,8 +81,10 @@ Ask the researcher who runs the study about anything that is not clear before yo
 AGREE = "I have read the information above and agree to take part."
 TUTORIAL = """\
 **Drive the robot.** Drag the arrows of the handle at the gripper: the robot's gripper follows
-the handle. The robot is seen through its head camera, a moment late; move, then watch the
-gripper arrive.
+the handle. Or step the handle with the **Move** and **Height** buttons, as the camera sees it
+(left, away, nearer, right; up, down), by the **Step** chosen; from the keyboard, Tab to a
+button and press Space. The robot is seen through its head camera, a moment late; move, then
+watch the gripper arrive.
 
 **Grip.** Move the Grip slider to *closed* to close the gripper on the bowl (it closes past
 the first mark) and back to *open* to let go (it opens below the second mark).
@@ -101,6 +112,12 @@ ITEM_TEXT = {
     "embodiment": "The robot arm felt like my own arm",
     "ease": "The task was easy to do",
 }
+
+
+ROUND_TRIPS = 3
+"""Frames asked of the browser before each trial: their median is its display round trip."""
+ROUND_TRIP_TIMEOUT_S = 5.0
+"""A frame not back by then: the round trip is not known (a tab in the background draws none)."""
 
 
 class SessionInterrupted(ArteleopError):
@@ -132,7 +149,9 @@ class StudyServer(Closeable):
             # The layers are the trial's condition: no panel to switch them.
             self.view = OperatorView(replace(view, layer_panel=False), view_assets(site))
             self._rest_gripper_m = site.observe().gripper_m
-            self.view.show(site_frame(site, modality_cues("none")))  # the robot's view, plain
+            plain = site_frame(site, modality_cues("none"))  # the robot's view
+            self.view.show(plain)
+            self._T_base_camera = plain.T_base_camera
         self._target = HandTarget(self._rest_gripper_m)
         self._actions: queue.Queue[tuple[str, Any]] = queue.Queue()
         self._lock = threading.Lock()
@@ -249,7 +268,6 @@ class StudyServer(Closeable):
             finally:
                 self._trial_running.clear()
         record = trial_record(spec, result, time.perf_counter() - start)
-        self.run.keep(record)
         row = record.row
         if row["outcome"] == "success":
             error_mm = float(row["placement_error_m"]) * 1000  # type: ignore[arg-type]
@@ -258,7 +276,29 @@ class StudyServer(Closeable):
         else:
             result_text = f"Not placed: {str(row['outcome']).replace('_', ' ')}."
         self._show(lambda p: p.message(heading, result_text, "Next", lambda: self._act("next")))
+        devices = live.take_devices() if (live := self._live) is not None else ""
+        browser = replace(self._check_browser(), input_device=devices)
+        self.run.keep(record, browser)  # the check ran while the person read the outcome
         self._wait("next")
+
+    def _check_browser(self) -> BrowserCheck:
+        """The controlling browser's display round trip and scene size (NaN and 0 without
+        one); a tab that goes meanwhile is the trial's, not this check's, to handle."""
+        with self._lock:
+            client = self._controller
+        if client is None:
+            return BrowserCheck(math.nan, 0, 0)
+        times = []
+        for _ in range(ROUND_TRIPS):
+            begun = time.perf_counter()
+            try:
+                client.get_render(8, 8, timeout=ROUND_TRIP_TIMEOUT_S)
+            except (RuntimeError, TimeoutError):
+                return BrowserCheck(math.nan, 0, 0)
+            times.append(time.perf_counter() - begun)
+        camera = client.camera
+        return BrowserCheck(round(statistics.median(times), 4), camera.image_width,
+                            camera.image_height)  # fmt: skip
 
     def _tick(self, status: TrialProgress) -> None:
         if self._lost.is_set() or self._stopped.is_set():
@@ -335,7 +375,7 @@ class StudyServer(Closeable):
         self._pages = SessionPages(client.gui)
         grip = ControllerConfig().grip
         self._live = LiveInput(client, self._rest_gripper_m, self._target.set,
-                               grip.close_at, grip.open_at)  # fmt: skip
+                               grip.close_at, grip.open_at, self._T_base_camera)  # fmt: skip
         self._page(self._pages)
         self._live.show(self._driving)
 

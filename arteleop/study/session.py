@@ -10,6 +10,9 @@ participants' places one after another, in plan order. Beside a simulated run's 
 - ``links.key``: where participants join by link (``study serve --links``), the key their
   links' tokens are made from: a participant's link stays the same across server restarts.
   Only this file makes links: it holds no data, and deleting it after the study ends them all;
+- ``browser.csv``: for each trial in ``trials.csv``, what the participant's browser showed it
+  with and what drove it (:class:`BrowserCheck`): the display's round trip and the scene's size,
+  measured as the trial's outcome shows, and the input device;
 - ``interrupted.csv``: each attempt of a trial that a closed tab, a lost connection or a reload
   cut short, with the columns of ``trials.csv`` and the outcome ``interrupted``. The trial is
   then run again from its start; ``trials.csv`` keeps the attempt that ended.
@@ -64,6 +67,9 @@ from arteleop.study.runner import (
 from arteleop.study.study_file import study_text
 
 INTERRUPTED_FILE = "interrupted.csv"
+BROWSER_FILE = "browser.csv"
+BROWSER_COLUMNS = ("participant", "trial_index", "display_round_trip_s", "scene_width_px",
+                   "scene_height_px", "input_device")  # fmt: skip
 LINKS_KEY_FILE = "links.key"
 GENDERS = ("female", "male", "diverse", "prefer not to say")
 HANDEDNESS = ("right", "left", "both")
@@ -135,6 +141,28 @@ def _whole(name: str, value: object, low: int, high: int, unit: str) -> None:
 def _choice(name: str, value: object, options: tuple[str, ...]) -> None:
     if value not in options:
         raise SessionInputError(f"{name} {value!r}: expected one of {', '.join(options)}.")
+
+
+@dataclass(frozen=True)
+class BrowserCheck:
+    """What a participant's browser showed a trial with, measured as the trial's outcome shows.
+
+    Attributes:
+        display_round_trip_s: A frame asked of the browser and sent back (viser's render
+            request, the median of a few): the network both ways and one drawing of the scene,
+            which a person's view lags by beyond the study's own delay; NaN if the browser
+            did not answer.
+        scene_width_px: The scene's width in the browser (px as the browser gives it).
+        scene_height_px: Its height.
+        input_device: What moved the gripper's target during the trial: ``gizmo``, ``buttons``
+            or ``gizmo+buttons`` (:meth:`~arteleop.ar_features.live_input.LiveInput.take_devices`);
+            empty if nothing did.
+    """
+
+    display_round_trip_s: float
+    scene_width_px: int
+    scene_height_px: int
+    input_device: str = ""
 
 
 Ratings = Mapping[tuple[str, str], int]
@@ -229,8 +257,16 @@ class ServedRun:
         ordered = [rows[pid] for pid in order if pid in rows]
         write_atomic(self.folder.path / PARTICIPANTS_FILE, table_text(PARTICIPANT_COLUMNS, ordered))
 
-    def keep(self, record: TrialRecord) -> None:
-        """A trial that ended, its outcome whatever it was."""
+    def keep(self, record: TrialRecord, browser: BrowserCheck) -> None:
+        """A trial that ended, its outcome whatever it was, and what the browser showed it with
+        (written first: a kill between the two leaves the trial to run again, and its row
+        here is then replaced)."""
+        spec = (str(record.row["participant"]), str(record.row["trial_index"]))
+        path = self.folder.path / BROWSER_FILE
+        kept = [row for row in self._rows(path, BROWSER_COLUMNS) if tuple(row[:2]) != spec]
+        check = (browser.display_round_trip_s, browser.scene_width_px, browser.scene_height_px,
+                 browser.input_device)  # fmt: skip
+        write_atomic(path, table_text(BROWSER_COLUMNS, [*kept, (*spec, *check)]))
         self.folder.append_trial(record.row, record.trace)
 
     def keep_interrupted(self, spec: TrialSpec) -> None:

@@ -1,11 +1,12 @@
-"""The live input's reset reaches the robot's target, not only the page."""
+"""The live input: its reset reaches the robot's target, not only the page; its steps go the
+way the camera sees them."""
 
 import socket
 
 import numpy as np
 import viser
 
-from arteleop.ar_features.live_input import LiveInput
+from arteleop.ar_features.live_input import LiveInput, step_directions
 from arteleop.operator import HandTarget
 
 
@@ -31,3 +32,43 @@ def test_reset_sends_the_target_back_to_rest_after_a_drag() -> None:
         assert grip == 0.0
     finally:
         server.stop()
+
+
+def _looking_down_x(tilt_rad: float, yaw_rad: float = 0.0) -> np.ndarray:
+    """A camera 1 m up looking along the base's x turned by ``yaw_rad`` and tilted down:
+    optical frame (z forward, x right in the image, y down)."""
+    c, s = np.cos(tilt_rad), np.sin(tilt_rad)
+    forward = np.array([c, 0.0, -s])
+    right = np.array([0.0, -1.0, 0.0])
+    down = np.cross(forward, right)
+    yaw = np.array([[np.cos(yaw_rad), -np.sin(yaw_rad), 0], [np.sin(yaw_rad), np.cos(yaw_rad), 0],
+                    [0, 0, 1]])  # fmt: skip
+    T = np.eye(4)
+    T[:3, :3] = yaw @ np.column_stack([right, down, forward])
+    T[:3, 3] = [0.0, 0.0, 1.0]
+    return T
+
+
+def _pixel(T_base_camera: np.ndarray, point_m: np.ndarray) -> np.ndarray:
+    """Where a pinhole camera (unit focal length) images ``point_m``: (u right, v down)."""
+    p = np.linalg.inv(T_base_camera) @ np.append(point_m, 1.0)
+    return p[:2] / p[2]
+
+
+def test_each_step_button_moves_the_target_that_way_in_the_cameras_image() -> None:
+    """Left and right along the image's rows, away up the image and nearer down it, each on
+    the table's plane; up raises the target. For cameras turned and tilted."""
+    for tilt, yaw in ((0.5, 0.0), (1.0, 0.4), (0.3, -1.2)):
+        T = _looking_down_x(tilt, yaw)
+        steps = step_directions(T)
+        point = T[:3, 3] + 1.0 * T[:3, 2]  # a point ahead of the camera
+        point[2] = 0.0
+        u0, v0 = _pixel(T, point)
+        moved = {name: _pixel(T, point + 0.05 * d) - (u0, v0) for name, d in steps.items()}
+        assert moved["left"][0] < 0 < moved["right"][0]
+        assert abs(moved["left"][1]) < 1e-9  # along the row: the camera does not roll
+        assert moved["away"][1] < 0 < moved["nearer"][1]
+        assert moved["up"][1] < 0 < moved["down"][1]
+        for name in ("left", "right", "away", "nearer"):
+            assert steps[name][2] == 0.0 and np.isclose(np.linalg.norm(steps[name]), 1.0)
+        np.testing.assert_array_equal(steps["up"], [0.0, 0.0, 1.0])

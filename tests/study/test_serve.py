@@ -18,10 +18,12 @@ from arteleop.scene import HeadCameraConfig
 from arteleop.study import CohortConfig, FamiliarizationConfig, StudyConfig, plan_study
 from arteleop.study.plan import EXPERIMENTAL
 from arteleop.study.runner import resume_study
-from arteleop.study.serve import IN_PROGRESS, StudyServer
+from arteleop.study.serve import IN_PROGRESS, ROUND_TRIP_TIMEOUT_S, StudyServer
 from arteleop.study.session import (
+    BROWSER_FILE,
     INTERRUPTED_FILE,
     LINKS_KEY_FILE,
+    BrowserCheck,
     Demographics,
     ServedRun,
     SessionInputError,
@@ -108,6 +110,26 @@ def test_a_participants_link_is_their_own_and_survives_a_restart(tmp_path: Path)
         assert rekeyed.token("P01") != first
 
 
+def test_a_trial_kept_again_after_a_kill_has_one_row_of_its_browser(tmp_path: Path) -> None:
+    """The browser's row is written before the trial's: a kill between them runs the trial
+    again, whose row then replaces the first."""
+    from arteleop.study.protocol import TrialRecord, trial_row
+    from arteleop.teleop import TRACE_COLUMNS
+
+    with served_run(tmp_path / "run", STUDY) as run:
+        spec = run.pending("P01")[0]
+        record = TrialRecord(spec, trial_row(spec, {"outcome": "timeout"}),
+                             {c: np.zeros(2) for c in TRACE_COLUMNS}, 2.0, 1.0)  # fmt: skip
+        run.keep(record, BrowserCheck(0.5, 900, 800))
+        (tmp_path / "run" / "trials.csv").write_text(  # the trial's row lost to a kill
+            (tmp_path / "run" / "trials.csv").read_text().splitlines(keepends=True)[0]
+        )
+        run.keep(record, BrowserCheck(0.25, 900, 800))
+    shown = _rows(tmp_path / "run" / BROWSER_FILE)
+    assert [(b["trial_index"], b["display_round_trip_s"]) for b in shown] == [("1", "0.25")]
+    assert [t["trial_index"] for t in _rows(tmp_path / "run" / "trials.csv")] == ["1"]
+
+
 def test_a_served_run_is_not_resumed_as_a_simulated_one(tmp_path: Path) -> None:
     with served_run(tmp_path / "run", STUDY):
         pass
@@ -186,6 +208,12 @@ def _take_part(browser, server: StudyServer, links: queue.Queue, greens: list[in
         if k == 1:  # the trial cut short, again, its scene shown as it will start
             greens.append(_green_pixels(watching_tab.screenshot(SHOTS / "before-start.png")))
         _click(watcher, "Start")
+        if k == 2:  # driven by a step button: the device is recorded
+            # Once the trial's status has replaced the prompt, Start's reset is behind.
+            watcher.get_by_text("press Start when ready", exact=False).wait_for(state="hidden")
+            # From the keyboard: focused (as Tab would), pressed with Space.
+            watcher.get_by_role("button", name="down", exact=True).focus()
+            watcher.keyboard.press("Space")
         watcher.get_by_text("Not placed: timeout.").wait_for(timeout=60_000)
         _click(watcher, "Next")
     watcher.get_by_text("Questionnaire").wait_for(timeout=30_000)
@@ -206,7 +234,7 @@ def test_a_participant_goes_through_the_study_in_a_real_browser(tmp_path: Path) 
     had seen "in progress", takes over and the trial runs again, its scene and layers shown
     before Start), both trials, the questionnaire, the end; then the next participant's link
     admits them, and the first link no one. The files hold what the person gave."""
-    from tests.instruments.browser import chromium, require_chromium
+    from tests.instruments.browser import VIEWPORT, chromium, require_chromium
 
     require_chromium()
     from arteleop.ar_features import ViewConfig
@@ -259,3 +287,13 @@ def test_a_participant_goes_through_the_study_in_a_real_browser(tmp_path: Path) 
     assert (cut["participant"], cut["trial_index"], cut["outcome"]) == ("P01", "1", "interrupted")
     answers = _rows(folder / "questionnaire.csv")
     assert len(answers) == 9 and {a["participant"] for a in answers} == {"P01"}
+    shown = _rows(folder / BROWSER_FILE)
+    assert [(b["participant"], b["trial_index"], b["input_device"]) for b in shown] == [
+        ("P01", "1", ""), ("P01", "2", "buttons")
+    ]  # fmt: skip
+    for b in shown:  # the tab's scene beside the docked panel; a frame there and back
+        assert 0 < float(b["display_round_trip_s"]) < ROUND_TRIP_TIMEOUT_S, b
+        assert (
+            600 < int(b["scene_width_px"]) < 1280
+            and int(b["scene_height_px"]) == VIEWPORT["height"]
+        ), b
