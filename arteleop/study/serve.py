@@ -148,10 +148,9 @@ class StudyServer(Closeable):
         with RemoteSite(self._site.base) as site:
             # The layers are the trial's condition: no panel to switch them.
             self.view = OperatorView(replace(view, layer_panel=False), view_assets(site))
-            self._rest_gripper_m = site.observe().gripper_m
-            plain = site_frame(site, modality_cues("none"))  # the robot's view
-            self.view.show(plain)
-            self._T_base_camera = plain.T_base_camera
+            rest = site.observe()
+            self._rest_gripper_m, self._T_base_camera = rest.gripper_m, rest.camera.T_base_camera
+            self.view.show(site_frame(site, modality_cues("none")))  # the robot's view, plain
         self._target = HandTarget(self._rest_gripper_m)
         self._actions: queue.Queue[tuple[str, Any]] = queue.Queue()
         self._lock = threading.Lock()

@@ -74,7 +74,8 @@ class TeleopApp(Closeable):
         self._trial = trial
         self.view = OperatorView(config.view, view_assets(site))
         self.panel = TrialPanel(self.view.server.gui)
-        self._rest_gripper_m = site.observe().gripper_m
+        rest = site.observe()
+        self._rest_gripper_m = rest.gripper_m
         self._target: HandTarget | None = None
         self._live: LiveInput | None = None
         if config.operator == "live":
@@ -82,7 +83,7 @@ class TeleopApp(Closeable):
             grip = trial.controller.grip
             self._live = LiveInput(
                 self.view.server, self._rest_gripper_m, self._target.set,
-                grip.close_at, grip.open_at,
+                grip.close_at, grip.open_at, rest.camera.T_base_camera,
             )  # fmt: skip
         self._recording = (
             load_recording(Path(config.operator))
