@@ -13,8 +13,8 @@ from arteleop.errors import ArteleopError, ConfigurationError
 @dataclass(frozen=True)
 class Bounds:
     """The finite values a field admits: ``low <= value <= high`` (``low < value`` if
-    ``above``), said in the message as ``low-high (what)``, ``> low`` or ``>= low``, or as
-    ``text`` where given.
+    ``above``), said in the message as ``low-high (what)``, ``> low and <= high (what)``,
+    ``> low`` or ``>= low``, or as ``text`` where given.
 
     Attributes:
         low: The smallest value admitted (or the bound above which values are admitted).
@@ -41,7 +41,7 @@ class Bounds:
             return self.text
         if math.isinf(self.high):
             return f"{'>' if self.above else '>='} {self.low}"
-        said = f"{self.low}-{self.high}"
+        said = f"> {self.low} and <= {self.high}" if self.above else f"{self.low}-{self.high}"
         return f"{said} ({self.what})" if self.what else said
 
 

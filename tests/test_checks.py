@@ -40,6 +40,7 @@ def test_bounds_admit_finite_values_within_them(bounds: Bounds, value: float, ad
         (Bounds(0), ">= 0"),
         (Bounds(0.5, 0.999, "a probability"), "0.5-0.999 (a probability)"),
         (Bounds(0, 1), "0-1"),
+        (Bounds(0, 0.5, "rad", above=True), "> 0 and <= 0.5 (rad)"),  # 0 is not admitted
         (Bounds(0.01, 100.0, text="a cutoff of 0.01-100 Hz"), "a cutoff of 0.01-100 Hz"),
     ],
 )

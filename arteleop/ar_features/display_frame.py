@@ -22,6 +22,9 @@ reader of the label can know of it."""
 DISTANCE_BAR_OFFSET_M = (-0.16, -0.03)
 """Where the distance bar's left end is drawn relative to the gripper, in the camera's image
 plane (m; x right, y down), so it stays beside the gripper on screen; its label is left of it."""
+GRIP_BAR_OFFSET_M = (-0.16, 0.0)
+"""Where the grip bar's left end is drawn relative to the gripper, likewise: 3 cm below the
+distance bar's."""
 BAR_LABEL_GAP_M = 0.01
 """A bar's label ends this far left of the bar (m, in the image plane)."""
 

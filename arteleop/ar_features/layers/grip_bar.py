@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import viser
 
-from arteleop.ar_features.display_frame import DisplayFrame
+from arteleop.ar_features.display_frame import GRIP_BAR_OFFSET_M, DisplayFrame
 from arteleop.ar_features.layer import Layer
 from arteleop.ar_features.layers.bar import Bar
 from arteleop.ar_features.layers.colors import GRIP_RGB
@@ -17,7 +17,7 @@ class GripBarLayer(Layer):
 
     def __init__(self, scene: viser.SceneApi) -> None:
         super().__init__()
-        self._bar = Bar(scene, "/ar/grip_bar", GRIP_RGB, offset_m=(-0.16, 0.0))
+        self._bar = Bar(scene, "/ar/grip_bar", GRIP_RGB, GRIP_BAR_OFFSET_M)
 
     def update(self, frame: DisplayFrame) -> None:
         c = frame.gripper_closure
