@@ -40,7 +40,8 @@ MIN_PAIRS = 3
 def pool_cohorts(studies: Sequence[StudyData]) -> pd.DataFrame:
     """The experimental trials of every study, with its ``cohort`` (1, 2, ...), each trial's
     ``network`` profile and, where a participants table came with it, ``expert`` (at least two
-    hours a week of AR/VR or of video games, docs/study.md §5)."""
+    hours a week of AR/VR or of video games, docs/study.md §5) and the participant's
+    ``source`` (synthetic or real)."""
     frames = []
     for k, data in enumerate(studies, start=1):
         trials = with_network(data.trials[data.trials["phase"] == "experimental"])
@@ -49,6 +50,7 @@ def pool_cohorts(studies: Sequence[StudyData]) -> pd.DataFrame:
             people = data.participants.set_index("participant")
             expert = (people["avr_hours"] >= 2) | (people["games_hours"] >= 2)
             trials["expert"] = trials["participant"].map(expert).fillna(False).astype(bool)
+            trials["source"] = trials["participant"].map(people["source"]).fillna("")
         frames.append(trials)
     return pd.concat(frames, ignore_index=True)
 
@@ -66,9 +68,17 @@ def cohort_medians(trials: pd.DataFrame) -> pd.DataFrame:
                     continue
                 ok = cell[cell["outcome"] == "success"]
                 medians = {c: ok[c].median() for c in (*RATIOS, *DIFFERENCES)}
-                rows.append({"cohort": k, "network": network, "modality": cues,
-                             "successes": len(ok), "trials": len(cell), **medians})  # fmt: skip
+                rows.append({"cohort": k, "source": cohort_source(trials, k), "network": network,
+                             "modality": cues, "successes": len(ok), "trials": len(cell),
+                             **medians})  # fmt: skip
     return pd.DataFrame(rows)
+
+
+def cohort_source(trials: pd.DataFrame, cohort: int) -> str:
+    """Who a cohort's participants are: ``real``, ``synthetic``, both ``+``-joined, or empty
+    where its participants table does not say."""
+    said = trials.loc[trials["cohort"] == cohort, "source"] if "source" in trials else []
+    return "+".join(sorted({str(v) for v in said if isinstance(v, str) and v}))
 
 
 def _interval(values: np.ndarray) -> tuple[float, float, float]:
@@ -129,7 +139,8 @@ def expert_gaps(trials: pd.DataFrame) -> pd.DataFrame | None:
             others = cell[~cell["expert"]]["completion_time_s"].median()
             rows.append({"network": network, "modality": cues, "experts_s": experts,
                          "others_s": others, "gap_s": others - experts})  # fmt: skip
-    return pd.DataFrame(rows)
+    # Its columns even without a row: no cell had a success (a short pilot's timeouts).
+    return pd.DataFrame(rows, columns=["network", "modality", "experts_s", "others_s", "gap_s"])
 
 
 def _table(frame: pd.DataFrame, columns: dict[str, str]) -> list[str]:
@@ -179,7 +190,8 @@ def _write(sources: Sequence[Path], trials: pd.DataFrame, out_dir: Path) -> dict
     )  # fmt: skip
     lines = [
         f"# {len(sources)} cohorts of one design", "",
-        *(f"{k}. `{path}`" for k, path in enumerate(sources, start=1)), "",
+        *(f"{k}. `{path}`" + (f" ({who})" if (who := cohort_source(trials, k)) else "")
+          for k, path in enumerate(sources, start=1)), "",
         "Experimental trials only. Each cue set is paired with the same participant's trial "
         "without AR at the same network profile; ratios (time, error) are geometric means of "
         "the paired ratios, differences (smoothness) mean paired differences, each with its "

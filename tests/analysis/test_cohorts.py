@@ -41,6 +41,22 @@ def test_the_pooled_effect_recovers_the_known_one(tmp_path: Path, capsys) -> Non
     ]
 
 
+def test_cohorts_without_a_success_are_reported(tmp_path: Path, capsys) -> None:
+    """A pilot whose trials all timed out: tables of no success, not a traceback."""
+    runs = [make_run(tmp_path / f"run{k}", seed=k, n=8, trajectories=False) for k in (1, 2)]
+    for run in runs:
+        trials = pd.read_csv(run / "trials.csv")
+        trials["outcome"] = "timeout"
+        trials.to_csv(run / "trials.csv", index=False)
+    assert main(["analyze", *map(str, runs), "--out", str(tmp_path / "pooled")]) == 0
+    out = capsys.readouterr().out
+    assert "| 1 | 0ms | full | 0/8 |" in out
+    experts = pd.read_csv(tmp_path / "pooled" / "experts.csv")
+    assert experts.empty and list(experts.columns) == [
+        "network", "modality", "experts_s", "others_s", "gap_s"
+    ]
+
+
 def test_a_missing_run_is_named(tmp_path: Path, capsys) -> None:
     run = make_run(tmp_path / "run", trajectories=False)
     assert main(["analyze", str(run), str(tmp_path / "nope"), "--out", str(tmp_path / "r")]) == 2
