@@ -92,7 +92,11 @@ def _analyse_one(cmd: AnalyzeCommand) -> int:
     result = analyse(study, options)
     files = write_report(study, result, options, cmd.out)
     n_people = result.trials["participant"].nunique()
-    print(f"analysed {result.counts['analysed']} trials of {n_people} participants")
+    left = {k.removeprefix("excluded_"): v for k, v in result.counts.items()
+            if k.startswith("excluded_")}  # fmt: skip
+    said = ", ".join(f"{outcome} {n}" for outcome, n in left.items())
+    print(f"analysed {result.counts['analysed']} successful experimental trials of {n_people} "
+          f"participants" + (f"; left out: {said}" if said else ""))  # fmt: skip
     significant = result.tests[(result.tests["stars"] != "") & result.tests["stars"].notna()]
     print(f"{len(result.tests)} tests, {len(significant)} significant at p <= 0.05")
     for note in result.notes:

@@ -42,7 +42,8 @@ def test_the_pooled_effect_recovers_the_known_one(tmp_path: Path, capsys) -> Non
 
 
 def test_cohorts_without_a_success_are_reported(tmp_path: Path, capsys) -> None:
-    """A pilot whose trials all timed out: tables of no success, not a traceback."""
+    """A pilot whose trials all timed out: tables of no success, not a traceback; analysed
+    alone, the trials left out are said."""
     runs = [make_run(tmp_path / f"run{k}", seed=k, n=8, trajectories=False) for k in (1, 2)]
     for run in runs:
         trials = pd.read_csv(run / "trials.csv")
@@ -53,8 +54,16 @@ def test_cohorts_without_a_success_are_reported(tmp_path: Path, capsys) -> None:
     assert "| 1 | 0ms | full | 0/8 |" in out
     experts = pd.read_csv(tmp_path / "pooled" / "experts.csv")
     assert experts.empty and list(experts.columns) == [
-        "network", "modality", "experts_s", "others_s", "gap_s"
+        "network",
+        "modality",
+        "experts_s",
+        "others_s",
+        "gap_s",
     ]
+    assert main(["analyze", str(runs[0]), "--out", str(tmp_path / "one")]) == 0
+    assert capsys.readouterr().out.startswith(
+        "analysed 0 successful experimental trials of 0 participants; left out: timeout 40\n"
+    )
 
 
 def test_a_missing_run_is_named(tmp_path: Path, capsys) -> None:
