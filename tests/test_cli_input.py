@@ -335,6 +335,9 @@ def test_study_serve_refuses_what_it_cannot_serve_into(
             f"--port {port}: taken on 127.0.0.1 (Address already in use). Stop what serves "
             "there, or give another port (0: any free one)."
         )
+    assert _error(capsys, ["study", "serve", "--out", str(out), "--port", "70000"]) == (
+        "--port 70000: expected a TCP port, 0-65535 (0: any free one)."
+    )
     assert not out.exists()
     simulated = tmp_path / "simulated"
     simulated.mkdir()

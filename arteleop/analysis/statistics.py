@@ -238,12 +238,16 @@ def holm(rows: list[TestResult], alpha: float = 0.05) -> list[TestResult]:
     if not idx:
         return rows
     # statsmodels' Holm ends with a full garbage collection (0.15: half of an analysis's time);
-    # frozen, the objects that exist already are not walked again.
-    gc.freeze()
+    # frozen, the objects that exist already are not walked again. Not where a caller froze
+    # objects of its own: unfreezing would release theirs too.
+    freeze = gc.get_freeze_count() == 0
+    if freeze:
+        gc.freeze()
     try:
         adjusted = multipletests([rows[i].p_value for i in idx], alpha=alpha, method="holm")[1]
     finally:
-        gc.unfreeze()
+        if freeze:
+            gc.unfreeze()
     out = list(rows)
     for i, p in zip(idx, adjusted, strict=True):
         r = asdict(rows[i]) | {

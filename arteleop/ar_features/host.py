@@ -3,6 +3,7 @@ ports forever on a host it cannot bind."""
 
 from __future__ import annotations
 
+import errno
 import ipaddress
 import socket
 from dataclasses import dataclass
@@ -44,7 +45,14 @@ def check_host(host: str, port: int = 0) -> HostCheck:
             f"--host {host}: this machine cannot serve on {ip} ({err.strerror}). Use "
             "127.0.0.1 (this machine only) or an address of one of its network interfaces."
         )
+    if not 0 <= port <= 65535:
+        raise ViewHostError(f"--port {port}: expected a TCP port, 0-65535 (0: any free one).")
     if port and (err := _bind(family, ip, port)) is not None:
+        if err.errno in (errno.EACCES, errno.EPERM):
+            raise ViewHostError(
+                f"--port {port}: this user may not serve on it ({err.strerror}; ports below "
+                "1024 are the system's). Give a port from 1024 (0: any free one)."
+            )
         raise ViewHostError(
             f"--port {port}: taken on {ip} ({err.strerror}). Stop what serves there, or give "
             "another port (0: any free one)."

@@ -43,6 +43,7 @@ class LinkGate:
         """Sockets closed so far for want of an allowed token."""
         self._sockets.on_client_connect(self._check)
         self._sockets.on_client_disconnect(self._forget)
+        self.expel(keep=None)  # a socket that opened before the gate was set up
 
     def allow(self, tokens: Iterable[str]) -> None:
         """From now on only sockets with one of ``tokens`` open; those open stay."""
@@ -54,11 +55,17 @@ class LinkGate:
         with self._lock:
             return self._tokens.get(client_id)
 
+    def count(self, token: str) -> int:
+        """Open sockets admitted with ``token``."""
+        with self._lock:
+            return sum(t == token for t in self._tokens.values())
+
     def expel(self, keep: str | None) -> None:
-        """Close every open socket whose token is not ``keep``."""
+        """Close every open socket but those admitted with ``keep``."""
         loop = self._sockets._background_event_loop
         with self._lock:
-            gone = [cid for cid, token in self._tokens.items() if token != keep]
+            gone = [cid for cid in list(self._sockets._live_connections)
+                    if keep is None or self._tokens.get(cid) != keep]  # fmt: skip
         for client_id in gone:
             if loop is not None:
                 loop.call_soon_threadsafe(self._abort, client_id)

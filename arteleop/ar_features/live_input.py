@@ -26,16 +26,17 @@ GIZMO, BUTTONS = "gizmo", "buttons"
 
 
 def step_directions(T_base_camera: ArrayLike) -> dict[str, NDArray[np.float64]]:
-    """Unit directions in the base frame (z up) of each step button: left and right along the
-    camera image's rows, away and nearer along its line of sight, both flattened onto the
-    table; up and down along z. ``T_base_camera`` is the optical frame's pose (z forward, x
-    right in the image)."""
+    """Unit directions in the base frame (z up) of each step button: away and nearer along the
+    camera's line of sight flattened onto the table (up its image for a camera looking
+    straight down), left and right across it on the table (along the image's rows for a camera
+    that does not roll); up and down along z. ``T_base_camera`` is the optical frame's pose (z
+    forward, x right and y down in the image)."""
     R = np.asarray(T_base_camera, dtype=np.float64)[:3, :3]
-    right, forward = R[:, 0].copy(), R[:, 2].copy()
-    right[2] = forward[2] = 0.0
-    right /= np.linalg.norm(right)
-    forward /= np.linalg.norm(forward)
     up = np.array([0.0, 0.0, 1.0])
+    # A camera looking straight down has no line of sight on the table: away is up its image.
+    forward = R[:, 2] if np.linalg.norm(R[:2, 2]) > 1e-6 else -R[:, 1]
+    forward = np.append(forward[:2], 0.0) / np.linalg.norm(forward[:2])
+    right = np.cross(forward, up)
     return {"left": -right, "right": right, "away": forward, "nearer": -forward, "up": up,
             "down": -up}  # fmt: skip
 
@@ -79,7 +80,7 @@ class LiveInput:
                 self._add_steps(server.gui, step_directions(T_base_camera))
             # Markdown wraps: a read-only text field cut the warning off at the panel's edge.
             self._reach = server.gui.add_markdown("")
-        self._gizmo.on_update(lambda _: self._moved(GIZMO, np.array(self._gizmo.position)))
+        self._gizmo.on_update(lambda _: self._dragged())
         self._grip.on_update(lambda _: on_change(None, float(self._grip.value)))
 
     def _add_steps(self, gui: viser.GuiApi, directions: dict[str, NDArray[np.float64]]) -> None:
@@ -90,12 +91,16 @@ class LiveInput:
 
             def step(event: viser.GuiEvent[viser.GuiButtonGroupHandle]) -> None:
                 delta = STEPS_M[size.value] * directions[event.target.value]
-                with self._stepping:  # clicks come on a pool's threads: none may be lost
+                with self._stepping:  # clicks and drags come on a pool's threads
                     position = np.asarray(self._gizmo.position) + delta
                     self._gizmo.position = position  # set from here: on_update is not called
                     self._moved(BUTTONS, position)
 
             group.on_click(step)
+
+    def _dragged(self) -> None:
+        with self._stepping:
+            self._moved(GIZMO, np.array(self._gizmo.position))
 
     def _moved(self, device: str, position: NDArray[np.float64]) -> None:
         self._used.add(device)
@@ -109,13 +114,14 @@ class LiveInput:
 
     def reset(self) -> None:
         """Back to the rest position, the grip open, no device used, and the listener told so:
-        viser calls
-        ``on_update`` only for a change made in the browser, so a target last dragged elsewhere
-        would otherwise outlive the reset (the robot aimed for it, the trial waited for ever)."""
-        self._gizmo.position = self._start
-        self._grip.value = 0.0
-        self._on_change(self._start.copy(), 0.0)
-        self._used.clear()
+        viser calls ``on_update`` only for a change made in the browser, so a target last
+        dragged elsewhere would otherwise outlive the reset (the robot aimed for it, the trial
+        waited for ever)."""
+        with self._stepping:
+            self._gizmo.position = self._start
+            self._grip.value = 0.0
+            self._on_change(self._start.copy(), 0.0)
+            self._used.clear()
 
     def show(self, visible: bool) -> None:
         """Show or hide the gizmo and the panel (hidden: nothing to drag by mistake)."""

@@ -177,10 +177,11 @@ class OperatorView(Closeable):
         if self._T_base_camera is None:
             return
         T = self._T_base_camera
-        eye, forward = T[:3, 3], T[:3, 2]  # optical frame: z forward
+        eye, forward = T[:3, 3], T[:3, 2]  # optical frame: z forward, y down
         # The world's vertical, not the camera's: orbiting then turns about it instead of
         # rolling the view; Baxter's head camera does not roll, so the view starts as its image.
-        up = np.array([0.0, 0.0, 1.0])
+        # A camera looking straight down has no vertical to keep: its own up.
+        up = np.array([0.0, 0.0, 1.0]) if abs(forward[2]) < 0.999 else -T[:3, 1]
         cameras = [self.server.initial_camera]
         if move_clients:
             cameras += [client.camera for client in self.server.get_clients().values()]

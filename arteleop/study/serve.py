@@ -4,9 +4,9 @@ Each person takes the next planned participant's place (:mod:`arteleop.study.ses
 through the pages: information and consent, the questions about them, how to drive the robot,
 the practice trials, the experimental trials in their counterbalanced order, the
 questionnaire, the end. A trial runs in real time through the same loop as a simulated one,
-driven by the gizmo and the Grip slider (:class:`~arteleop.ar_features.live_input.LiveInput`),
-its condition's AR layers and network delay, its timer from motion onset; it starts when the
-person presses Start.
+driven by the gizmo, the step buttons and the Grip slider
+(:class:`~arteleop.ar_features.live_input.LiveInput`), under its condition's AR layers and
+network delay, its timer from motion onset; it starts when the person presses Start.
 
 One browser tab controls the session, the first to connect; another sees the robot's view and
 "a session is in progress". Served with links (:attr:`ViewConfig.links`), a browser connects
@@ -31,7 +31,9 @@ from collections.abc import Callable
 from dataclasses import replace
 from typing import Any
 
+import numpy as np
 import viser
+from numpy.typing import NDArray
 
 from arteleop.analysis.data import AR_CLASSES, QUESTIONNAIRE_ITEMS
 from arteleop.ar_features import OperatorView, ViewConfig, modality_cues
@@ -197,10 +199,11 @@ class StudyServer(Closeable):
     def _session(self, participant: str) -> None:
         run = self.run
         if (gate := self.view.gate) is not None:
+            token = run.token(participant)
             with self._lock:
-                self._token = run.token(participant)
-            gate.allow({self._token})
-            self._on_link(participant, self.view.link(self._token))
+                self._token = token
+            gate.allow({token})
+            self._on_link(participant, self.view.link(token))
         if not run.consented(participant):
             text = run.study.consent or CONSENT
             self._show(lambda p: p.consent(text, AGREE, lambda: self._act("agree")))
@@ -274,30 +277,33 @@ class StudyServer(Closeable):
             result_text = f"Placed in {time_s:.1f} s, {error_mm:.0f} mm from the target."
         else:
             result_text = f"Not placed: {str(row['outcome']).replace('_', ' ')}."
-        self._show(lambda p: p.message(heading, result_text, "Next", lambda: self._act("next")))
+        self.run.keep(record)
         devices = live.take_devices() if (live := self._live) is not None else ""
-        browser = replace(self._check_browser(), input_device=devices)
-        self.run.keep(record, browser)  # the check ran while the person read the outcome
+        self._show(lambda p: p.message(heading, result_text, "Next", lambda: self._act("next")))
+        # While the person reads the outcome.
+        self.run.keep_browser(spec, replace(self._check_browser(), input_device=devices))
         self._wait("next")
 
     def _check_browser(self) -> BrowserCheck:
-        """The controlling browser's display round trip and scene size (NaN and 0 without
-        one); a tab that goes meanwhile is the trial's, not this check's, to handle."""
+        """The controlling browser's display round trip (NaN if it did not answer, or without
+        a tab, or once the server is stopping) and scene size (0 without a tab)."""
         with self._lock:
             client = self._controller
         if client is None:
             return BrowserCheck(math.nan, 0, 0)
         times = []
         for _ in range(ROUND_TRIPS):
+            if self._stopped.is_set():
+                break
             begun = time.perf_counter()
             try:
                 client.get_render(8, 8, timeout=ROUND_TRIP_TIMEOUT_S)
-            except (RuntimeError, TimeoutError):
-                return BrowserCheck(math.nan, 0, 0)
+            except (RuntimeError, TimeoutError):  # the tab went, or draws nothing
+                break
             times.append(time.perf_counter() - begun)
+        round_trip_s = round(statistics.median(times), 4) if len(times) == ROUND_TRIPS else math.nan
         camera = client.camera
-        return BrowserCheck(round(statistics.median(times), 4), camera.image_width,
-                            camera.image_height)  # fmt: skip
+        return BrowserCheck(round_trip_s, camera.image_width, camera.image_height)
 
     def _tick(self, status: TrialProgress) -> None:
         if self._lost.is_set() or self._stopped.is_set():
@@ -363,17 +369,28 @@ class StudyServer(Closeable):
                 # Not the trial's page again: its Start belongs to the attempt that went.
                 self._page = lambda p: p.message(CUT_SHORT[0], CUT_SHORT[1])
                 self._driving = False
-            if self._watching:  # the longest-waiting tab takes over
-                watcher, notice = self._watching.pop(next(iter(self._watching)))
-                notice.remove()
-                self._take_control(watcher)
+            gate = self.view.gate
+            for client_id in list(self._watching):  # the longest-waiting tab of this session
+                watcher, notice = self._watching.pop(client_id)
+                if gate is None or gate.token_of(client_id) == self._token:
+                    notice.remove()
+                    self._take_control(watcher)
+                    break
+
+    def _drive(
+        self, client: viser.ClientHandle, gripper_m: NDArray[np.float64] | None, grip: float | None
+    ) -> None:
+        """A move from ``client``'s gizmo, buttons or slider: heeded while it controls."""
+        if self._controller is client:
+            self._target.set(gripper_m, grip)
 
     def _take_control(self, client: viser.ClientHandle) -> None:
         """``client``'s tab controls the session from now on (the caller holds the lock)."""
         self._controller = client
         self._pages = SessionPages(client.gui)
         grip = ControllerConfig().grip
-        self._live = LiveInput(client, self._rest_gripper_m, self._target.set,
+        self._live = LiveInput(client, self._rest_gripper_m,
+                               lambda gripper_m, grip: self._drive(client, gripper_m, grip),
                                grip.close_at, grip.open_at, self._T_base_camera)  # fmt: skip
         self._page(self._pages)
         self._live.show(self._driving)

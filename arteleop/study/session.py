@@ -12,7 +12,8 @@ participants' places one after another, in plan order. Beside a simulated run's 
   Only this file makes links: it holds no data, and deleting it after the study ends them all;
 - ``browser.csv``: for each trial in ``trials.csv``, what the participant's browser showed it
   with and what drove it (:class:`BrowserCheck`): the display's round trip and the scene's size,
-  measured as the trial's outcome shows, and the input device;
+  measured as the trial's outcome shows, and the input device (written after the trial's row: a
+  server stopped in between leaves the trial without one);
 - ``interrupted.csv``: each attempt of a trial that a closed tab, a lost connection or a reload
   cut short, with the columns of ``trials.csv`` and the outcome ``interrupted``. The trial is
   then run again from its start; ``trials.csv`` keeps the attempt that ended.
@@ -28,7 +29,9 @@ import contextlib
 import hashlib
 import hmac
 import os
+import re
 import secrets
+import tempfile
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -71,6 +74,7 @@ BROWSER_FILE = "browser.csv"
 BROWSER_COLUMNS = ("participant", "trial_index", "display_round_trip_s", "scene_width_px",
                    "scene_height_px", "input_device")  # fmt: skip
 LINKS_KEY_FILE = "links.key"
+LINKS_KEY_BYTES = 32
 GENDERS = ("female", "male", "diverse", "prefer not to say")
 HANDEDNESS = ("right", "left", "both")
 AGE_RANGE = (18, 99)
@@ -236,15 +240,30 @@ class ServedRun:
     def token(self, participant: str) -> str:
         """The token of ``participant``'s link: unguessable without the folder's key (made on
         first use, readable by its owner only), the same each time it is asked for."""
+        digest = hmac.new(self._links_key(), participant.encode(), hashlib.sha256).digest()
+        return base64.urlsafe_b64encode(digest[:TOKEN_BYTES]).decode().rstrip("=")
+
+    def _links_key(self) -> bytes:
         path = self.folder.path / LINKS_KEY_FILE
         if not path.exists():
-            with contextlib.suppress(FileExistsError):
-                fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+            # Whole or not at all: an empty key would make every link computable.
+            fd, tmp = tempfile.mkstemp(dir=self.folder.path, prefix=f".{LINKS_KEY_FILE}.")
+            try:
                 with os.fdopen(fd, "w", encoding="ascii") as key_file:
-                    key_file.write(secrets.token_hex(32))
-        key = bytes.fromhex(path.read_text(encoding="ascii").strip())
-        digest = hmac.new(key, participant.encode(), hashlib.sha256).digest()[:TOKEN_BYTES]
-        return base64.urlsafe_b64encode(digest).decode().rstrip("=")
+                    key_file.write(secrets.token_hex(LINKS_KEY_BYTES) + "\n")
+                    key_file.flush()
+                    os.fsync(key_file.fileno())
+                with contextlib.suppress(FileExistsError):  # another made it first: theirs
+                    os.link(tmp, path)
+            finally:
+                os.unlink(tmp)
+        text = path.read_text(encoding="ascii", errors="replace").strip()
+        if not re.fullmatch(f"[0-9a-f]{{{2 * LINKS_KEY_BYTES}}}", text):
+            raise RunFolderError(
+                f"{path}: not a key of participants' links ({2 * LINKS_KEY_BYTES} hex digits). "
+                "Delete it to make a new one: every participant's link then changes."
+            )
+        return bytes.fromhex(text)
 
     def consented(self, participant: str) -> bool:
         return participant in self._participant_rows()
@@ -257,17 +276,19 @@ class ServedRun:
         ordered = [rows[pid] for pid in order if pid in rows]
         write_atomic(self.folder.path / PARTICIPANTS_FILE, table_text(PARTICIPANT_COLUMNS, ordered))
 
-    def keep(self, record: TrialRecord, browser: BrowserCheck) -> None:
-        """A trial that ended, its outcome whatever it was, and what the browser showed it with
-        (written first: a kill between the two leaves the trial to run again, and its row
-        here is then replaced)."""
-        spec = (str(record.row["participant"]), str(record.row["trial_index"]))
+    def keep(self, record: TrialRecord) -> None:
+        """A trial that ended, its outcome whatever it was."""
+        self.folder.append_trial(record.row, record.trace)
+
+    def keep_browser(self, spec: TrialSpec, browser: BrowserCheck) -> None:
+        """What the browser showed the kept trial ``spec`` with (a row of a trial run again
+        after a restart replaces its earlier one)."""
+        key = (spec.participant, str(spec.trial_index))
         path = self.folder.path / BROWSER_FILE
-        kept = [row for row in self._rows(path, BROWSER_COLUMNS) if tuple(row[:2]) != spec]
+        kept = [row for row in self._rows(path, BROWSER_COLUMNS) if tuple(row[:2]) != key]
         check = (browser.display_round_trip_s, browser.scene_width_px, browser.scene_height_px,
                  browser.input_device)  # fmt: skip
-        write_atomic(path, table_text(BROWSER_COLUMNS, [*kept, (*spec, *check)]))
-        self.folder.append_trial(record.row, record.trace)
+        write_atomic(path, table_text(BROWSER_COLUMNS, [*kept, (*key, *check)]))
 
     def keep_interrupted(self, spec: TrialSpec) -> None:
         """An attempt at ``spec`` cut short before it ended: recorded, to be run again."""

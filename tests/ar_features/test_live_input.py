@@ -72,3 +72,7 @@ def test_each_step_button_moves_the_target_that_way_in_the_cameras_image() -> No
         for name in ("left", "right", "away", "nearer"):
             assert steps[name][2] == 0.0 and np.isclose(np.linalg.norm(steps[name]), 1.0)
         np.testing.assert_array_equal(steps["up"], [0.0, 0.0, 1.0])
+    # Looking straight down, away is up the image and right is right in it.
+    down = step_directions(_looking_down_x(np.pi / 2, yaw_rad=0.3))
+    np.testing.assert_allclose(down["away"], [np.cos(0.3), np.sin(0.3), 0.0], atol=1e-12)
+    np.testing.assert_allclose(down["right"], [np.sin(0.3), -np.cos(0.3), 0.0], atol=1e-12)

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import viser
@@ -17,6 +18,7 @@ from websockets.exceptions import ConnectionClosed
 from websockets.sync import client as websocket_client
 from websockets.typing import Subprotocol
 
+from arteleop.ar_features.links import LinkGate
 from arteleop.lifetime import Closeable
 
 
@@ -72,3 +74,25 @@ class ViewProbe(Closeable):
     def close(self) -> None:
         self._ws.close()
         self._thread.join(timeout=5.0)
+
+
+def until(done: Callable[[], object], wait_s: float = 10.0) -> bool:
+    """Whether ``done()`` came true within ``wait_s``."""
+    deadline = time.monotonic() + wait_s
+    while not done() and time.monotonic() < deadline:
+        time.sleep(0.02)
+    return bool(done())
+
+
+def refused(url: str, gate: LinkGate) -> bool:
+    """A socket to ``url`` was closed by the gate and had been sent nothing."""
+    before = gate.refused
+    with ViewProbe(url) as probe:
+        closed = until(lambda: gate.refused > before)
+        return closed and probe.messages() == []
+
+
+def admitted(url: str) -> bool:
+    """A socket to ``url`` is sent the scene."""
+    with ViewProbe(url) as probe:
+        return until(probe.messages)

@@ -108,8 +108,8 @@ def test_without_conditions_the_study_is_the_original() -> None:
 
 def test_a_crossed_study_runs_to_its_files_and_answers(tmp_path) -> None:
     """Two people, no cue and the predictive ghost under a 500 ms round trip: every file, the
-    network in trials.csv, and questionnaire answers from the trials under the least delay
-    (the trials end at 8 s: what they are is not this test's)."""
+    network in trials.csv, and the questionnaire's rows (which trials the answers come from:
+    the next test; the trials end at 8 s: what they are is not this test's)."""
     text = (
         "timeout_s = 8.0\n"
         "[cohort]\nsize = 2\navr_experts = 0\ngames_experts = 0\nboth_experts = 0\n"

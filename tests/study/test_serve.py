@@ -6,7 +6,6 @@ import os
 import queue
 import re
 import threading
-import time
 from dataclasses import replace
 from pathlib import Path
 
@@ -29,7 +28,7 @@ from arteleop.study.session import (
     SessionInputError,
     served_run,
 )
-from tests.instruments.view_probe import ViewProbe
+from tests.instruments.view_probe import admitted, refused, until
 
 STUDY = StudyConfig(
     name="served",
@@ -108,26 +107,31 @@ def test_a_participants_link_is_their_own_and_survives_a_restart(tmp_path: Path)
     key.write_text("00" * 32)  # another key: every link changes
     with served_run(tmp_path / "run") as rekeyed:
         assert rekeyed.token("P01") != first
+        for text in ("", "00" * 31, "zz" * 32):  # cut short, or not a key: refused
+            key.write_text(text)
+            with pytest.raises(RunFolderError, match=r"links.key: not a key of participants' "
+                               r"links \(64 hex digits\)\. Delete it"):  # fmt: skip
+                rekeyed.token("P01")
 
 
-def test_a_trial_kept_again_after_a_kill_has_one_row_of_its_browser(tmp_path: Path) -> None:
-    """The browser's row is written before the trial's: a kill between them runs the trial
-    again, whose row then replaces the first."""
+def test_a_trial_run_again_after_a_restart_has_one_row_of_its_browser(tmp_path: Path) -> None:
+    """The browser's row follows the trial's: a server stopped between them leaves the trial
+    without one; a trial run again (its row lost to a kill) replaces its earlier row."""
     from arteleop.study.protocol import TrialRecord, trial_row
     from arteleop.teleop import TRACE_COLUMNS
 
     with served_run(tmp_path / "run", STUDY) as run:
-        spec = run.pending("P01")[0]
-        record = TrialRecord(spec, trial_row(spec, {"outcome": "timeout"}),
-                             {c: np.zeros(2) for c in TRACE_COLUMNS}, 2.0, 1.0)  # fmt: skip
-        run.keep(record, BrowserCheck(0.5, 900, 800))
-        (tmp_path / "run" / "trials.csv").write_text(  # the trial's row lost to a kill
-            (tmp_path / "run" / "trials.csv").read_text().splitlines(keepends=True)[0]
-        )
-        run.keep(record, BrowserCheck(0.25, 900, 800))
+        first, second = run.pending("P01")[:2]
+        for spec in (first, second):
+            run.keep(TrialRecord(spec, trial_row(spec, {"outcome": "timeout"}),
+                                 {c: np.zeros(2) for c in TRACE_COLUMNS}, 2.0, 1.0))  # fmt: skip
+        run.keep_browser(first, BrowserCheck(0.5, 900, 800, "gizmo"))
+        run.keep_browser(second, BrowserCheck(0.4, 900, 800))
+        run.keep_browser(first, BrowserCheck(0.25, 900, 800, "buttons"))
     shown = _rows(tmp_path / "run" / BROWSER_FILE)
-    assert [(b["trial_index"], b["display_round_trip_s"]) for b in shown] == [("1", "0.25")]
-    assert [t["trial_index"] for t in _rows(tmp_path / "run" / "trials.csv")] == ["1"]
+    assert [(b["trial_index"], b["display_round_trip_s"], b["input_device"]) for b in shown] == [
+        ("2", "0.4", ""), ("1", "0.25", "buttons")
+    ]  # fmt: skip
 
 
 def test_a_served_run_is_not_resumed_as_a_simulated_one(tmp_path: Path) -> None:
@@ -166,11 +170,8 @@ def _green_pixels(shot: np.ndarray) -> int:
 def _take_part(browser, server: StudyServer, links: queue.Queue, greens: list[int]) -> None:
     gate = server.view.gate
     stranger = browser.open(server.url, for_pictures=False)  # the address, without a link
-    deadline = time.monotonic() + 30
-    while not gate.refused and time.monotonic() < deadline:
-        time.sleep(0.05)
     # Every tab let in gets the view's own controls; this one got nothing.
-    assert gate.refused
+    assert until(lambda: gate.refused, wait_s=30)
     assert stranger.playwright.get_by_role("button", name="Egocentric view").count() == 0
     stranger.close()
     participant, link = links.get(timeout=60)
@@ -221,11 +222,12 @@ def _take_part(browser, server: StudyServer, links: queue.Queue, greens: list[in
     watcher.get_by_text("You can close this page", exact=False).wait_for(timeout=30_000)
     participant, next_link = links.get(timeout=30)
     assert participant == "P02" and next_link != link
+
     # The next link admits its participant; P01's, no one now.
-    for admitted, address in ((True, next_link), (False, link)):
-        with ViewProbe(address.rpartition("=")[2].replace("ws://", "http://", 1)) as probe:
-            time.sleep(0.5)
-            assert bool(probe.messages()) == admitted, address
+    def socket_url(address: str) -> str:
+        return address.rpartition("=")[2].replace("ws://", "http://", 1)
+
+    assert admitted(socket_url(next_link)) and refused(socket_url(link), gate)
 
 
 def test_a_participant_goes_through_the_study_in_a_real_browser(tmp_path: Path) -> None:
