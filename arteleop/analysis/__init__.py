@@ -44,6 +44,7 @@ if TYPE_CHECKING:
         compare_independent,
         compare_paired,
         holm,
+        holm_test,
         normality,
         order_effect,
         pairwise,
@@ -59,7 +60,8 @@ _LAZY = {
     **dict.fromkeys(
         (
             "AnalysisOptions", "NormalityResult", "TestResult", "cohens_d",
-            "compare_independent", "compare_paired", "holm", "normality", "order_effect",
+            "compare_independent", "compare_paired", "holm", "holm_test", "normality",
+            "order_effect",
             "pairwise", "rank_biserial", "stars", "trim_extremes",
         ),
         "arteleop.analysis.statistics",
@@ -102,6 +104,7 @@ __all__ = [
     "compare_paired",
     "expert_gaps",
     "holm",
+    "holm_test",
     "idle_share",
     "load_study",
     "load_trajectory",

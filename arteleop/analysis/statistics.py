@@ -232,11 +232,9 @@ def pairwise(
     return rows, norm_rows
 
 
-def holm(rows: list[TestResult], alpha: float = 0.05) -> list[TestResult]:
-    """Holm-adjust the p-values of one family of tests (rows without p stay as they are)."""
-    idx = [i for i, r in enumerate(rows) if np.isfinite(r.p_value)]
-    if not idx:
-        return rows
+def holm_test(p_values: Sequence[float], alpha: float = 0.05) -> tuple[NDArray, NDArray]:
+    """Holm's step-down test of one family (statsmodels' ``multipletests``): which p-values
+    reject at family-wise ``alpha``, and the adjusted p-values."""
     # statsmodels' Holm ends with a full garbage collection (0.15: half of an analysis's time);
     # frozen, the objects that exist already are not walked again. Not where a caller froze
     # objects of its own: unfreezing would release theirs too.
@@ -244,10 +242,19 @@ def holm(rows: list[TestResult], alpha: float = 0.05) -> list[TestResult]:
     if freeze:
         gc.freeze()
     try:
-        adjusted = multipletests([rows[i].p_value for i in idx], alpha=alpha, method="holm")[1]
+        reject, adjusted, _, _ = multipletests(p_values, alpha=alpha, method="holm")
     finally:
         if freeze:
             gc.unfreeze()
+    return reject, adjusted
+
+
+def holm(rows: list[TestResult], alpha: float = 0.05) -> list[TestResult]:
+    """Holm-adjust the p-values of one family of tests (rows without p stay as they are)."""
+    idx = [i for i, r in enumerate(rows) if np.isfinite(r.p_value)]
+    if not idx:
+        return rows
+    adjusted = holm_test([rows[i].p_value for i in idx], alpha)[1]
     out = list(rows)
     for i, p in zip(idx, adjusted, strict=True):
         r = asdict(rows[i]) | {
