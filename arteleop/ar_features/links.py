@@ -10,7 +10,7 @@ robot's view, a page of the study or a control.
 from __future__ import annotations
 
 import threading
-from collections.abc import Iterable
+from collections.abc import Collection, Iterable
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
@@ -43,7 +43,7 @@ class LinkGate:
         """Sockets closed so far for want of an allowed token."""
         self._sockets.on_client_connect(self._check)
         self._sockets.on_client_disconnect(self._forget)
-        self.expel(keep=None)  # a socket that opened before the gate was set up
+        self.expel()  # a socket that opened before the gate was set up
 
     def allow(self, tokens: Iterable[str]) -> None:
         """From now on only sockets with one of ``tokens`` open; those open stay."""
@@ -60,12 +60,12 @@ class LinkGate:
         with self._lock:
             return sum(t == token for t in self._tokens.values())
 
-    def expel(self, keep: str | None) -> None:
-        """Close every open socket but those admitted with ``keep``."""
+    def expel(self, keep: Collection[str | None] = ()) -> None:
+        """Close every open socket but those admitted with a token in ``keep``."""
         loop = self._sockets._background_event_loop
         with self._lock:
             gone = [cid for cid in list(self._sockets._live_connections)
-                    if keep is None or self._tokens.get(cid) != keep]  # fmt: skip
+                    if self._tokens.get(cid) not in keep]  # fmt: skip
         for client_id in gone:
             if loop is not None:
                 loop.call_soon_threadsafe(self._abort, client_id)

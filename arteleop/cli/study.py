@@ -218,6 +218,8 @@ def study_serve(cmd: StudyServeCommand) -> int:
         print(f"serving {run.study.name!r} into {cmd.out} {where}: participant "
               f"{person.id} next, {done} of {len(run.people)} sessions done; Ctrl-C stops, "
               f"'arteleop study serve --out {cmd.out}' carries on")  # fmt: skip
+        if server.observer_link is not None:
+            print(f"the experimenter's view (read-only): {server.observer_link}", flush=True)
         try:
             finished = server.serve()
         except KeyboardInterrupt:

@@ -97,6 +97,10 @@ target.
 
 The practice trials come first; they teach the controls and are not compared.
 """
+OBSERVING = (
+    "The experimenter's view: the robot as the participant sees it, read-only. The "
+    "participant's pages show in their own tab."
+)
 IN_PROGRESS = (
     "A session is in progress in another browser tab. This page shows the robot's view only; "
     "close the other tab to take over."
@@ -146,6 +150,7 @@ class StudyServer(Closeable):
         self.run = run
         self._on_link = on_link
         self._token: str | None = None
+        self._observer: str | None = None
         self._site = StudySite(SiteConfig(camera=camera) if camera else None)
         with RemoteSite(self._site.base) as site:
             # The layers are the trial's condition: no panel to switch them.
@@ -165,6 +170,8 @@ class StudyServer(Closeable):
         self._trial_running = threading.Event()
         self._lost = threading.Event()
         self._stopped = threading.Event()
+        if self.view.gate is not None:
+            self._observer = run.observer_token()
         server = self.view.server
         server.on_client_connect(self._connect)
         server.on_client_disconnect(self._disconnect)
@@ -172,6 +179,11 @@ class StudyServer(Closeable):
     @property
     def url(self) -> str:
         return self.view.url
+
+    @property
+    def observer_link(self) -> str | None:
+        """With links, the address of the experimenter's read-only view of every session."""
+        return None if self._observer is None else self.view.link(self._observer)
 
     def serve(self) -> bool:
         """Session after session until every planned participant is done (True) or
@@ -202,7 +214,7 @@ class StudyServer(Closeable):
             token = run.token(participant)
             with self._lock:
                 self._token = token
-            gate.allow({token})
+            gate.allow({token, self._observer})
             self._on_link(participant, self.view.link(token))
         if not run.consented(participant):
             text = run.study.consent or CONSENT
@@ -350,8 +362,13 @@ class StudyServer(Closeable):
     def _connect(self, client: viser.ClientHandle) -> None:
         with self._lock:
             if (gate := self.view.gate) is not None:
-                gate.expel(keep=self._token)  # the ended sessions' tabs, with this one's arrival
-                if gate.token_of(client.client_id) != self._token:
+                token = gate.token_of(client.client_id)
+                # The ended sessions' tabs go with this one's arrival (or the experimenter's).
+                gate.expel(keep={self._token, self._observer})
+                if token == self._observer:  # sees the robot, never controls
+                    client.gui.add_markdown(OBSERVING)
+                    return
+                if token != self._token:
                     return
             if self._controller is None:
                 self._take_control(client)

@@ -240,7 +240,15 @@ class ServedRun:
     def token(self, participant: str) -> str:
         """The token of ``participant``'s link: unguessable without the folder's key (made on
         first use, readable by its owner only), the same each time it is asked for."""
-        digest = hmac.new(self._links_key(), participant.encode(), hashlib.sha256).digest()
+        return self._token(participant.encode())
+
+    def observer_token(self) -> str:
+        """The token of the experimenter's read-only view of every session, likewise (made from
+        what no participant id can be)."""
+        return self._token(b"\x00observer")
+
+    def _token(self, message: bytes) -> str:
+        digest = hmac.new(self._links_key(), message, hashlib.sha256).digest()
         return base64.urlsafe_b64encode(digest[:TOKEN_BYTES]).decode().rstrip("=")
 
     def _links_key(self) -> bytes:

@@ -34,7 +34,7 @@ def test_a_socket_outlives_its_token_until_expelled(served) -> None:
         gate.allow({"second"})
         assert refused(f"{url}/first", gate)  # new sockets need the new token
         assert gate.count("first") == 1  # the open one stays
-        gate.expel(keep="second")
+        gate.expel(keep={"second"})
         assert until(lambda: gate.count("first") == 0)
         assert first.messages()  # it had been sent the scene while allowed
 

@@ -28,7 +28,7 @@ from arteleop.study.session import (
     SessionInputError,
     served_run,
 )
-from tests.instruments.view_probe import admitted, refused, until
+from tests.instruments.view_probe import admitted, refused
 
 STUDY = StudyConfig(
     name="served",
@@ -98,12 +98,13 @@ def test_people_take_the_places_of_a_simulated_runs_plan(tmp_path: Path) -> None
 
 def test_a_participants_link_is_their_own_and_survives_a_restart(tmp_path: Path) -> None:
     with served_run(tmp_path / "run", STUDY) as run:
-        first, second = run.token("P01"), run.token("P02")
+        first, second, observer = run.token("P01"), run.token("P02"), run.observer_token()
     key = tmp_path / "run" / LINKS_KEY_FILE
     assert key.stat().st_mode & 0o777 == 0o600, "only its owner reads the key"
-    assert first != second and all(re.fullmatch(r"[A-Za-z0-9_-]{22}", t) for t in (first, second))
+    tokens = (first, second, observer)
+    assert len(set(tokens)) == 3 and all(re.fullmatch(r"[A-Za-z0-9_-]{22}", t) for t in tokens)
     with served_run(tmp_path / "run") as again:
-        assert again.token("P01") == first
+        assert again.token("P01") == first and again.observer_token() == observer
     key.write_text("00" * 32)  # another key: every link changes
     with served_run(tmp_path / "run") as rekeyed:
         assert rekeyed.token("P01") != first
@@ -169,11 +170,7 @@ def _green_pixels(shot: np.ndarray) -> int:
 
 def _take_part(browser, server: StudyServer, links: queue.Queue, greens: list[int]) -> None:
     gate = server.view.gate
-    stranger = browser.open(server.url, for_pictures=False)  # the address, without a link
-    # Every tab let in gets the view's own controls; this one got nothing.
-    assert until(lambda: gate.refused, wait_s=30)
-    assert stranger.playwright.get_by_role("button", name="Egocentric view").count() == 0
-    stranger.close()
+    assert refused(server.url, gate)  # the server's bare address: a socket sent nothing
     participant, link = links.get(timeout=60)
     assert participant == "P01"
     first_tab = browser.open(link, for_pictures=False)
@@ -228,10 +225,12 @@ def _take_part(browser, server: StudyServer, links: queue.Queue, greens: list[in
         return address.rpartition("=")[2].replace("ws://", "http://", 1)
 
     assert admitted(socket_url(next_link)) and refused(socket_url(link), gate)
+    assert admitted(socket_url(server.observer_link))  # the experimenter's, session after session
 
 
 def test_a_participant_goes_through_the_study_in_a_real_browser(tmp_path: Path) -> None:
-    """By the participant's link (the server's bare address shows nothing): consent,
+    """By the participant's link (the server's bare address gets nothing; the experimenter's
+    link is let in throughout): consent,
     questions (a wrong answer told), a trial cut short by closing the tab (a second tab, which
     had seen "in progress", takes over and the trial runs again, its scene and layers shown
     before Start), both trials, the questionnaire, the end; then the next participant's link
