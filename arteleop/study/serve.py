@@ -12,7 +12,9 @@ One browser tab controls the session, the first to connect; another sees the rob
 "a session is in progress". Served with links (:attr:`ViewConfig.links`), a browser connects
 only through the session's participant's own link (:meth:`ServedRun.token`): any other address
 gets nothing, and a session's link stops working when the next participant's session begins;
-an ended session's tab keeps its last page until the next participant's tab connects.
+an ended session's tab keeps its last page until the next participant's tab (or the
+experimenter's) connects. The experimenter's link (:attr:`StudyServer.observer_link`) sees the
+robot session after session and never controls.
 
 When the controlling tab goes (closed, reloaded, the connection lost) during a trial, the
 attempt is recorded as interrupted and the trial runs again from its start once a tab is back;
@@ -121,7 +123,7 @@ ITEM_TEXT = {
 
 
 ROUND_TRIPS = 3
-"""Frames asked of the browser before each trial: their median is its display round trip."""
+"""Frames asked of the browser after each trial: their median is its display round trip."""
 ROUND_TRIP_TIMEOUT_S = 5.0
 """A frame not back by then: the round trip is not known (a tab in the background draws none)."""
 
