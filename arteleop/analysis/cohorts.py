@@ -60,6 +60,7 @@ def cohort_medians(trials: pd.DataFrame) -> pd.DataFrame:
     trials' time (s), error (m) and smoothness."""
     rows = []
     for k in sorted(trials["cohort"].unique()):
+        source = cohort_source(trials, k)
         for network in profiles(trials):
             for cues in cue_sets(trials):
                 cell = trials[(trials["cohort"] == k) & (trials["network"] == network)
@@ -68,7 +69,7 @@ def cohort_medians(trials: pd.DataFrame) -> pd.DataFrame:
                     continue
                 ok = cell[cell["outcome"] == "success"]
                 medians = {c: ok[c].median() for c in (*RATIOS, *DIFFERENCES)}
-                rows.append({"cohort": k, "source": cohort_source(trials, k), "network": network,
+                rows.append({"cohort": k, "source": source, "network": network,
                              "modality": cues, "successes": len(ok), "trials": len(cell),
                              **medians})  # fmt: skip
     return pd.DataFrame(rows)

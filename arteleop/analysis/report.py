@@ -108,12 +108,7 @@ def _markdown(
     out_dir: Path,
 ) -> str:
     c = result.counts
-    excluded = (
-        ", ".join(
-            f"{k.removeprefix('excluded_')}: {v}" for k, v in c.items() if k.startswith("excluded_")
-        )
-        or "none"
-    )
+    excluded = ", ".join(f"{k}: {v}" for k, v in result.left_out.items()) or "none"
     lines = [
         "# Study analysis",
         "",

@@ -64,6 +64,12 @@ class AnalysisResult:
     counts: dict[str, int] = field(default_factory=dict)
     cells: pd.DataFrame | None = None  # per network profile and cue set, when there are several
 
+    @property
+    def left_out(self) -> dict[str, int]:
+        """The experimental trials not analysed, by outcome (timeout, ...)."""
+        return {k.removeprefix("excluded_"): v for k, v in self.counts.items()
+                if k.startswith("excluded_")}  # fmt: skip
+
 
 def analyse(study: StudyData, options: AnalysisOptions | None = None) -> AnalysisResult:
     """The thesis's analysis (docs/study.md §5) with the given options."""

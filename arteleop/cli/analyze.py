@@ -92,9 +92,7 @@ def _analyse_one(cmd: AnalyzeCommand) -> int:
     result = analyse(study, options)
     files = write_report(study, result, options, cmd.out)
     n_people = result.trials["participant"].nunique()
-    left = {k.removeprefix("excluded_"): v for k, v in result.counts.items()
-            if k.startswith("excluded_")}  # fmt: skip
-    said = ", ".join(f"{outcome} {n}" for outcome, n in left.items())
+    said = ", ".join(f"{outcome} {n}" for outcome, n in result.left_out.items())
     print(f"analysed {result.counts['analysed']} successful experimental trials of {n_people} "
           f"participants" + (f"; left out: {said}" if said else ""))  # fmt: skip
     significant = result.tests[(result.tests["stars"] != "") & result.tests["stars"].notna()]

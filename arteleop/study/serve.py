@@ -99,6 +99,7 @@ target.
 
 The practice trials come first; they teach the controls and are not compared.
 """
+SESSION_OVER = "Your session is over: thank you for taking part."
 OBSERVING = (
     "The experimenter's view: the robot as the participant sees it, read-only. The "
     "participant's pages show in their own tab."
@@ -234,13 +235,13 @@ class StudyServer(Closeable):
             self._show(lambda p: p.questionnaire(classes, items, lambda r: self._act("rate", r)))
             run.answer(participant, self._wait("rate"))
         if self.view.gate is not None:  # the next participant comes by their own link
-            self._show(lambda p: p.message("Thank you", "Your session is over: thank you for "
-                                           "taking part. You can close this page."))  # fmt: skip
+            self._show(lambda p: p.message("Thank you", f"{SESSION_OVER} You can close this "
+                                           "page."))  # fmt: skip
             with self._lock:  # the tab keeps its page and controls nothing more
                 self._controller = self._pages = self._live = None
         elif run.current() is not None:
-            self._show(lambda p: p.message("Thank you", "Your session is over: thank you for "
-                                           "taking part. Please tell the researcher.",
+            self._show(lambda p: p.message("Thank you", f"{SESSION_OVER} Please tell the "
+                                           "researcher.",
                                            "Next participant (researcher)",
                                            lambda: self._act("next")))  # fmt: skip
             self._wait("next")
