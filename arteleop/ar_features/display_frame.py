@@ -79,6 +79,7 @@ class DisplayFrame:
             bowl's axis (m).
         grasp_height_m: Height of that ring above the bowl's frame (m).
         target_m: (3,) the target point on the table.
+        start_m: (3,) the start point on the table, the centre of its cross (None: not given).
         cues: The AR layers shown.
         engaged: The status indicator: the robot follows the operator's hand.
         cloud_points_m: (N, 3) float32 point cloud of the camera frame, or None when this
@@ -117,6 +118,7 @@ class DisplayFrame:
     target_radius_m: float = 0.06
     cloud_spacing_rad: float | None = None
     predicted: PredictedArm | None = None
+    start_m: NDArray[np.float64] | None = None
 
     def __post_init__(self) -> None:
         shapes = {
@@ -126,9 +128,10 @@ class DisplayFrame:
             "bowl_m": (3,),
             "target_m": (3,),
             "T_cloud_true": (4, 4),
+            "start_m": (3,),
         }
         for name, shape in shapes.items():
-            if name in ("bowl_m", "T_cloud_true") and getattr(self, name) is None:
+            if name in ("bowl_m", "T_cloud_true", "start_m") and getattr(self, name) is None:
                 continue
             value = frozen_array(getattr(self, name))
             if value.shape != shape:

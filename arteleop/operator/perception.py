@@ -161,6 +161,10 @@ class Perceived:
             per label read and per drawn thing no other fixation covers
             (:func:`~arteleop.operator.acuity.fixations`).
         placement_fixations: ...and the placement's judgement.
+        start_m: Where the start is judged, at the centre of its cross; None unless the task
+            aims the gripper and the display gives the start.
+        start_cov: (3, 3) its believed covariance relative to the judged gripper (m^2).
+        start_fixations: The fixations its judgement took.
     """
 
     gripper_m: NDArray[np.float64]
@@ -174,6 +178,9 @@ class Perceived:
     lead_m: NDArray[np.float64] = field(default_factory=lambda: np.zeros(3))
     grasp_fixations: int = 1
     placement_fixations: int = 1
+    start_m: NDArray[np.float64] | None = None
+    start_cov: NDArray[np.float64] | None = None
+    start_fixations: int = 1
 
 
 def shown_gripper_m(view: DisplayFrame) -> NDArray[np.float64]:
@@ -201,7 +208,8 @@ def perceive(
     the display's stereo. ``depth_factor`` scales the person's depth SD; ``depth_scale`` is how
     the person sees a depth interval in the rendered scene (1: true), a lasting error the person
     does not know of, so it is not in the believed covariances. Where the task ``aims_gripper``
-    (pointing), the target is judged against the gripper shown over it, not the bowl."""
+    (pointing), the target is judged against the gripper shown over it, not the bowl, and so is
+    the start (``view.start_m``)."""
     cues = view.cues
     gripper_seen = view.gripper_in_camera or cues.ghost or cues.predictive_ghost
     shown_gripper = shown_gripper_m(view)
@@ -346,12 +354,29 @@ def perceive(
         else:
             placement_cov = placement_cov + gripper_cov
             placed_by_gripper = True
+    start = start_cov = None
+    start_fixations = 1
+    if aims_gripper and view.start_m is not None:
+        # The start cross, drawn in the cloud: its centre is where its arms cross, so there is
+        # no circle to bisect. Judged against the gripper over it; while the gripper is not
+        # shown, against what is (the gripper then felt, not seen).
+        cross = view.in_cloud(view.start_m)
+        if gripper_seen:
+            mark, start_cov = seen("start", cross, shown_gripper, cloud_grain)
+            start = gripper + mark - shown_gripper
+            start_fixations = fixated(cross, shown_gripper)
+        else:
+            against = tracked if tracked is not None else mark_point
+            start, mark_cov = seen("start", cross, against, cloud_grain)
+            start_cov = mark_cov + grasp_cov
+            start_fixations = fixated(cross, against)
     closure_known = gripper_seen or cues.grip_bar
     predicted = view.shown_predicted
     lead = np.zeros(3) if predicted is None else predicted.gripper_m - view.gripper_m
     return Perceived(
         gripper, bowl, target, gripper_seen, closure_known, grasp_cov, placement_cov,
-        placed_by_gripper, lead, grasp_fixations, placement_fixations,
+        placed_by_gripper, lead, grasp_fixations, placement_fixations, start, start_cov,
+        start_fixations,
     )  # fmt: skip
 
 

@@ -71,7 +71,7 @@ class RenderWorld:
             add_table(self.client, ws),
             add_start_cross(self.client, ws),
             add_target_circle(self.client, ws),
-            add_bowl(self.client, ws, ws.start_xy_m),
+            add_bowl(self.client, ws, ws.bowl_start_xy_m),
         ]
         if ids != list(body_ids):
             self.client.disconnect()
@@ -170,7 +170,7 @@ class _Layers:
         add_table(self.still, ws)
         add_start_cross(self.still, ws)
         add_target_circle(self.still, ws)
-        self._moving_bowl = add_bowl(self.moving, ws, ws.start_xy_m)
+        self._moving_bowl = add_bowl(self.moving, ws, ws.bowl_start_xy_m)
         self._still_state: dict[str, float] = {}
         self._still_images: dict[tuple[object, ...], RawImage] = {}
 

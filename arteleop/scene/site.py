@@ -112,9 +112,12 @@ class SiteConfig:
 
 def reach_problem(ws: Workspace, reach: TopDownReach, margin: float) -> str | None:
     """Why the right gripper cannot grasp the bowl's rim from above, on any of its four sides,
-    at the workspace's start or target (keeping ``margin`` of the arm's reach free); None if it
-    can."""
-    for name, point in (("start", ws.start_m), ("target", ws.target_m)):
+    at the workspace's start, target or the bowl's own start (keeping ``margin`` of the arm's
+    reach free); None if it can."""
+    points = {"start": ws.start_m, "target": ws.target_m}
+    if ws.bowl_xy_m is not None:
+        points["bowl"] = ws.on_table(ws.bowl_xy_m)
+    for name, point in points.items():
         for side in ((1.0, 0.0), (-1.0, 0.0), (0.0, 1.0), (0.0, -1.0)):
             tool = point + ws.bowl.grasp_offset_m(side)
             if not reach.is_reachable(tool, margin):
@@ -172,7 +175,7 @@ class RemoteSite(Closeable):
                 "table": add_table(self._client, ws),
                 "start_marker": add_start_cross(self._client, ws),
                 "target_marker": add_target_circle(self._client, ws),
-                "bowl": add_bowl(self._client, ws, ws.start_xy_m),
+                "bowl": add_bowl(self._client, ws, ws.bowl_start_xy_m),
             }
             self._bowl_id = self._bodies["bowl"]
             self.renderer = resolve_renderer(config.camera.renderer)
@@ -260,7 +263,7 @@ class RemoteSite(Closeable):
         """Back to the start of a trial: the arm at rest, the gripper open, the bowl at rest at
         the start point, and the site's clock at 0 s."""
         self.robot.reset(self.config.rest_pose)
-        self.place_bowl(self.config.workspace.start_xy_m)
+        self.place_bowl(self.config.workspace.bowl_start_xy_m)
         self._steps = 0
         self._requested_s = 0.0
 

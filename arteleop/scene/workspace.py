@@ -32,8 +32,10 @@ class Workspace:
         table_top_z_m: Height of the table top.
         table_thickness_m: Thickness of the table slab.
         table_rgba: Table colour.
-        start_xy_m: Where the bowl starts (cross marker).
+        start_xy_m: The start point (cross marker); where the bowl starts unless ``bowl_xy_m``.
         target_xy_m: Where the bowl must go (circle marker).
+        bowl_xy_m: Where the bowl starts when not on the start cross (None: on it). A task whose
+            object is not the bowl (pointing, which starts over the cross) puts it out of the way.
         bowl: The bowl.
         cross_size_m: Arm length of the start cross, tip to tip.
         marker_line_width_m: Line width of both markers.
@@ -49,6 +51,7 @@ class Workspace:
     table_rgba: tuple[float, float, float, float] = (0.72, 0.72, 0.70, 1.0)
     start_xy_m: tuple[float, float] = (0.68, -0.45)
     target_xy_m: tuple[float, float] = (0.68, -0.10)
+    bowl_xy_m: tuple[float, float] | None = None
     bowl: BowlSpec = field(default_factory=BowlSpec)
     cross_size_m: float = 0.10
     marker_line_width_m: float = 0.012
@@ -60,7 +63,9 @@ class Workspace:
             raise WorkspaceError(
                 f"Table size {self.table_size_m} and thickness {self.table_thickness_m} must be > 0"
             )
-        for name in ("start_xy_m", "target_xy_m"):
+        for name in ("start_xy_m", "target_xy_m", "bowl_xy_m"):
+            if getattr(self, name) is None and name == "bowl_xy_m":
+                continue
             xy = np.asarray(getattr(self, name))
             if xy.shape != (2,) or not np.all(np.isfinite(xy)):
                 raise WorkspaceError(
@@ -74,11 +79,12 @@ class Workspace:
                     f"overhangs the table, which spans x in [{lo[0]:.3f}, {hi[0]:.3f}] and y in "
                     f"[{lo[1]:.3f}, {hi[1]:.3f}] m."
                 )
-        gap = float(np.linalg.norm(np.subtract(self.start_xy_m, self.target_xy_m)))
+        gap = float(np.linalg.norm(np.subtract(self.bowl_start_xy_m, self.target_xy_m)))
         if gap < self.bowl.diameter_m:
             raise WorkspaceError(
-                f"Start {self.start_xy_m} and target {self.target_xy_m} are {gap:.3f} m apart, "
-                f"less than the bowl's diameter {self.bowl.diameter_m} m: the task is trivial."
+                f"The bowl's start {self.bowl_start_xy_m} and target {self.target_xy_m} are "
+                f"{gap:.3f} m apart, less than the bowl's diameter {self.bowl.diameter_m} m: "
+                "the task is trivial."
             )
 
     def table_box(self) -> Box:
@@ -102,6 +108,11 @@ class Workspace:
         return self.on_table(self.start_xy_m)
 
     @property
+    def bowl_start_xy_m(self) -> tuple[float, float]:
+        """Where the bowl starts (x, y): ``bowl_xy_m``, or on the start cross."""
+        return self.start_xy_m if self.bowl_xy_m is None else self.bowl_xy_m
+
+    @property
     def target_m(self) -> NDArray[np.float64]:
         """Target point on the table top (x, y, z)."""
         return self.on_table(self.target_xy_m)
@@ -113,6 +124,6 @@ class Workspace:
         return {
             "start marker": self.start_m,
             "target marker": self.target_m,
-            "bowl rim at the start": self.start_m + rim,
+            "bowl rim at the start": self.on_table(self.bowl_start_xy_m) + rim,
             "bowl rim at the target": self.target_m + rim,
         }

@@ -33,6 +33,7 @@ from arteleop.robot import (
 )
 from arteleop.scene import (
     BASE_FRAME,
+    START_MARKER_FRAME,
     TARGET_MARKER_FRAME,
     BowlTrack,
     RemoteSite,
@@ -89,6 +90,7 @@ def display_frame(
         grasp_radius_m=float(np.hypot(grasp[0], grasp[1])),
         grasp_height_m=float(grasp[2]),
         target_m=frames.T(BASE_FRAME, TARGET_MARKER_FRAME)[:3, 3],
+        start_m=frames.T(BASE_FRAME, START_MARKER_FRAME)[:3, 3],
         target_radius_m=workspace.target_circle_radius_m,
         cues=cues,
         engaged=engaged,

@@ -1,9 +1,9 @@
 """One Fitts pointing trial through the whole loop: the simulated participant's calibration task
 (docs/operator-model.md, ``benchmarks/bench_fitts.py``).
 
-Targets are circles drawn on the table, ``distance_m`` along +y from a start point, their
-diameter ``width_m``; the bowl waits out of the way. The trial ends when the operator has
-selected (closed the gripper).
+Targets are circles drawn on the table, ``distance_m`` along +y from a start point drawn as a
+cross, their diameter ``width_m``; the bowl waits out of the way. The trial ends when the
+operator has selected (closed the gripper).
 """
 
 from __future__ import annotations
@@ -68,14 +68,14 @@ def run_pointing_trial(
     """A pointing trial at a target ``distance_m`` away and ``width_m`` wide (m), by a person
     with ``traits``, with ``round_trip_lag_s`` (s) of network delay, half each way."""
     target_xy = (POINTING_START_XY_M[0], POINTING_START_XY_M[1] + distance_m)
-    ws = Workspace(start_xy_m=BOWL_AWAY_XY_M, target_xy_m=target_xy,
-                   target_circle_radius_m=width_m / 2, marker_line_width_m=width_m / 4)  # fmt: skip
+    ws = Workspace(start_xy_m=POINTING_START_XY_M, target_xy_m=target_xy,
+                   bowl_xy_m=BOWL_AWAY_XY_M, target_circle_radius_m=width_m / 2,
+                   marker_line_width_m=width_m / 4)  # fmt: skip
     config = TrialConfig(modality="none", seed=seed, timeout_s=timeout_s,
                          network=NetworkConfig(delay_s=round_trip_lag_s / 2),
                          site=SiteConfig(workspace=ws), record_trace=True)  # fmt: skip
     with RemoteSite(config.site) as site:
-        task = PointingTask(ws.on_table(POINTING_START_XY_M), ws.target_m, width_m,
-                            site.observe().gripper_m)  # fmt: skip
+        task = PointingTask(ws.target_m, width_m, site.observe().gripper_m)
         to_hand = HandToGripper(config.controller.mapping).hand_position_for
         source = SyntheticSource(task, to_hand, np.random.default_rng([seed, 1]), traits=traits)
         result = run_trial(source, config, site)

@@ -448,3 +448,36 @@ def test_a_perception_constant_out_of_range_is_refused_by_name(build, message: s
     with pytest.raises(ConfigurationError) as err:
         build()
     assert str(err.value) == message
+
+
+def test_a_task_that_aims_the_gripper_judges_the_start_cross_against_it() -> None:
+    """Pointing's start: the cross, judged against the gripper 5 cm over it as the target is,
+    its centre where its arms cross (nothing to bisect): exact perception gives the truth, a depth
+    scale of 0.8 shortens the interval's line-of-sight part by 20 %; across the line of sight a
+    glance errs by what :func:`judgement_sd` gives for that interval at the display's pixel. With
+    the gripper not shown, the cross is judged against the bowl and the arm is felt: the belief
+    holds proprioception's variance. No start is judged unless the task aims the gripper."""
+    start = display_frame().target_m + [0.0, -0.2, 0.0]
+    over = make_transform(np.diag([1.0, -1.0, -1.0]), start + [0.0, 0.0, 0.05])
+    view = display_frame(T_base_gripper=over, start_m=start)
+    truth = start - view.gripper_m
+    exact = perceive(view, _EXACT, _independent(0), aims_gripper=True)
+    np.testing.assert_allclose(exact.start_m - exact.gripper_m, truth, atol=1e-12)
+    assert exact.start_fixations == 1
+    scaled = perceive(view, _EXACT, _independent(0), depth_scale=0.8, aims_gripper=True)
+    d = _sight(view, start)
+    np.testing.assert_allclose(
+        scaled.start_m - scaled.gripper_m, truth - 0.2 * (truth @ d) * d, atol=1e-12
+    )
+    noise = _independent(1)
+    errors = np.array([(s.start_m - s.gripper_m - truth)
+                       for s in (perceive(view, P, noise, aims_gripper=True)
+                                 for _ in range(1500))])  # fmt: skip
+    _, across = _split(errors, d)
+    eye = float(np.linalg.norm(start - view.viewpoint_m))
+    expected = judgement_sd(0.05, eye, 0.0, D, A).across_sd_m
+    assert across == pytest.approx(expected, rel=0.1)
+    assert perceive(view, P, _independent(0)).start_m is None
+    unseen = display_frame(T_base_gripper=over, start_m=start, gripper_in_camera=False)
+    felt = perceive(unseen, P, _independent(0), aims_gripper=True)
+    assert felt.start_cov is not None and np.all(np.diag(felt.start_cov) > P.proprioception_sd_m**2)

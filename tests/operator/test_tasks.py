@@ -16,6 +16,7 @@ from arteleop.operator import (
     ArmModel,
     CalibrationPosture,
     Goal,
+    OperatorParams,
     OperatorTraits,
     Perceived,
     PickAndPlace,
@@ -144,3 +145,26 @@ def test_a_phase_the_task_does_not_have_is_refused_with_its_phases() -> None:
         "The task has no phase 'fly'; its phases: reach, descend, close, lift, transport, "
         "lower, open, retract, home."
     )
+
+
+def test_pointing_starts_over_the_cross_it_sees() -> None:
+    """The pointing task's start is the cross the display draws, judged against the gripper:
+    its goal 5 cm over the judged cross, in height too, with the judgement's covariance; a
+    display that draws no start gives no goal (the operator keeps looking)."""
+    from arteleop.operator import PointingTask
+    from arteleop.operator.perception import PerceptualErrors, perceive
+    from arteleop.operator.tasks.pointing import TO_START
+
+    start = display_frame().target_m + [0.0, -0.2, 0.0]
+    view = display_frame(start_m=start)
+    task = PointingTask(view.target_m, 0.02, view.gripper_m)
+    params = OperatorParams().perception
+    seen = perceive(view, params, PerceptualErrors(np.random.default_rng(0), 1, 0.5),
+                    aims_gripper=True)  # fmt: skip
+    goal = task.goal(TO_START, seen)
+    assert goal is not None and goal.axes == "xyz" and goal.visible
+    np.testing.assert_array_equal(goal.gripper_m, seen.start_m + [0.0, 0.0, 0.05])
+    np.testing.assert_array_equal(goal.cov_m2, seen.start_cov)
+    errors = PerceptualErrors(np.random.default_rng(0), 1, 0.5)
+    unmarked = perceive(display_frame(), params, errors, aims_gripper=True)
+    assert task.goal(TO_START, unmarked) is None

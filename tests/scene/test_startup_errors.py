@@ -2,6 +2,7 @@
 
 from dataclasses import replace
 
+import numpy as np
 import pytest
 
 from arteleop.errors import CameraConfigError, ConfigurationError, WorkspaceError
@@ -63,11 +64,28 @@ def test_camera_too_close_for_its_depth_range(site_config: SiteConfig) -> None:
         ),
         ({"target_xy_m": (0.70, -0.43)}, "apart, less than the bowl's diameter"),
         ({"target_xy_m": (float("nan"), 0.0)}, "must be two finite numbers"),
+        (
+            {"bowl_xy_m": (0.68, 0.5)},
+            r"bowl_xy_m=\(0.68, 0.5\): a bowl of radius 0.08 m there overhangs the table",
+        ),
+        # The bowl moved away, the start cross may lie near the target (pointing).
+        ({"bowl_xy_m": (0.75, -0.15), "target_xy_m": (0.70, -0.05)}, "apart, less than"),
     ],
 )
 def test_bad_workspace(kwargs: dict, message: str) -> None:
     with pytest.raises(WorkspaceError, match=message):
         Workspace(**kwargs)
+
+
+def test_a_bowl_away_from_the_start_cross_starts_where_it_is_put(site_config: SiteConfig) -> None:
+    """Pointing's scene: the cross at the start, the bowl out of the way; the gap to the
+    target is the bowl's, so a start 10 cm from the target is allowed."""
+    ws = Workspace(start_xy_m=(0.68, -0.45), target_xy_m=(0.68, -0.35), bowl_xy_m=(0.45, -0.65))
+    with RemoteSite(replace(site_config, workspace=ws)) as site:
+        np.testing.assert_allclose(site.observe().T_base_bowl[:2, 3], (0.45, -0.65), atol=2e-3)
+        seen = site.sight_bowl()
+        assert seen.found
+        np.testing.assert_allclose(seen.position_m[:2], (0.45, -0.65), atol=5e-3)
 
 
 def test_failed_start_up_releases_the_physics_client(site_config: SiteConfig) -> None:

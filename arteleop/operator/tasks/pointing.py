@@ -19,7 +19,6 @@ from arteleop.operator.tasks.task import (
     Goal,
     TaskPhase,
     planar_goal,
-    relative_goal,
 )
 from arteleop.operator.traits import OperatorTraits
 
@@ -31,8 +30,9 @@ SELECT = TaskPhase("select", Action.CLOSE)
 class PointingTask:
     """One pointing trial (base frame, m).
 
+    The start is where the display draws its cross (``DisplayFrame.start_m``).
+
     Args:
-        start_m: Where the gripper waits before the movement (over the start point).
         target_m: The target's centre on the table.
         width_m: The target's width: the circle's diameter (m).
         rest_gripper_m: Where the gripper waits at rest, to align the hand before engaging.
@@ -47,14 +47,12 @@ class PointingTask:
 
     def __init__(
         self,
-        start_m: ArrayLike,
         target_m: ArrayLike,
         width_m: float,
         rest_gripper_m: ArrayLike,
         height_m: float = 0.05,
         start_clearance_m: float = 0.019,
     ) -> None:
-        self.start_m = np.asarray(start_m, dtype=np.float64)
         self.target_m = np.asarray(target_m, dtype=np.float64)
         self.width_m = width_m
         self.rest_gripper_m = np.asarray(rest_gripper_m, dtype=np.float64)
@@ -71,7 +69,12 @@ class PointingTask:
         if phase is POINT:
             # The circle as the cloud shows it, centred on by eye.
             return planar_goal(seen.target_m + up, seen, None)
-        return relative_goal(self.start_m + up, seen)
+        if seen.start_m is None or seen.start_cov is None:
+            return None  # no start drawn: nothing to aim at
+        # The cross as the cloud shows it, against the gripper over it, and the height with it:
+        # the pointing movement starts level with where it ends.
+        return Goal(seen.start_m + up, seen.start_cov, "xyz", seen.gripper_seen,
+                    seen.start_fixations)  # fmt: skip
 
     def gripped(self, phase: TaskPhase, seen: Perceived) -> None:
         """Nothing to remember: the selection ends the task."""

@@ -78,9 +78,10 @@ class Task(Protocol):
             aligns its hand on it to engage.
         ends_trial: The operator's last phase ends the trial (a selection); otherwise the site
             judges when it has ended (the bowl found at rest at its place).
-        aims_gripper: The task brings the gripper itself onto the target drawn on the table
-            (pointing at it), not an object it holds: the target is judged against the
-            gripper, not against the object.
+        aims_gripper: The task brings the gripper itself onto marks drawn on the table
+            (pointing at the target from the start), not an object it holds: the target's
+            circle and the start's cross are judged against the gripper, not the object
+            (``Perceived.target_m``, ``Perceived.start_m``).
     """
 
     phases: tuple[TaskPhase, ...]
