@@ -1,8 +1,9 @@
 """The simulated participant's Fitts pointing task, through the whole teleoperation chain.
 
 Wearable -> network -> reconstruction -> IK -> robot -> camera -> display frame -> operator:
-targets are circles drawn on the table (distance D from a start point along +y, diameter W),
-the operator points at them with the gripper 5 cm above the table and selects by closing it.
+targets are circles drawn on the table (distance D along +y from a start drawn as a cross,
+diameter W); the operator brings the gripper 5 cm over the cross, points at the circle at that
+height and selects by closing the gripper.
 Each simulated person (traits drawn as a study draws them) does every cell ``--reps`` times per
 lag, with the same seeds at every lag (paired).
 
