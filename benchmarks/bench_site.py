@@ -52,7 +52,7 @@ def physics_second(site: RemoteSite, bowl_moving: bool) -> Callable[[], None]:
             site.step(steps)
             return
         for _ in range(2):
-            site.place_bowl(ws.start_xy_m, (0.3, 0.0, 0.5), (0.0, 2.0, 0.0))
+            site.place_bowl(ws.bowl_start_xy_m, (0.3, 0.0, 0.5), (0.0, 2.0, 0.0))
             site.step(steps // 2)
 
     return run

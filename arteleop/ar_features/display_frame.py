@@ -92,7 +92,7 @@ class DisplayFrame:
         T_cloud_true: (4, 4) where the point cloud shows a point of the real scene: the
             camera's registration error, in the base frame (None: a perfect registration).
             A real system cannot know it; the simulation gives it so that the synthetic
-            operator sees the real gripper and the target marker where the cloud shows them,
+            operator sees the real gripper and the markers where the cloud shows them,
             off the ghost and the target mesh, which stay where the robot and the task put
             them. The view draws the cloud itself and does not use it.
         predicted: Where the commands already sent will put the arm, at the operator's present

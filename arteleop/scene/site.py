@@ -260,8 +260,8 @@ class RemoteSite(Closeable):
         return T
 
     def reset(self) -> None:
-        """Back to the start of a trial: the arm at rest, the gripper open, the bowl at rest at
-        the start point, and the site's clock at 0 s."""
+        """Back to the start of a trial: the arm at rest, the gripper open, the bowl at rest where
+        it starts, and the site's clock at 0 s."""
         self.robot.reset(self.config.rest_pose)
         self.place_bowl(self.config.workspace.bowl_start_xy_m)
         self._steps = 0

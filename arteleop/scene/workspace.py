@@ -119,7 +119,7 @@ class Workspace:
 
     def camera_landmarks_m(self) -> dict[str, NDArray[np.float64]]:
         """What the head camera must see of the task, by name (base frame, m): the start and
-        target markers and the bowl's rim above each."""
+        target markers and the bowl's rim where it starts and over the target."""
         rim = np.array([0.0, 0.0, self.bowl.height_m])
         return {
             "start marker": self.start_m,

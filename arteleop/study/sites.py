@@ -67,7 +67,8 @@ class StudySite:
         self, start_xy_m: tuple[float, float], target_xy_m: tuple[float, float]
     ) -> Workspace:
         """The base workspace with the bowl's start and target moved (base frame, m)."""
-        return replace(self.base.workspace, start_xy_m=start_xy_m, target_xy_m=target_xy_m)
+        return replace(self.base.workspace, start_xy_m=start_xy_m, target_xy_m=target_xy_m,
+                       bowl_xy_m=None)  # fmt: skip
 
     def problem(
         self, start_xy_m: tuple[float, float], target_xy_m: tuple[float, float]

@@ -75,7 +75,8 @@ def run_pointing_trial(
                          network=NetworkConfig(delay_s=round_trip_lag_s / 2),
                          site=SiteConfig(workspace=ws), record_trace=True)  # fmt: skip
     with RemoteSite(config.site) as site:
-        task = PointingTask(ws.target_m, width_m, site.observe().gripper_m)
+        task = PointingTask(target_m=ws.target_m, width_m=width_m,
+                            rest_gripper_m=site.observe().gripper_m)  # fmt: skip
         to_hand = HandToGripper(config.controller.mapping).hand_position_for
         source = SyntheticSource(task, to_hand, np.random.default_rng([seed, 1]), traits=traits)
         result = run_trial(source, config, site)

@@ -20,10 +20,13 @@ from arteleop.operator import (
     OperatorTraits,
     Perceived,
     PickAndPlace,
+    PointingTask,
     SyntheticOperator,
     TaskPhase,
 )
+from arteleop.operator.perception import PerceptualErrors, perceive
 from arteleop.operator.tasks import relative_goal
+from arteleop.operator.tasks.pointing import TO_START
 from arteleop.transforms import make_transform
 from tests.ar_features.frames import display_frame
 
@@ -151,13 +154,9 @@ def test_pointing_starts_over_the_cross_it_sees() -> None:
     """The pointing task's start is the cross the display draws, judged against the gripper:
     its goal 5 cm over the judged cross, in height too, with the judgement's covariance; a
     display that draws no start gives no goal (the operator keeps looking)."""
-    from arteleop.operator import PointingTask
-    from arteleop.operator.perception import PerceptualErrors, perceive
-    from arteleop.operator.tasks.pointing import TO_START
-
     start = display_frame().target_m + [0.0, -0.2, 0.0]
     view = display_frame(start_m=start)
-    task = PointingTask(view.target_m, 0.02, view.gripper_m)
+    task = PointingTask(target_m=view.target_m, width_m=0.02, rest_gripper_m=view.gripper_m)
     params = OperatorParams().perception
     seen = perceive(view, params, PerceptualErrors(np.random.default_rng(0), 1, 0.5),
                     aims_gripper=True)  # fmt: skip

@@ -68,7 +68,8 @@ def test_camera_too_close_for_its_depth_range(site_config: SiteConfig) -> None:
             {"bowl_xy_m": (0.68, 0.5)},
             r"bowl_xy_m=\(0.68, 0.5\): a bowl of radius 0.08 m there overhangs the table",
         ),
-        # The bowl moved away, the start cross may lie near the target (pointing).
+        # The bowl moved away from the cross: its own start is what must be apart from the
+        # target.
         ({"bowl_xy_m": (0.75, -0.15), "target_xy_m": (0.70, -0.05)}, "apart, less than"),
     ],
 )

@@ -47,6 +47,7 @@ class PointingTask:
 
     def __init__(
         self,
+        *,
         target_m: ArrayLike,
         width_m: float,
         rest_gripper_m: ArrayLike,
