@@ -31,6 +31,8 @@ class HostCheck:
 def check_host(host: str, port: int = 0) -> HostCheck:
     """Resolve ``host`` and try binding it; raise :class:`ViewHostError` if it cannot be, or,
     given a ``port``, if that port is taken there."""
+    if not 0 <= port <= 65535:
+        raise ViewHostError(f"--port {port}: expected a TCP port, 0-65535 (0: any free one).")
     try:
         infos = socket.getaddrinfo(host, None, type=socket.SOCK_STREAM)
     except OSError as err:
@@ -45,8 +47,6 @@ def check_host(host: str, port: int = 0) -> HostCheck:
             f"--host {host}: this machine cannot serve on {ip} ({err.strerror}). Use "
             "127.0.0.1 (this machine only) or an address of one of its network interfaces."
         )
-    if not 0 <= port <= 65535:
-        raise ViewHostError(f"--port {port}: expected a TCP port, 0-65535 (0: any free one).")
     if port and (err := _bind(family, ip, port)) is not None:
         if err.errno in (errno.EACCES, errno.EPERM):
             raise ViewHostError(

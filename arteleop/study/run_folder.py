@@ -62,11 +62,11 @@ def csv_line(values: Iterable[object]) -> str:
     return buffer.getvalue()
 
 
-def write_atomic(path: Path, text: str) -> None:
+def write_atomic(path: Path, text: str, *, private: bool = False, exclusive: bool = False) -> None:
     """:func:`arteleop.files.write_atomic`, failing with a :class:`RunFolderError` that names
     the file."""
     try:
-        files.write_atomic(path, text)
+        files.write_atomic(path, text, private=private, exclusive=exclusive)
     except OSError as err:
         raise RunFolderError(f"Cannot write {path}: {err.strerror or err}.") from err
 

@@ -28,10 +28,8 @@ import base64
 import contextlib
 import hashlib
 import hmac
-import os
 import re
 import secrets
-import tempfile
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -187,6 +185,7 @@ class ServedRun:
         people: list[ParticipantSpec],
     ) -> None:
         self.folder = folder
+        self._key: bytes | None = None  # the links' key, read from the folder once
         self.study = study
         self.plan = plan
         self.people = people
@@ -252,19 +251,17 @@ class ServedRun:
         return base64.urlsafe_b64encode(digest[:TOKEN_BYTES]).decode().rstrip("=")
 
     def _links_key(self) -> bytes:
+        if self._key is None:
+            self._key = self._read_links_key()
+        return self._key
+
+    def _read_links_key(self) -> bytes:
         path = self.folder.path / LINKS_KEY_FILE
         if not path.exists():
-            # Whole or not at all: an empty key would make every link computable.
-            fd, tmp = tempfile.mkstemp(dir=self.folder.path, prefix=f".{LINKS_KEY_FILE}.")
-            try:
-                with os.fdopen(fd, "w", encoding="ascii") as key_file:
-                    key_file.write(secrets.token_hex(LINKS_KEY_BYTES) + "\n")
-                    key_file.flush()
-                    os.fsync(key_file.fileno())
-                with contextlib.suppress(FileExistsError):  # another made it first: theirs
-                    os.link(tmp, path)
-            finally:
-                os.unlink(tmp)
+            # Whole or not at all (an empty key would make every link computable); another
+            # server's, made first, is kept.
+            key = secrets.token_hex(LINKS_KEY_BYTES) + "\n"
+            write_atomic(path, key, private=True, exclusive=True)
         text = path.read_text(encoding="ascii", errors="replace").strip()
         if not re.fullmatch(f"[0-9a-f]{{{2 * LINKS_KEY_BYTES}}}", text):
             raise RunFolderError(

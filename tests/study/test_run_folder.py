@@ -197,3 +197,17 @@ def test_written_files_get_the_umask_permissions_not_private_ones(tmp_path: Path
         os.umask(old)
     assert (tmp_path / "a.csv").stat().st_mode & 0o777 == 0o644
     assert (tmp_path / "b.csv").stat().st_mode & 0o777 == 0o600
+
+
+def test_a_private_exclusive_write_keeps_a_file_made_first(tmp_path: Path) -> None:
+    """A secret (the links' key): its owner's only, whatever the umask, and written only where
+    no file is yet: one another writer made first is kept, and no temporary file is left."""
+    old = os.umask(0o022)
+    try:
+        write_atomic(tmp_path / "key", "first\n", private=True, exclusive=True)
+        write_atomic(tmp_path / "key", "second\n", private=True, exclusive=True)
+    finally:
+        os.umask(old)
+    assert (tmp_path / "key").read_text() == "first\n"
+    assert (tmp_path / "key").stat().st_mode & 0o777 == 0o600
+    assert [p.name for p in tmp_path.iterdir()] == ["key"]
