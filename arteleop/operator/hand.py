@@ -21,12 +21,14 @@ class Submovement:
     """A minimum-jerk displacement of the hand (torso frame, m) from ``start_s`` (s) over
     ``duration_s`` (s); submovements under way at once superpose. ``delta_m`` is what the
     hand does, ``intended_m`` what the operator meant it to do (without the motor noise): its
-    efference copy."""
+    efference copy; ``sd_m`` how far its endpoint scatters about it per axis (m), as the operator
+    knows its own movements do."""
 
     start_s: float
     delta_m: NDArray[np.float64]
     duration_s: float
     intended_m: NDArray[np.float64]
+    sd_m: float = 0.0
 
     def share_at(self, t: float) -> float:
         """The share of the movement covered at ``t`` (s)."""
@@ -91,6 +93,32 @@ class Hand:
         if before is None:  # the lag reaches back before what it remembers: the oldest
             before = self._path[0][1] if self._path else self.intended_m
         return self.intended_m - before
+
+    def velocity_m_s(self, t: float, half_window_s: float = 0.02) -> NDArray[np.float64]:
+        """How fast the operator meant its hand to move at ``t`` (s; m/s), from its efference
+        copy over ``half_window_s`` (s) either side."""
+        before = self.moved_since(t - half_window_s) - self.moved_since(t + half_window_s)
+        return before / (2 * half_window_s)
+
+    def scatter_m2(self, t: float) -> float:
+        """The variance per axis (m^2) of where the submovements under way will end, beyond what
+        the hand had covered of them at ``t`` (s): their motor noise, as the operator knows it."""
+        return sum((m.sd_m * (1.0 - m.share_at(t))) ** 2 for m in self.moves)
+
+    def to_end(
+        self, t: float, lag_s: float, timed_lag_s: float, timing_weber: float
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """How far the operator expects its hand to go at ``t`` (s) from where a display
+        ``lag_s`` (s) old shows it, to the end of its movements under way: what it meant over
+        ``timed_lag_s`` (s, the lag as it timed it this once) and what it still means (m);
+        and the covariance (m^2) it believes that has, from its timing of the lag (SD
+        ``timing_weber`` times the lag, along the way the hand went then) and its motor
+        noise."""
+        expected = self.moved_since(t - timed_lag_s) + self.remaining_m(t)
+        then_s = t - lag_s
+        timing = self.velocity_m_s(then_s) * (timing_weber * lag_s)
+        cov = np.outer(timing, timing) + self.scatter_m2(then_s) * np.eye(3)
+        return expected, cov
 
     def remaining_m(self, t: float) -> NDArray[np.float64]:
         """The intended displacement still to come from the submovements under way at ``t``

@@ -125,4 +125,4 @@ def planned_submovement(
         0.1,
     )
     sd = params.noise_floor_m + params.noise_k_s * amplitude / duration
-    return Submovement(start_s, hand_delta_m + rng.normal(0.0, sd, 3), duration, hand_delta_m)
+    return Submovement(start_s, hand_delta_m + rng.normal(0.0, sd, 3), duration, hand_delta_m, sd)

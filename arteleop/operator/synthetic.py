@@ -88,6 +88,11 @@ class SyntheticOperator:
         self.traits = traits or OperatorTraits()
         self.task = task
         self._to_hand = hand_for_gripper
+        # The mapping is affine: the hand's step for each of the gripper's is the same from
+        # anywhere, and so is its inverse.
+        origin = hand_for_gripper(np.zeros(3))
+        self._hand_per_gripper = np.column_stack([hand_for_gripper(e) - origin for e in np.eye(3)])
+        self._gripper_per_hand = np.linalg.inv(self._hand_per_gripper)
         self._rng = rng
         calib_pos, self._rot_path = hand_from_calibration(arm, calibration, self.p.hand_pitch_rad)
         self._work_R = Rotation.from_euler("y", self.p.hand_pitch_rad).as_matrix()
@@ -156,13 +161,26 @@ class SyntheticOperator:
             return 1.0
         return 1.0 + (t - self._correcting_from_s) / self.traits.urgency_s
 
-    def _sure_within(self, t: float, error: NDArray[np.float64], goal: Goal) -> float:
-        """How sure the operator is that ``error`` (m) is within the phase's criterion. Judged
-        in the table's plane, the height must first be reached, as any movement without a
-        precision demand (within ``gross_criterion_m``)."""
+    def _sure_within(
+        self,
+        t: float,
+        error: NDArray[np.float64],
+        goal: Goal,
+        cov_m2: NDArray[np.float64] | None = None,
+    ) -> float:
+        """How sure the operator is that ``error`` (m) is within the phase's criterion, believing
+        it has the covariance ``cov_m2`` (m^2; the goal's judgement's by default). Judged in the
+        table's plane, the height must first be reached, as any movement without a precision
+        demand (within ``gross_criterion_m``)."""
         if goal.axes == "xy" and abs(error[2]) > self.p.gross_criterion_m:
             return 0.0
-        return probability_within(error, goal.cov_m2, self.criterion_m(t), goal.axes)
+        cov = goal.cov_m2 if cov_m2 is None else cov_m2
+        return probability_within(error, cov, self.criterion_m(t), goal.axes)
+
+    def _timed_s(self, interval_s: float) -> float:
+        """An interval (s) as the operator times it, once: people time intervals with a
+        variability proportional to their length (scalar timing)."""
+        return interval_s * max(0.0, 1.0 + self.p.timing_weber * self._rng.normal())
 
     def _look_cost_s(self) -> float:
         """What one more look costs, as the operator has come to know it (s)."""
@@ -171,10 +189,8 @@ class SyntheticOperator:
 
     # -- moving ----------------------------------------------------------------------------------
     def _hand_delta(self, gripper_delta_m: NDArray[np.float64]) -> NDArray[np.float64]:
-        """The hand's step (m) that moves the gripper by ``gripper_delta_m`` (the mapping is
-        affine, so the step is the same from anywhere)."""
-        here = self.hand.position_m
-        return self._to_hand(here + gripper_delta_m) - self._to_hand(here)
+        """The hand's step (m) that moves the gripper by ``gripper_delta_m`` (m)."""
+        return self._hand_per_gripper @ gripper_delta_m
 
     def _move(self, t: float, hand_delta: NDArray[np.float64], start_s: float) -> None:
         """Add a submovement of the hand by ``hand_delta`` (m) from ``start_s`` (s), timed by the
@@ -255,8 +271,11 @@ class SyntheticOperator:
         self._move(t, self._hand_delta(error), t + self.p.motor_delay_s)
         primary = self.hand.moves[-1]
         self._homing_from_s = primary.start_s + 0.5 * primary.duration_s
-        visible_at = primary.time_to_cover_s(self.p.motion_threshold_m)
-        self._watch.await_response(error, visible_at)
+        self._watch.await_response(
+            error,
+            visible_at_s=primary.time_to_cover_s(self.p.motion_threshold_m),
+            half_at_s=primary.start_s + 0.5 * primary.duration_s,
+        )
 
     def _home_in(self, t: float, view: DisplayFrame) -> None:
         """A glance during a movement: correct in flight where the display shows the gripper
@@ -281,13 +300,18 @@ class SyntheticOperator:
         if goal is None or not goal.visible:
             return
         # Where the gripper will end: as seen now, plus what the hand did over the lag the
-        # operator believes the display has, plus what the hand has still to do. A lag longer
-        # than it believes makes the prediction fall short, and the correction overshoot.
-        hand = self.hand
-        predicted = seen.gripper_m + hand.moved_since(t - self.lag_s) + hand.remaining_m(t)
-        error = goal.gripper_m - predicted
+        # operator believes the display has (timed as people time intervals), plus what the hand
+        # has still to do. A lag longer than it believes makes the prediction fall short, and
+        # the correction overshoot. It knows how uncertain that is beyond the glance (its
+        # timing, its motor noise), and so does not chase a miss its prediction could make.
+        to_end, to_end_cov = self.hand.to_end(
+            t, self.lag_s, self._timed_s(self.lag_s), p.timing_weber
+        )
+        to_gripper = self._gripper_per_hand
+        error = goal.gripper_m - (seen.gripper_m + to_gripper @ to_end)
+        cov = goal.cov_m2 + to_gripper @ to_end_cov @ to_gripper.T
         # As after a look, it corrects what it is sure will miss.
-        if self._sure_within(t, error, goal) > 1 - self.traits.confidence:
+        if self._sure_within(t, error, goal, cov) > 1 - self.traits.confidence:
             return
         self.corrections_total += 1
         self._last_amend_s = t
@@ -337,9 +361,7 @@ class SyntheticOperator:
                 if moves_in_task:
                     self._home_in(t, view)
             else:
-                # The operator times its wait for the display as people time intervals.
-                wait = self.lag_s * max(0.0, 1.0 + self.p.timing_weber * self._rng.normal())
-                self._watch.hand_stopped(t, wait)
+                self._watch.hand_stopped(t, self._timed_s(self.lag_s))
                 self._mode = _Mode.WATCH
         elif self._mode is _Mode.WATCH:
             if not moves_in_task:

@@ -7,9 +7,12 @@ gripper still over a short window, which may overlap the wait. It knows whether 
 movement big enough to see, and does not take a display that has not answered it at all for one
 at rest; but it does not know where the display will bring the gripper: a display still on the
 robot's slow tail, or not yet showing a correction made in flight, is taken as settled, and the
-operator looks at a stale frame. It learns the lag from the display's response: the time from
-its hand covering a visible displacement to the display showing the gripper move that way;
-slowly, and never from a movement too small to see.
+operator looks at a stale frame. It learns the lag from the display's response half-way
+through a movement: the time from its hand covering half the displacement it meant to the display
+showing the gripper half-way along that way; slowly, and never from a movement too small to see.
+Half-way, the movement is at its fastest, so a frame's place dates it best, and that is where the
+operator predicts the display in flight (from half-way through the primary); the display's first
+stir lags more (the robot side's filter and the arm start slowly).
 """
 
 from __future__ import annotations
@@ -36,9 +39,11 @@ class DisplayWatch:
         self._stop_s = 0.0
         self._wait_s = 0.0
         # A movement whose appearance on the display the operator watches for: from where the
-        # display showed the gripper, and when its hand had covered the visible displacement.
-        # ...and the direction it goes on the display (a unit vector, m/m).
+        # display showed the gripper, the direction it goes on the display (a unit vector, m/m),
+        # and when its hand had covered the visible displacement.
         self._awaited: tuple[NDArray[np.float64], NDArray[np.float64], float] | None = None
+        # ...and, to time the display by, the half of it (m) and when the hand was half-way (s).
+        self._timing: tuple[NDArray[np.float64], NDArray[np.float64], float, float] | None = None
 
     @property
     def latest_m(self) -> NDArray[np.float64] | None:
@@ -59,19 +64,36 @@ class DisplayWatch:
         self._shown.append((stamp, shown))
         while self._shown and self._shown[0][0] < stamp - 2 * self.p.arrival_window_s:
             self._shown.popleft()
-        if self._awaited is not None and shown is not None:
+        if shown is None:
+            return
+        if self._awaited is not None:
             origin, direction, visible_at_s = self._awaited
-            # The response is the movement seen: the way the hand went, and faster than the
-            # gripper still at rest may drift.
-            if (
-                float((shown - origin) @ direction) > self.p.motion_threshold_m
-                and self._speed_m_s() > self.p.arrival_speed_m_s
-            ):
-                sample = max(time_s - visible_at_s, 0.0)
-                self.lag_s += self.p.lag_learning_rate * (sample - self.lag_s)
+            if self._answers(shown, origin, direction, self.p.motion_threshold_m):
                 self._awaited = None
             elif time_s - visible_at_s > self.p.arrival_timeout_s:
                 self._awaited = None  # never seen to move (held by the IK, out of view)
+        if self._timing is not None:
+            origin, direction, half_m, half_at_s = self._timing
+            if self._answers(shown, origin, direction, half_m):
+                sample = max(time_s - half_at_s, 0.0)
+                self.lag_s += self.p.lag_learning_rate * (sample - self.lag_s)
+                self._timing = None
+            elif time_s - half_at_s > self.p.arrival_timeout_s:
+                self._timing = None  # never seen half-way (held by the IK, out of view)
+
+    def _answers(
+        self,
+        shown: NDArray[np.float64],
+        origin: NDArray[np.float64],
+        direction: NDArray[np.float64],
+        distance_m: float,
+    ) -> bool:
+        """Whether the gripper ``shown`` has gone ``distance_m`` (m) from ``origin`` the way
+        ``direction`` points, faster than a gripper still at rest may drift."""
+        return (
+            float((shown - origin) @ direction) > distance_m
+            and self._speed_m_s() > self.p.arrival_speed_m_s
+        )
 
     def _speed_m_s(self) -> float:
         """The shown gripper's mean speed over the last arrival window (m/s); 0 if unknown."""
@@ -82,16 +104,21 @@ class DisplayWatch:
             return 0.0
         return float(np.linalg.norm(newest - first)) / (stamp - first_s)
 
-    def await_response(self, intended_m: NDArray[np.float64], visible_at_s: float) -> None:
+    def await_response(
+        self, intended_m: NDArray[np.float64], visible_at_s: float, half_at_s: float
+    ) -> None:
         """A movement meant to take the gripper ``intended_m`` (base frame, m) begins, its hand
-        covering the visible displacement at ``visible_at_s`` (s): watch for the display to
-        show it, unless it is too small to see or the display does not show the gripper."""
+        covering the visible displacement at ``visible_at_s`` (s) and half the movement at
+        ``half_at_s`` (s): watch for the display to show it, and time it half-way, unless it is
+        too small to see or the display does not show the gripper."""
         origin = self.latest_m
         amplitude = float(np.linalg.norm(intended_m))
         if origin is None or amplitude < 2 * self.p.motion_threshold_m:
-            self._awaited = None
+            self._awaited = self._timing = None
             return
-        self._awaited = (origin.copy(), intended_m / amplitude, visible_at_s)
+        direction = intended_m / amplitude
+        self._awaited = (origin.copy(), direction, visible_at_s)
+        self._timing = (origin.copy(), direction, 0.5 * amplitude, half_at_s)
 
     def hand_stopped(self, time_s: float, wait_s: float) -> None:
         """The hand stopped at ``time_s`` (s); the operator will wait ``wait_s`` (s) for the

@@ -67,18 +67,10 @@ def run_pointing_trial(
 ) -> PointingResult:
     """A pointing trial at a target ``distance_m`` away and ``width_m`` wide (m), by a person
     with ``traits``, with ``round_trip_lag_s`` (s) of network delay, half each way."""
-    target_xy = (POINTING_START_XY_M[0], POINTING_START_XY_M[1] + distance_m)
-    ws = Workspace(start_xy_m=POINTING_START_XY_M, target_xy_m=target_xy,
-                   bowl_xy_m=BOWL_AWAY_XY_M, target_circle_radius_m=width_m / 2,
-                   marker_line_width_m=width_m / 4)  # fmt: skip
-    config = TrialConfig(modality="none", seed=seed, timeout_s=timeout_s,
-                         network=NetworkConfig(delay_s=round_trip_lag_s / 2),
-                         site=SiteConfig(workspace=ws), record_trace=True)  # fmt: skip
+    config = pointing_config(distance_m, width_m, seed, round_trip_lag_s, timeout_s)
+    ws = config.site.workspace
     with RemoteSite(config.site) as site:
-        task = PointingTask(target_m=ws.target_m, width_m=width_m,
-                            rest_gripper_m=site.observe().gripper_m)  # fmt: skip
-        to_hand = HandToGripper(config.controller.mapping).hand_position_for
-        source = SyntheticSource(task, to_hand, np.random.default_rng([seed, 1]), traits=traits)
+        source = pointing_source(config, site.observe().gripper_m, traits)
         result = run_trial(source, config, site)
     trace = result.trace
     if trace is None:
@@ -97,6 +89,40 @@ def run_pointing_trial(
         bool(np.linalg.norm(off) <= width_m / 2),
         slips,
     )
+
+
+def pointing_config(
+    distance_m: float,
+    width_m: float,
+    seed: int,
+    round_trip_lag_s: float = 0.0,
+    timeout_s: float = 40.0,
+) -> TrialConfig:
+    """The trial of a pointing movement ``distance_m`` long at a target ``width_m`` wide (m),
+    under ``round_trip_lag_s`` (s) of network delay, half each way; its trace recorded."""
+    target_xy = (POINTING_START_XY_M[0], POINTING_START_XY_M[1] + distance_m)
+    ws = Workspace(start_xy_m=POINTING_START_XY_M, target_xy_m=target_xy,
+                   bowl_xy_m=BOWL_AWAY_XY_M, target_circle_radius_m=width_m / 2,
+                   marker_line_width_m=width_m / 4)  # fmt: skip
+    return TrialConfig(modality="none", seed=seed, timeout_s=timeout_s,
+                       network=NetworkConfig(delay_s=round_trip_lag_s / 2),
+                       site=SiteConfig(workspace=ws), record_trace=True)  # fmt: skip
+
+
+def pointing_source(
+    config: TrialConfig,
+    rest_gripper_m: NDArray[np.float64],
+    traits: OperatorTraits,
+    source_type: type[SyntheticSource] = SyntheticSource,
+) -> SyntheticSource:
+    """The person with ``traits`` doing the pointing task of ``config`` (from
+    :func:`pointing_config`), the gripper resting at ``rest_gripper_m`` (base frame, m), as a
+    ``source_type`` (a :class:`SyntheticSource`, or one that also records what it saw)."""
+    ws = config.site.workspace
+    task = PointingTask(target_m=ws.target_m, width_m=2 * ws.target_circle_radius_m,
+                        rest_gripper_m=rest_gripper_m)  # fmt: skip
+    to_hand = HandToGripper(config.controller.mapping).hand_position_for
+    return source_type(task, to_hand, np.random.default_rng([config.seed, 1]), traits=traits)
 
 
 def decided_selection(

@@ -9,6 +9,7 @@ import pytest
 from arteleop.ar_features import MODALITIES
 from arteleop.operator import OperatorParams
 from arteleop.operator.hand import Hand, Submovement
+from arteleop.operator.minimum_jerk import minimum_jerk_profile
 from arteleop.operator.watch import DisplayWatch
 from arteleop.transforms import make_transform
 from tests.ar_features.frames import display_frame
@@ -59,25 +60,27 @@ def _moving_at(begin_s: float):
 FRAMES = 1 / 30
 
 
-def test_the_lag_is_learnt_from_the_displays_response_and_slowly() -> None:
+def test_the_lag_is_learnt_from_the_displays_response_half_way_and_slowly() -> None:
+    """The hand is half-way at 0.25 s; the display shows the gripper half-way (50 mm along)
+    from 1.05 s: the sample is the time between, and the belief takes a tenth of its difference."""
     params = OperatorParams(familiar_lag_s=0.3, lag_learning_rate=0.1)
     watch = DisplayWatch(params)
     _show(watch, np.arange(0.0, 0.2, FRAMES), _moving_at(0.8))
-    watch.await_response(AWAY, visible_at_s=0.05)
-    _show(watch, np.arange(0.2, 0.8, FRAMES), _moving_at(0.8))
-    assert watch.lag_s == 0.3  # not shown moving yet: no sample
-    times = np.arange(0.8, 1.2, FRAMES)
+    watch.await_response(AWAY, visible_at_s=0.05, half_at_s=0.25)
+    _show(watch, np.arange(0.2, 1.0, FRAMES), _moving_at(0.8))
+    assert watch.lag_s == 0.3  # shown moving, 40 mm of 100: not half-way yet, no sample
+    times = np.arange(1.0, 1.3, FRAMES)
     _show(watch, times, _moving_at(0.8))
-    # Seen once 5 mm along the way (at 0.825 s) and faster than a drift: the first frame after.
-    seen_s = times[np.argmax(0.2 * (times - 0.8) > params.motion_threshold_m)]
-    assert watch.lag_s == pytest.approx(0.3 + 0.1 * (seen_s - 0.05 - 0.3))
+    seen_s = times[np.argmax(0.2 * (times - 0.8) > 0.5 * AWAY[0])]  # the first frame past it
+    assert watch.lag_s == pytest.approx(0.3 + 0.1 * (seen_s - 0.25 - 0.3))
 
 
 def test_a_movement_too_small_to_see_teaches_no_lag() -> None:
     params = OperatorParams(motion_threshold_m=0.005, lag_learning_rate=0.5)
     watch = DisplayWatch(params)
     _show(watch, np.arange(0.0, 0.2, FRAMES), _moving_at(0.8))
-    watch.await_response(np.array([0.008, 0.0, 0.0]), visible_at_s=0.05)  # under 2 thresholds
+    small = np.array([0.008, 0.0, 0.0])  # under two thresholds
+    watch.await_response(small, visible_at_s=0.05, half_at_s=0.25)
     _show(watch, np.arange(0.2, 1.2, FRAMES), _moving_at(0.8))
     assert watch.lag_s == params.familiar_lag_s
 
@@ -88,7 +91,7 @@ def test_the_robots_jitter_at_rest_is_not_taken_for_the_response() -> None:
     params = OperatorParams(lag_learning_rate=0.5)
     watch = DisplayWatch(params)
     _show(watch, np.arange(0.0, 0.2, FRAMES), lambda t: START)
-    watch.await_response(AWAY, visible_at_s=0.05)
+    watch.await_response(AWAY, visible_at_s=0.05, half_at_s=0.25)
     _show(watch, np.arange(0.2, 1.0, FRAMES),
           lambda t: START + [0.0, 0.01 * np.sin(20 * t), 0.0])  # fmt: skip
     _show(watch, np.arange(1.0, 2.0, FRAMES),
@@ -99,7 +102,7 @@ def test_the_robots_jitter_at_rest_is_not_taken_for_the_response() -> None:
 def test_the_operator_does_not_take_a_display_that_has_not_answered_for_one_at_rest() -> None:
     watch = DisplayWatch(OperatorParams(arrival_window_s=0.25, arrival_timeout_s=3.0))
     _show(watch, np.arange(0.0, 0.2, FRAMES), lambda t: START)
-    watch.await_response(AWAY, visible_at_s=0.05)
+    watch.await_response(AWAY, visible_at_s=0.05, half_at_s=0.25)
     watch.hand_stopped(0.6, wait_s=0.3)
     _show(watch, np.arange(0.2, 2.0, FRAMES), lambda t: START)
     assert not watch.arrived(2.0)  # its wait is long over, but nothing has moved
@@ -113,7 +116,7 @@ def test_after_its_wait_the_operator_looks_at_a_display_on_the_robots_slow_tail(
     params = OperatorParams(arrival_window_s=0.25)
     watch = DisplayWatch(params)
     _show(watch, np.arange(0.0, 0.2, FRAMES), lambda t: START)
-    watch.await_response(AWAY, visible_at_s=0.05)
+    watch.await_response(AWAY, visible_at_s=0.05, half_at_s=0.25)
     creep = 0.5 * params.arrival_speed_m_s
     path = lambda t: START + [0.2 * np.clip(t - 0.2, 0, 0.2) + creep * max(t - 0.4, 0), 0, 0]  # noqa: E731
     watch.hand_stopped(0.5, wait_s=0.3)
@@ -121,3 +124,26 @@ def test_after_its_wait_the_operator_looks_at_a_display_on_the_robots_slow_tail(
     assert not watch.arrived(0.7)  # still waiting
     _show(watch, np.arange(0.7, 1.1, FRAMES), path)
     assert watch.arrived(1.1)  # 47 mm shown of the 100 mm made
+
+
+def test_the_operator_expects_its_hand_to_end_as_it_meant_and_knows_how_unsure_that_is() -> None:
+    """Half-way through a 0.1 m minimum-jerk movement of 0.5 s, against a display 0.1 s old:
+    the hand has gone from 0.0579 m (the profile at 0.15 s / 0.5 s) to the end, 0.0421 m; the
+    belief's spread is the timing's along the way (0.15 of 0.1 s at the meant speed then) and
+    the movement's scatter not yet covered then."""
+    intended, sd = np.array([0.1, 0.0, 0.0]), 0.004
+    hand = Hand(np.zeros(3))
+    hand.add(Submovement(0.0, intended + [0.003, -0.002, 0.0], 0.5, intended, sd))
+    for t in np.arange(0.0, 0.2501, 0.001):
+        hand.advance(t)
+        hand.remember(t)
+    t, lag = 0.25, 0.1
+    expected, cov = hand.to_end(t, lag, timed_lag_s=lag, timing_weber=0.15)
+    share = minimum_jerk_profile(np.array([(t - lag) / 0.5]))[0]
+    np.testing.assert_allclose(expected, intended * (1 - share), atol=1e-6)
+    speed = 0.1 / 0.5 * 30 * 0.3**2 * 0.7**2  # minimum jerk at tau = 0.3: 30 tau^2 (1 - tau)^2
+    along = (0.15 * lag * speed) ** 2 + (sd * (1 - share)) ** 2
+    assert cov[0, 0] == pytest.approx(along, rel=0.06)  # its speed from samples 1 ms apart
+    np.testing.assert_allclose(np.diag(cov)[1:], (sd * (1 - share)) ** 2, rtol=1e-9)
+    # Timing the lag shorter than it believes leaves more of the movement to come.
+    assert hand.to_end(t, lag, timed_lag_s=0.05, timing_weber=0.15)[0][0] < expected[0]
