@@ -21,7 +21,7 @@ import numpy as np
 import pandas as pd
 from scipy import stats
 
-from arteleop.analysis.data import StudyData
+from arteleop.analysis.data import StudyData, sources_in
 from arteleop.analysis.delay import cue_sets, profiles, with_network
 from arteleop.analysis.output import whole_folder
 
@@ -78,8 +78,7 @@ def cohort_medians(trials: pd.DataFrame) -> pd.DataFrame:
 def cohort_source(trials: pd.DataFrame, cohort: int) -> str:
     """Who a cohort's participants are: ``real``, ``synthetic``, both ``+``-joined, or empty
     where its participants table does not say."""
-    said = trials.loc[trials["cohort"] == cohort, "source"] if "source" in trials else []
-    return "+".join(sorted({str(v) for v in said if isinstance(v, str) and v}))
+    return "+".join(sources_in(trials[trials["cohort"] == cohort]))
 
 
 def _interval(values: np.ndarray) -> tuple[float, float, float]:

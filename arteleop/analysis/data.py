@@ -87,6 +87,20 @@ class StudyData:
         t = self.trials
         return t[(t["phase"] == "experimental") & (t["outcome"] == "success")].copy()
 
+    @property
+    def sources(self) -> tuple[str, ...]:
+        """Who the participants are, as their table says (``real``, ``synthetic``), sorted;
+        empty where it does not say."""
+        return sources_in(self.participants)
+
+
+def sources_in(table: pd.DataFrame | None) -> tuple[str, ...]:
+    """The participant sources (``real``, ``synthetic``) a table's ``source`` column names,
+    sorted; empty without the table, the column or a value."""
+    if table is None or "source" not in table:
+        return ()
+    return tuple(sorted({str(v) for v in table["source"] if isinstance(v, str) and v}))
+
 
 def load_study(path: Path, participants_path: Path | None = None) -> StudyData:
     """Load a run folder (trials.csv and optional participants.csv, questionnaire.csv) or a bare

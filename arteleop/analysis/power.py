@@ -132,8 +132,7 @@ def make_pool(studies: Sequence[StudyData], names: Sequence[str]) -> Pool:
         values[measure] = wide.reindex(index=people, columns=conditions).to_numpy(np.float64)
     lines = tuple(
         f"{name}: {data.trials['participant'].nunique()} participants"
-        + (f" ({', '.join(sorted(data.participants['source'].dropna().unique()))})"
-           if data.participants is not None and "source" in data.participants else "")
+        + (f" ({', '.join(data.sources)})" if data.sources else "")
         for name, data in zip(names, studies, strict=True)
     )  # fmt: skip
     return Pool(people, tuple(conditions), tuple(networks), values, lines)

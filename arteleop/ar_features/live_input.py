@@ -16,6 +16,8 @@ import numpy as np
 import viser
 from numpy.typing import ArrayLike, NDArray
 
+from arteleop.transforms import sight_is_vertical
+
 GIZMO_SCALE_M = 0.15
 STEPS_M = {"5 cm": 0.05, "1 cm": 0.01}
 """The step buttons' sizes: a reach's scale, and the bowl's placement tolerance's."""
@@ -33,8 +35,7 @@ def step_directions(T_base_camera: ArrayLike) -> dict[str, NDArray[np.float64]]:
     forward, x right and y down in the image)."""
     R = np.asarray(T_base_camera, dtype=np.float64)[:3, :3]
     up = np.array([0.0, 0.0, 1.0])
-    # A camera looking straight down has no line of sight on the table: away is up its image.
-    forward = R[:, 2] if np.linalg.norm(R[:2, 2]) > 1e-6 else -R[:, 1]
+    forward = -R[:, 1] if sight_is_vertical(R) else R[:, 2]
     forward = np.append(forward[:2], 0.0) / np.linalg.norm(forward[:2])
     right = np.cross(forward, up)
     return {"left": -right, "right": right, "away": forward, "nearer": -forward, "up": up,

@@ -34,6 +34,7 @@ from arteleop.ar_features.modalities import ArCues
 from arteleop.ar_features.panel import ModalityPanel
 from arteleop.errors import ConfigurationError
 from arteleop.lifetime import Closeable
+from arteleop.transforms import sight_is_vertical
 
 
 @dataclass(frozen=True)
@@ -180,8 +181,7 @@ class OperatorView(Closeable):
         eye, forward = T[:3, 3], T[:3, 2]  # optical frame: z forward, y down
         # The world's vertical, not the camera's: orbiting then turns about it instead of
         # rolling the view; Baxter's head camera does not roll, so the view starts as its image.
-        # A camera looking straight down has no vertical to keep: its own up.
-        up = np.array([0.0, 0.0, 1.0]) if abs(forward[2]) < 0.999 else -T[:3, 1]
+        up = -T[:3, 1] if sight_is_vertical(T) else np.array([0.0, 0.0, 1.0])
         cameras = [self.server.initial_camera]
         if move_clients:
             cameras += [client.camera for client in self.server.get_clients().values()]

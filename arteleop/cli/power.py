@@ -105,9 +105,7 @@ def study_power(cmd: StudyPowerCommand) -> int:
         sources.append(simulated)
         studies.append(load_study(simulated))
         pool = make_pool(studies, [str(p) for p in sources])
-    kinds = {k for s in studies if s.participants is not None
-             for k in s.participants["source"].dropna()}  # fmt: skip
-    simulated_pool = kinds == {"synthetic"}
+    simulated_pool = {k for s in studies for k in s.sources} == {"synthetic"}
     parts = []
     interrupted = False
     bar = tqdm(total=len(sizes), desc="sizes", unit="n", disable=cmd.quiet, leave=False)

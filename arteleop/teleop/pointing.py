@@ -118,9 +118,8 @@ def pointing_source(
     """The person with ``traits`` doing the pointing task of ``config`` (from
     :func:`pointing_config`), the gripper resting at ``rest_gripper_m`` (base frame, m), as a
     ``source_type`` (a :class:`SyntheticSource`, or one that also records what it saw)."""
-    ws = config.site.workspace
-    task = PointingTask(target_m=ws.target_m, width_m=2 * ws.target_circle_radius_m,
-                        rest_gripper_m=rest_gripper_m)  # fmt: skip
+    width_m = 2 * config.site.workspace.target_circle_radius_m
+    task = PointingTask(width_m=width_m, rest_gripper_m=rest_gripper_m)
     to_hand = HandToGripper(config.controller.mapping).hand_position_for
     return source_type(task, to_hand, np.random.default_rng([config.seed, 1]), traits=traits)
 

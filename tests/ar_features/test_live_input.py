@@ -76,3 +76,6 @@ def test_each_step_button_moves_the_target_that_way_in_the_cameras_image() -> No
     down = step_directions(_looking_down_x(np.pi / 2, yaw_rad=0.3))
     np.testing.assert_allclose(down["away"], [np.cos(0.3), np.sin(0.3), 0.0], atol=1e-12)
     np.testing.assert_allclose(down["right"], [np.sin(0.3), -np.cos(0.3), 0.0], atol=1e-12)
+    # ...and within a hair of it (the view keeps its up by the same rule), as straight down.
+    near = step_directions(_looking_down_x(np.pi / 2 + 0.01, yaw_rad=0.3))  # a hair past it
+    np.testing.assert_allclose(near["away"], down["away"], atol=1e-4)

@@ -156,7 +156,7 @@ def test_pointing_starts_over_the_cross_it_sees() -> None:
     display that draws no start gives no goal (the operator keeps looking)."""
     start = display_frame().target_m + [0.0, -0.2, 0.0]
     view = display_frame(start_m=start)
-    task = PointingTask(target_m=view.target_m, width_m=0.02, rest_gripper_m=view.gripper_m)
+    task = PointingTask(width_m=0.02, rest_gripper_m=view.gripper_m)
     params = OperatorParams().perception
     seen = perceive(view, params, PerceptualErrors(np.random.default_rng(0), 1, 0.5),
                     aims_gripper=True)  # fmt: skip

@@ -30,10 +30,11 @@ SELECT = TaskPhase("select", Action.CLOSE)
 class PointingTask:
     """One pointing trial (base frame, m).
 
-    The start is where the display draws its cross (``DisplayFrame.start_m``).
+    The start and the target are where the display draws them, the start's cross and the
+    target's circle (``DisplayFrame.start_m``, ``DisplayFrame.target_m``): the person knows them
+    only as seen.
 
     Args:
-        target_m: The target's centre on the table.
         width_m: The target's width: the circle's diameter (m).
         rest_gripper_m: Where the gripper waits at rest, to align the hand before engaging.
         height_m: How high over the table the gripper points (m).
@@ -48,13 +49,11 @@ class PointingTask:
     def __init__(
         self,
         *,
-        target_m: ArrayLike,
         width_m: float,
         rest_gripper_m: ArrayLike,
         height_m: float = 0.05,
         start_clearance_m: float = 0.019,
     ) -> None:
-        self.target_m = np.asarray(target_m, dtype=np.float64)
         self.width_m = width_m
         self.rest_gripper_m = np.asarray(rest_gripper_m, dtype=np.float64)
         self.height_m = height_m
