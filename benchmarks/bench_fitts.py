@@ -5,7 +5,12 @@ targets are circles drawn on the table (distance D along +y from a start drawn a
 diameter W); the operator brings the gripper 5 cm over the cross, points at the circle at that
 height and selects by closing the gripper.
 Each simulated person (traits drawn as a study draws them) does every cell ``--reps`` times per
-lag, with the same seeds at every lag (paired).
+lag, in one block per lag: each repetition's cells in an order shuffled for the person, the same
+orders and the same seeds at every lag (paired). Through a block the person carries the lag it
+has learnt from one trial to the next (its belief at a trial's end is its belief at the next
+one's start), as people practise the lag of a block; the first trial of a block meets the lag
+with the belief from practice on the system (``familiar_lag_s``). ``--fresh`` makes every trial
+the block's first.
 
 Measured as ISO 9241-9 asks (Soukoreff & MacKenzie 2004): the selection is the closure the
 operator decided (an earlier closure, the fingers pushed by the table, is a slip, counted); per
@@ -18,7 +23,7 @@ the index of difficulty, ``MT = a + (b + c lag) ID``), and each lag's effect on 
 against no lag, person by person (geometric mean of the paired ratios, 95 % t-interval).
 
     python benchmarks/bench_fitts.py [--people 16] [--reps 5] [--lags 0,75,150,225,450]
-                                     [--quick] [--workers 2] [--json OUT.json]
+                                     [--quick] [--fresh] [--workers 2] [--json OUT.json]
 
 What it prints is what the model predicts: no constant of the operator is fitted to it.
 """
@@ -34,7 +39,7 @@ import os
 import sys
 import time
 from concurrent.futures import ProcessPoolExecutor
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy import stats
@@ -44,25 +49,56 @@ WIDTHS_M = (0.01, 0.02, 0.04)
 
 
 @dataclass(frozen=True)
-class Job:
-    person: int
+class Trial:
     distance_m: float
     width_m: float
-    lag_ms: float
     rep: int
     seed: int
 
 
-def run(job: Job) -> dict[str, float]:
-    """One pointing trial: its movement time, the selection's endpoint, hit and slips."""
-    from arteleop.operator import Expertise, TraitDistribution
+@dataclass(frozen=True)
+class Block:
+    """One person's trials under one lag, in order."""
+
+    person: int
+    lag_ms: float
+    trials: tuple[Trial, ...]
+    fresh: bool = False
+
+
+def block_trials(person: int, reps: int) -> tuple[Trial, ...]:
+    """A person's trials in a block: each repetition's cells in an order shuffled for the
+    person and the repetition (the same at every lag)."""
+    cells = [(i, j) for i in range(len(DISTANCES_M)) for j in range(len(WIDTHS_M))]
+    trials = []
+    for rep in range(reps):
+        for k in np.random.default_rng([person, rep]).permutation(len(cells)):
+            i, j = cells[k]
+            trials.append(Trial(DISTANCES_M[i], WIDTHS_M[j], rep,
+                                seed=10000 * person + 100 * rep + 10 * i + j))  # fmt: skip
+    return tuple(trials)
+
+
+def run(block: Block) -> list[dict[str, float]]:
+    """A block's pointing trials, one after the other, the person carrying its belief of the lag
+    from each to the next (unless the block is fresh): each trial's movement time, the
+    selection's endpoint, hit and slips."""
+    from arteleop.operator import Expertise, OperatorParams, TraitDistribution
     from arteleop.teleop.pointing import run_pointing_trial
 
-    traits = TraitDistribution().draw(0, f"F{job.person:02d}", Expertise())
-    r = run_pointing_trial(job.distance_m, job.width_m, traits, job.seed, job.lag_ms / 1000)
-    return {"selected": float(r.selected), "movement_time_s": r.movement_time_s,
-            "along_m": r.along_m, "across_m": r.across_m, "hit": float(r.hit),
-            "slips": float(r.slips)}  # fmt: skip
+    traits = TraitDistribution().draw(0, f"F{block.person:02d}", Expertise())
+    practice = OperatorParams()
+    rows = []
+    for trial in block.trials:
+        r = run_pointing_trial(trial.distance_m, trial.width_m, traits, trial.seed,
+                               block.lag_ms / 1000, params=practice)  # fmt: skip
+        if not block.fresh:
+            practice = replace(practice, familiar_lag_s=r.believed_lag_s)
+        rows.append({"person": block.person, "lag_ms": block.lag_ms, **vars(trial),
+                     "selected": float(r.selected), "movement_time_s": r.movement_time_s,
+                     "along_m": r.along_m, "across_m": r.across_m, "hit": float(r.hit),
+                     "slips": float(r.slips), "believed_lag_s": r.believed_lag_s})  # fmt: skip
+    return rows
 
 
 def fit_line(x: np.ndarray, y: np.ndarray) -> tuple[float, float, float]:
@@ -109,6 +145,8 @@ def main() -> None:
                         help="round-trip lags (ms), comma-separated; the first is the baseline")  # fmt: skip
     parser.add_argument("--quick", action="store_true",
                         help="4 people, 3 repetitions, the lags 0 and 225 ms: a few minutes")  # fmt: skip
+    parser.add_argument("--fresh", action="store_true",
+                        help="every trial meets its lag anew: no practice within a block")  # fmt: skip
     parser.add_argument("--workers", type=int, default=len(os.sched_getaffinity(0)))
     parser.add_argument("--json", help="write the lag table, the fits and the cells to this file")
     args = parser.parse_args()
@@ -119,13 +157,11 @@ def main() -> None:
     if args.workers < 1:
         parser.error(f"--workers {args.workers}: give 1 or more")
     people, reps, lags = (4, 3, [0.0, 225.0]) if args.quick else (args.people, args.reps, args.lags)
-    jobs = [Job(p, d, w, lag, rep, seed=10000 * p + 100 * rep + 10 * i + j)
-            for lag in lags for p in range(people) for rep in range(reps)
-            for i, d in enumerate(DISTANCES_M) for j, w in enumerate(WIDTHS_M)]  # fmt: skip
+    blocks = [Block(p, lag, block_trials(p, reps), args.fresh)
+              for lag in lags for p in range(people)]  # fmt: skip
     t0 = time.perf_counter()
     with ProcessPoolExecutor(args.workers) as pool:
-        rows = [dict(vars(job), **result) for job, result in zip(jobs, pool.map(run, jobs),
-                                                                 strict=True)]  # fmt: skip
+        rows = [row for block_rows in pool.map(run, blocks) for row in block_rows]
     print(f"{len(rows)} pointing trials, {people} people x {reps} repetitions, in "
           f"{time.perf_counter() - t0:.0f} s on {args.workers} workers\n")  # fmt: skip
     report(rows, lags, args.json)
@@ -198,6 +234,15 @@ def lag_effect(people: list[dict], lag: float, base: float) -> tuple[float, floa
     return float(np.exp(mean)), float(np.exp(mean - half)), float(np.exp(mean + half)), len(logs)
 
 
+def last_beliefs(rows: list[dict], lag: float) -> list[float]:
+    """Per person, the lag it believed at the end of its block under ``lag`` (s)."""
+    last: dict[int, float] = {}
+    for r in rows:  # in each block's order
+        if r["lag_ms"] == lag:
+            last[r["person"]] = r["believed_lag_s"]
+    return list(last.values())
+
+
 def report(rows: list[dict], lags: list[float], json_path: str | None) -> None:
     people = person_cells(rows)
     cells = cell_medians(people, lags)
@@ -226,11 +271,12 @@ def report(rows: list[dict], lags: list[float], json_path: str | None) -> None:
             print(f"\nMT = {a:.2f} s + {b:.2f} s/bit x ID_e, R^2 = {r2:.2f} "
                   f"(nominal ID: {a0:.2f} s + {b0:.2f} s/bit, R^2 = {r20:.2f})\n")  # fmt: skip
     per_lag: dict[str, list] = {"lag_ms": [], "movement_time_s": [], "error_rate": [],
-                                "ratio": [], "ratio_low": [], "ratio_high": []}  # fmt: skip
+                                "ratio": [], "ratio_low": [], "ratio_high": [],
+                                "believed_lag_s": []}  # fmt: skip
     print("## Under added lag (round trip)\n")
     print("| lag (ms) | MT (s, median of cells) | MT / no lag, paired by person (95 % CI) | people "
-          "| errors | slips |")  # fmt: skip
-    print("| ---: | ---: | --- | ---: | ---: | ---: |")
+          "| errors | slips | lag believed at the end (s) |")  # fmt: skip
+    print("| ---: | ---: | --- | ---: | ---: | ---: | ---: |")
     for lag in lags:
         c = [x for x in cells if x["lag_ms"] == lag]
         if not c:
@@ -238,10 +284,11 @@ def report(rows: list[dict], lags: list[float], json_path: str | None) -> None:
         mt = float(np.median([x["mt_s"] for x in c]))
         err = float(np.mean([x["error_rate"] for x in c]))
         ratio, low, high, n = lag_effect(people, lag, lags[0])
-        for key, value in zip(per_lag, (lag, mt, err, ratio, low, high), strict=True):
+        believed = float(np.median(last_beliefs(rows, lag)))
+        for key, value in zip(per_lag, (lag, mt, err, ratio, low, high, believed), strict=True):
             per_lag[key].append(value)
         print(f"| {lag:g} | {mt:.2f} | x {ratio:.2f} ({low:.2f}-{high:.2f}) | {n} | "
-              f"{100 * err:.0f} % | {sum(x['slips'] for x in c):.0f} |")  # fmt: skip
+              f"{100 * err:.0f} % | {sum(x['slips'] for x in c):.0f} | {believed:.2f} |")  # fmt: skip
     if len(per_lag["lag_ms"]) > 1:
         ids = np.array([c["id"] for c in cells])
         lag_s = np.array([c["lag_ms"] / 1000 for c in cells])

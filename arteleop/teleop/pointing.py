@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from arteleop.errors import SimulationError
-from arteleop.operator import OperatorTraits, PointingTask, SyntheticSource
+from arteleop.operator import OperatorParams, OperatorTraits, PointingTask, SyntheticSource
 from arteleop.robot.mapping import HandToGripper
 from arteleop.scene import RemoteSite, SiteConfig, Workspace
 from arteleop.teleop.loop import run_trial
@@ -44,6 +44,8 @@ class PointingResult:
         across_m: ...and across it, in the table's plane (m).
         hit: The gripper was within the circle at the selection.
         slips: Closures before the decision.
+        believed_lag_s: The display's lag as the operator believed it at the trial's end (s):
+            what it brings to its next trial under the same lag.
     """
 
     movement_time_s: float
@@ -51,6 +53,7 @@ class PointingResult:
     across_m: float
     hit: bool
     slips: int = 0
+    believed_lag_s: float = float("nan")
 
     @property
     def selected(self) -> bool:
@@ -64,21 +67,26 @@ def run_pointing_trial(
     seed: int,
     round_trip_lag_s: float = 0.0,
     timeout_s: float = 40.0,
+    params: OperatorParams | None = None,
 ) -> PointingResult:
     """A pointing trial at a target ``distance_m`` away and ``width_m`` wide (m), by a person
-    with ``traits``, with ``round_trip_lag_s`` (s) of network delay, half each way."""
+    with ``traits`` and the operator's constants ``params`` (the defaults; a person who has
+    practised a lag brings its belief as ``familiar_lag_s``), with ``round_trip_lag_s`` (s) of
+    network delay, half each way."""
     config = pointing_config(distance_m, width_m, seed, round_trip_lag_s, timeout_s)
     ws = config.site.workspace
     with RemoteSite(config.site) as site:
-        source = pointing_source(config, site.observe().gripper_m, traits)
+        source = pointing_source(config, site.observe().gripper_m, traits, params=params)
         result = run_trial(source, config, site)
+    believed_lag_s = source.operator.lag_s
     trace = result.trace
     if trace is None:
         raise SimulationError("The pointing trial recorded no trace although its config asked.")
     pointing = [r for r in source.operator.history if r.name == "point"]
     if not pointing or pointing[0].first_move_s is None or pointing[0].end_s is None:
         _, slips = decided_selection(trace["time_s"], trace["gripper_closure"], np.inf)
-        return PointingResult(float("nan"), float("nan"), float("nan"), False, slips)
+        return PointingResult(float("nan"), float("nan"), float("nan"), False, slips,
+                              believed_lag_s)  # fmt: skip
     decided_s = pointing[0].end_s
     k, slips = decided_selection(trace["time_s"], trace["gripper_closure"], decided_s)
     off = np.array([trace["gripper_x_m"][k], trace["gripper_y_m"][k]]) - ws.target_m[:2]
@@ -88,6 +96,7 @@ def run_pointing_trial(
         float(off[0]),
         bool(np.linalg.norm(off) <= width_m / 2),
         slips,
+        believed_lag_s,
     )
 
 
@@ -114,14 +123,17 @@ def pointing_source(
     rest_gripper_m: NDArray[np.float64],
     traits: OperatorTraits,
     source_type: type[SyntheticSource] = SyntheticSource,
+    params: OperatorParams | None = None,
 ) -> SyntheticSource:
-    """The person with ``traits`` doing the pointing task of ``config`` (from
-    :func:`pointing_config`), the gripper resting at ``rest_gripper_m`` (base frame, m), as a
-    ``source_type`` (a :class:`SyntheticSource`, or one that also records what it saw)."""
+    """The person with ``traits`` (and the operator's constants ``params``) doing the pointing
+    task of ``config`` (from :func:`pointing_config`), the gripper resting at
+    ``rest_gripper_m`` (base frame, m), as a ``source_type`` (a :class:`SyntheticSource`, or one
+    that also records what it saw)."""
     width_m = 2 * config.site.workspace.target_circle_radius_m
     task = PointingTask(width_m=width_m, rest_gripper_m=rest_gripper_m)
     to_hand = HandToGripper(config.controller.mapping).hand_position_for
-    return source_type(task, to_hand, np.random.default_rng([config.seed, 1]), traits=traits)
+    rng = np.random.default_rng([config.seed, 1])
+    return source_type(task, to_hand, rng, params=params, traits=traits)
 
 
 def decided_selection(

@@ -5,27 +5,32 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from arteleop.operator import Expertise, TraitDistribution
-from arteleop.teleop.pointing import run_pointing_trial
+from arteleop.operator import Expertise, OperatorParams, TraitDistribution
+from arteleop.teleop.pointing import PointingResult, run_pointing_trial
 from tests.parallel import run_each
 
 PEOPLE = [TraitDistribution().draw(0, f"F{k:02d}", Expertise()) for k in range(4)]
 
 
 @pytest.fixture(scope="module")
-def times() -> dict[tuple[float, float, float], list[float]]:
-    """Movement times (s) per cell (distance m, width m, round-trip lag s): two people at the
-    hard target, four under lag (a trial's time varies by a factor of two between people)."""
+def trials() -> dict[tuple[float, float, float], list[PointingResult]]:
+    """Trials per cell (distance m, width m, round-trip lag s): two people at the hard target,
+    four under lag (a trial's time varies by a factor of two between people)."""
     cells = {(0.1, 0.04, 0.0): 4, (0.4, 0.01, 0.0): 2, (0.1, 0.04, 0.6): 4}
     calls = [(d, w, person, k, lag) for (d, w, lag), n in cells.items()
              for k, person in enumerate(PEOPLE[:n])]  # fmt: skip
     results = iter(run_each(run_pointing_trial, calls))
-    out: dict[tuple[float, float, float], list[float]] = {}
+    out: dict[tuple[float, float, float], list[PointingResult]] = {}
     for cell, n in cells.items():
-        runs = [next(results) for _ in range(n)]
-        assert all(r.selected for r in runs), cell
-        out[cell] = [r.movement_time_s for r in runs]
+        out[cell] = [next(results) for _ in range(n)]
+        assert all(r.selected for r in out[cell]), cell
     return out
+
+
+@pytest.fixture(scope="module")
+def times(trials: dict) -> dict[tuple[float, float, float], list[float]]:
+    """Movement times (s) per cell."""
+    return {cell: [r.movement_time_s for r in runs] for cell, runs in trials.items()}
 
 
 def test_a_harder_target_takes_longer(times: dict) -> None:
@@ -37,6 +42,17 @@ def test_lag_raises_the_movement_time(times: dict) -> None:
     """Medians over four people (measured: 1.2 s without lag, 3.3 s with 0.6 s; two people
     alone, once, gave the opposite)."""
     assert np.median(times[0.1, 0.04, 0.6]) > np.median(times[0.1, 0.04, 0.0])
+
+
+def test_a_trial_teaches_the_lag_slowly_and_only_the_lag_there_is(trials: dict) -> None:
+    """Under 0.6 s of added lag the belief a trial ends with has moved from the familiar lag
+    towards the display's (about 0.83 s), a few movements' share of the way; without added lag
+    it stays near the familiar lag, the display's own."""
+    familiar = OperatorParams().familiar_lag_s
+    for r in trials[0.1, 0.04, 0.6]:
+        assert familiar + 0.02 < r.believed_lag_s < familiar + 0.3, r
+    for r in trials[0.1, 0.04, 0.0]:
+        assert abs(r.believed_lag_s - familiar) < 0.03, r
 
 
 def test_the_selection_is_the_closure_decided_and_earlier_ones_are_slips() -> None:
