@@ -274,7 +274,7 @@ class SyntheticOperator:
         self._watch.await_response(
             error,
             visible_at_s=primary.time_to_cover_s(self.p.motion_threshold_m),
-            half_at_s=primary.start_s + 0.5 * primary.duration_s,
+            half_at_s=self._homing_from_s,
         )
 
     def _home_in(self, t: float, view: DisplayFrame) -> None:
