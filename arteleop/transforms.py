@@ -147,9 +147,9 @@ def transform_points(T_a_b: ArrayLike, points_b: ArrayLike) -> NDArray[np.float6
     return p @ T[:3, :3].T + T[:3, 3]
 
 
-def sight_is_vertical(R_base_camera: ArrayLike) -> bool:
-    """Whether a camera's optical axis (the z column of ``R_base_camera``, base z up) is within
-    2.6 deg of the vertical: its line of sight gives no direction on the table, nor a vertical
-    to keep its view's up by, and its own image's up stands in."""
-    forward = np.asarray(R_base_camera, dtype=np.float64)[:3, 2]
+def sight_is_vertical(T_base_camera: ArrayLike) -> bool:
+    """Whether a camera's optical axis (the z column of ``T_base_camera``'s rotation, 3x3 or
+    4x4; base z up) is within 2.6 deg of the vertical: its line of sight gives no direction on
+    the table, nor a vertical to keep its view's up by, and its own image's up stands in."""
+    forward = np.asarray(T_base_camera, dtype=np.float64)[:3, 2]
     return bool(abs(forward[2]) > 0.999)

@@ -5,7 +5,7 @@ The simulated participant does the Fitts pointing task (``bench_fitts.py``'s cel
 round-trip network delay. At every sample the operator's intended hand (its efference copy,
 mapped to the gripper it commands) and the gripper the display shows it (in the cloud, with the
 frame's age) are kept. The lag is the time shift that best aligns the two paths' displacements
-over 0.1 s windows (5 ms steps), over the whole trial: what an operator who predicts the
+over 0.1 s windows (in steps of the operator's sample, 10 ms), over the whole trial: what an operator who predicts the
 display from its own movement has to allow for. Beside it, what the operator came to believe
 by the trial's end (its lag learnt from the display's responses).
 
@@ -33,12 +33,14 @@ from arteleop.operator import SyntheticSource, WearableSample
 DISTANCES_M = (0.1, 0.2, 0.4)
 WIDTHS_M = (0.01, 0.02, 0.04)
 WINDOW_S = 0.1
-SHIFTS_S = np.arange(0.0, 1.2, 0.005)
+SEARCH_S = 1.0
+"""Shifts are searched up to the added lag plus this (s)."""
 
 
 class WatchedSource(SyntheticSource):
     """A synthetic operator that keeps, at each sample, its intended hand and the gripper the
-    display showed it (None where it showed none)."""
+    display showed it in the cloud (None where it showed none: the pointing trials draw no
+    ghost)."""
 
     def __init__(self, *args, **kwargs) -> None:
         super().__init__(*args, **kwargs)
@@ -62,21 +64,24 @@ class Job:
     seed: int
 
 
-def best_shift_s(time_s: np.ndarray, meant_m: np.ndarray, shown_m: np.ndarray) -> float:
-    """The shift (s) by which the shown path's displacements best match the meant path's."""
+def best_shift_s(
+    time_s: np.ndarray, meant_m: np.ndarray, shown_m: np.ndarray, longest_s: float
+) -> float:
+    """The shift (s, a whole number of samples up to ``longest_s``) by which the shown path's
+    displacements best match the meant path's, compared over the same samples at every shift."""
     step = float(np.median(np.diff(time_s)))
     w = max(1, round(WINDOW_S / step))
-    shown_d = shown_m[w:] - shown_m[:-w]
-    ok = np.all(np.isfinite(shown_d), axis=1)
+    ks = np.arange(round(longest_s / step) + 1)
+    shown_d = (shown_m[w:] - shown_m[:-w])[ks[-1] :]
+    use = np.all(np.isfinite(shown_d), axis=1)
+    if not use.any():
+        raise SystemExit("no displayed gripper to align: the display never showed it moving")
     costs = []
-    for shift in SHIFTS_S:
-        k = round(shift / step)
-        meant = np.full_like(meant_m, np.nan)
-        meant[k:] = meant_m[: len(meant_m) - k]
+    for k in ks:
+        meant = meant_m[ks[-1] - k : len(meant_m) - k]
         meant_d = meant[w:] - meant[:-w]
-        use = ok & np.all(np.isfinite(meant_d), axis=1)
-        costs.append(float(np.mean(np.sum((shown_d[use] - meant_d[use]) ** 2, axis=1))))
-    return float(SHIFTS_S[int(np.argmin(costs))])
+        costs.append(float(np.sum((shown_d[use] - meant_d[use]) ** 2)))
+    return float(ks[int(np.argmin(costs))] * step)
 
 
 def run(job: Job) -> dict[str, float]:
@@ -94,13 +99,12 @@ def run(job: Job) -> dict[str, float]:
         source = pointing_source(config, site.observe().gripper_m, traits, WatchedSource)
         run_trial(source, config, site)
     mapping = HandToGripper(config.controller.mapping)
-    origin = mapping.hand_position_for(np.zeros(3))
-    # The mapping is affine: the gripper a hand commands, from the hand's steps per metre.
-    per_m = np.array([mapping.hand_position_for(e) - origin for e in np.eye(3)])
     time_s = np.array([t for t, _, _ in source.seen])
-    meant = np.array([np.linalg.solve(per_m.T, h - origin) for _, h, _ in source.seen])
+    # The gripper the intended hand commands (the mapping's position part).
+    meant = np.array([mapping.offset_m + mapping.config.scale * h for _, h, _ in source.seen])
     shown = np.array([np.full(3, np.nan) if s is None else s for _, _, s in source.seen])
-    return {"shift_s": best_shift_s(time_s, meant, shown), "believed_s": source.operator.lag_s}
+    shift = best_shift_s(time_s, meant, shown, job.lag_ms / 1000 + SEARCH_S)
+    return {"shift_s": shift, "believed_s": source.operator.lag_s}
 
 
 def main() -> None:
@@ -122,7 +126,8 @@ def main() -> None:
             for j, w in enumerate(WIDTHS_M)]  # fmt: skip
     with ProcessPoolExecutor(args.workers) as pool:
         rows = [dict(vars(job), **r) for job, r in zip(jobs, pool.map(run, jobs), strict=True)]
-    print(f"{len(rows)} pointing trials, {args.people} people x 9 cells per lag\n")
+    cells = len(DISTANCES_M) * len(WIDTHS_M)
+    print(f"{len(rows)} pointing trials, {args.people} people x {cells} cells per lag\n")
     print("| added lag (ms) | display lag, median (range) (s) | believed at the end (s) |")
     print("| ---: | ---: | ---: |")
     for lag in lags:

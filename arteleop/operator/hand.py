@@ -96,9 +96,9 @@ class Hand:
 
     def velocity_m_s(self, t: float, half_window_s: float = 0.02) -> NDArray[np.float64]:
         """How fast the operator meant its hand to move at ``t`` (s; m/s), from its efference
-        copy over ``half_window_s`` (s) either side."""
-        before = self.moved_since(t - half_window_s) - self.moved_since(t + half_window_s)
-        return before / (2 * half_window_s)
+        copy over ``half_window_s`` (s) either side: a few samples, short beside a movement."""
+        covered = self.moved_since(t - half_window_s) - self.moved_since(t + half_window_s)
+        return covered / (2 * half_window_s)
 
     def scatter_m2(self, t: float) -> float:
         """The variance per axis (m^2) of where the submovements under way will end, beyond what

@@ -28,7 +28,8 @@ class OperatorParams:
             (s): its first estimate of the lag, before a trial shows it another.
         lag_learning_rate: How much of the difference between a movement's observed lag and
             the believed one the belief takes on (per movement): adapting to a delay is slow.
-        timing_weber: The SD of a timed wait as a share of its mean (scalar timing).
+        timing_weber: The SD of a timed interval as a share of its mean (scalar timing): the
+            wait for the display, and the lag a prediction in flight reaches back over.
         motion_threshold_m: The smallest displacement of the shown gripper the operator sees
             as a movement (m); movements under twice it teach no lag.
         gross_criterion_m: Criterion of the movements without a precision demand (in the

@@ -10,9 +10,9 @@ robot's slow tail, or not yet showing a correction made in flight, is taken as s
 operator looks at a stale frame. It learns the lag from the display's response half-way
 through a movement: the time from its hand covering half the displacement it meant to the display
 showing the gripper half-way along that way; slowly, and never from a movement too small to see.
-Half-way, the movement is at its fastest, so a frame's place dates it best, and that is where the
-operator predicts the display in flight (from half-way through the primary); the display's first
-stir lags more (the robot side's filter and the arm start slowly).
+Half-way, the movement is at its fastest, so a frame's place dates it best; the display's first
+stir lags more (the robot side's filter and the arm start slowly) than the movement's middle,
+over which the operator's predictions in flight reach back.
 """
 
 from __future__ import annotations

@@ -92,10 +92,14 @@ def test_the_robots_jitter_at_rest_is_not_taken_for_the_response() -> None:
     watch = DisplayWatch(params)
     _show(watch, np.arange(0.0, 0.2, FRAMES), lambda t: START)
     watch.await_response(AWAY, visible_at_s=0.05, half_at_s=0.25)
+    watch.hand_stopped(0.3, wait_s=0.3)
     _show(watch, np.arange(0.2, 1.0, FRAMES),
           lambda t: START + [0.0, 0.01 * np.sin(20 * t), 0.0])  # fmt: skip
     _show(watch, np.arange(1.0, 2.0, FRAMES),
           lambda t: START + [0.5 * params.arrival_speed_m_s * (t - 1.0), 0.0, 0.0])  # fmt: skip
+    # The drift, 5 mm along the way by 2 s and still by the operator's measure, would read as
+    # an answered movement come to rest, were its speed not checked.
+    assert not watch.arrived(2.0)
     assert watch.lag_s == params.familiar_lag_s
 
 
@@ -128,7 +132,7 @@ def test_after_its_wait_the_operator_looks_at_a_display_on_the_robots_slow_tail(
 
 def test_the_operator_expects_its_hand_to_end_as_it_meant_and_knows_how_unsure_that_is() -> None:
     """Half-way through a 0.1 m minimum-jerk movement of 0.5 s, against a display 0.1 s old:
-    the hand has gone from 0.0579 m (the profile at 0.15 s / 0.5 s) to the end, 0.0421 m; the
+    the hand goes from 0.0163 m (the profile at 0.15 s / 0.5 s) to the end, 0.0837 m; the
     belief's spread is the timing's along the way (0.15 of 0.1 s at the meant speed then) and
     the movement's scatter not yet covered then."""
     intended, sd = np.array([0.1, 0.0, 0.0]), 0.004
@@ -145,5 +149,5 @@ def test_the_operator_expects_its_hand_to_end_as_it_meant_and_knows_how_unsure_t
     along = (0.15 * lag * speed) ** 2 + (sd * (1 - share)) ** 2
     assert cov[0, 0] == pytest.approx(along, rel=0.06)  # its speed from samples 1 ms apart
     np.testing.assert_allclose(np.diag(cov)[1:], (sd * (1 - share)) ** 2, rtol=1e-9)
-    # Timing the lag shorter than it believes leaves more of the movement to come.
+    # Timing the lag shorter, it expects less of the movement still to show.
     assert hand.to_end(t, lag, timed_lag_s=0.05, timing_weber=0.15)[0][0] < expected[0]

@@ -46,13 +46,13 @@ def test_lag_raises_the_movement_time(times: dict) -> None:
 
 def test_a_trial_teaches_the_lag_slowly_and_only_the_lag_there_is(trials: dict) -> None:
     """Under 0.6 s of added lag the belief a trial ends with has moved from the familiar lag
-    towards the display's (about 0.83 s), a few movements' share of the way; without added lag
-    it stays near the familiar lag, the display's own."""
+    towards the display's (about 0.85 s), a few movements' share of the way (a few per cent
+    each: measured 0.28-0.32 s); without added lag it stays within 10 ms of the familiar lag."""
     familiar = OperatorParams().familiar_lag_s
     for r in trials[0.1, 0.04, 0.6]:
-        assert familiar + 0.02 < r.believed_lag_s < familiar + 0.3, r
+        assert familiar + 0.02 < r.believed_lag_s < familiar + 0.15, r
     for r in trials[0.1, 0.04, 0.0]:
-        assert abs(r.believed_lag_s - familiar) < 0.03, r
+        assert abs(r.believed_lag_s - familiar) < 0.01, r
 
 
 def test_the_selection_is_the_closure_decided_and_earlier_ones_are_slips() -> None:
