@@ -16,8 +16,6 @@ import numpy as np
 import viser
 from numpy.typing import ArrayLike, NDArray
 
-from arteleop.transforms import sight_is_vertical
-
 GIZMO_SCALE_M = 0.15
 STEPS_M = {"5 cm": 0.05, "1 cm": 0.01}
 """The step buttons' sizes: a reach's scale, and the bowl's placement tolerance's."""
@@ -28,14 +26,18 @@ GIZMO, BUTTONS = "gizmo", "buttons"
 
 
 def step_directions(T_base_camera: ArrayLike) -> dict[str, NDArray[np.float64]]:
-    """Unit directions in the base frame (z up) of each step button: away and nearer along the
-    camera's line of sight flattened onto the table (up its image for a camera looking
-    straight down), left and right across it on the table (along the image's rows for a camera
-    that does not roll); up and down along z. ``T_base_camera`` is the optical frame's pose (z
-    forward, x right and y down in the image)."""
+    """Unit directions in the base frame (z up) of each step button: away and nearer into the
+    image and up it, flattened onto the table (along the line of sight for a camera looking
+    ahead, up the image for one looking straight down, and turning smoothly between, and past
+    straight down by up to 45 deg), left and right across it on the table (along the image's
+    rows for a camera that does not roll); up and down along z. ``T_base_camera`` is the
+    optical frame's pose (z forward, x right and y down in the image)."""
     R = np.asarray(T_base_camera, dtype=np.float64)[:3, :3]
     up = np.array([0.0, 0.0, 1.0])
-    forward = -R[:, 1] if sight_is_vertical(R) else R[:, 2]
+    # The sight's and the image-up's flattened parts agree until the camera looks past straight
+    # down, where the sight's turns back; their sum does not (a rule switched at the vertical
+    # flipped "away" for a camera a few degrees past it).
+    forward = R[:, 2] - R[:, 1]
     forward = np.append(forward[:2], 0.0) / np.linalg.norm(forward[:2])
     right = np.cross(forward, up)
     return {"left": -right, "right": right, "away": forward, "nearer": -forward, "up": up,

@@ -30,6 +30,11 @@ class Submovement:
     intended_m: NDArray[np.float64]
     sd_m: float = 0.0
 
+    @property
+    def end_s(self) -> float:
+        """When the movement ends (s)."""
+        return self.start_s + self.duration_s
+
     def share_at(self, t: float) -> float:
         """The share of the movement covered at ``t`` (s)."""
         return float(minimum_jerk_profile((t - self.start_s) / self.duration_s))
@@ -42,7 +47,7 @@ class Submovement:
         """When (s) the intended displacement has covered ``distance_m`` (m); its end if never."""
         amplitude = float(np.linalg.norm(self.intended_m))
         if amplitude <= distance_m:
-            return self.start_s + self.duration_s
+            return self.end_s
         tau = np.linspace(0.0, 1.0, 201)
         share = minimum_jerk_profile(tau)
         return self.start_s + self.duration_s * float(np.interp(distance_m / amplitude, share, tau))
@@ -59,6 +64,7 @@ class Hand:
         self.intended_m = position_m.copy()
         self._intended_base = position_m.copy()
         self.moves: list[Submovement] = []
+        self._finished: deque[Submovement] = deque()
         self._path: deque[tuple[float, NDArray[np.float64]]] = deque()
 
     @property
@@ -70,11 +76,14 @@ class Hand:
 
     def advance(self, t: float) -> None:
         """Move the hand to where its submovements have it at ``t`` (s)."""
-        done = [m for m in self.moves if t >= m.start_s + m.duration_s]
+        done = [m for m in self.moves if t >= m.end_s]
         for m in done:
             self._base = self._base + m.delta_m
             self._intended_base = self._intended_base + m.intended_m
             self.moves.remove(m)
+            self._finished.append(m)
+        while self._finished and self._finished[0].end_s < t - PATH_S:
+            self._finished.popleft()
         self.position_m = self._base + sum((m.done_at(t) for m in self.moves), np.zeros(3))
         self.intended_m = self._intended_base + sum(
             (m.intended_m * m.share_at(t) for m in self.moves), np.zeros(3)
@@ -101,9 +110,11 @@ class Hand:
         return covered / (2 * half_window_s)
 
     def scatter_m2(self, t: float) -> float:
-        """The variance per axis (m^2) of where the submovements under way will end, beyond what
-        the hand had covered of them at ``t`` (s): their motor noise, as the operator knows it."""
-        return sum((m.sd_m * (1.0 - m.share_at(t))) ** 2 for m in self.moves)
+        """The variance per axis (m^2) of where the submovements under way at ``t`` (s) will
+        end, beyond what the hand had covered of them then: their motor noise, as the operator
+        knows it. Those finished since count too (``t`` is a lag in the past)."""
+        moves = [*self._finished, *self.moves]
+        return sum((m.sd_m * (1.0 - m.share_at(t))) ** 2 for m in moves)
 
     def to_end(
         self, t: float, lag_s: float, timed_lag_s: float, timing_weber: float

@@ -55,7 +55,7 @@ class OperatorParams:
     arrival_window_s: float = 0.25
     arrival_speed_m_s: float = 0.02
     arrival_timeout_s: float = 3.0
-    familiar_lag_s: float = 0.23
+    familiar_lag_s: float = 0.245
     lag_learning_rate: float = 0.03
     timing_weber: float = 0.15
     motion_threshold_m: float = 0.005

@@ -353,10 +353,12 @@ class SyntheticOperator:
         """
         t = time_s
         self._watch.see(t, view)
-        self.hand.remember(t)
         moves_in_task = self._task_phase is not None and self._task_phase.action is Action.MOVE
         if self._mode is _Mode.MOVE:
             self.hand.advance(t)
+        # after the advance: the path's sample at t must be where the hand was meant to be at t
+        self.hand.remember(t)
+        if self._mode is _Mode.MOVE:
             if self.hand.moving:
                 if moves_in_task:
                     self._home_in(t, view)

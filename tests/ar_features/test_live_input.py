@@ -76,6 +76,7 @@ def test_each_step_button_moves_the_target_that_way_in_the_cameras_image() -> No
     down = step_directions(_looking_down_x(np.pi / 2, yaw_rad=0.3))
     np.testing.assert_allclose(down["away"], [np.cos(0.3), np.sin(0.3), 0.0], atol=1e-12)
     np.testing.assert_allclose(down["right"], [np.sin(0.3), -np.cos(0.3), 0.0], atol=1e-12)
-    # ...and within a hair of it (the view keeps its up by the same rule), as straight down.
-    near = step_directions(_looking_down_x(np.pi / 2 + 0.01, yaw_rad=0.3))  # a hair past it
-    np.testing.assert_allclose(near["away"], down["away"], atol=1e-4)
+    # ...and near it, either side, as straight down: no flip past the vertical.
+    for past_rad in (-0.2, -0.01, 0.01, 0.2, 0.6):
+        near = step_directions(_looking_down_x(np.pi / 2 + past_rad, yaw_rad=0.3))
+        np.testing.assert_allclose(near["away"], down["away"], atol=1e-12)

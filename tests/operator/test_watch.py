@@ -7,12 +7,20 @@ import numpy as np
 import pytest
 
 from arteleop.ar_features import MODALITIES
-from arteleop.operator import OperatorParams
+from arteleop.operator import (
+    ArmModel,
+    CalibrationPosture,
+    OperatorParams,
+    OperatorTraits,
+    PickAndPlace,
+    SyntheticOperator,
+)
 from arteleop.operator.hand import Hand, Submovement
 from arteleop.operator.minimum_jerk import minimum_jerk_profile
 from arteleop.operator.watch import DisplayWatch
 from arteleop.transforms import make_transform
 from tests.ar_features.frames import display_frame
+from tests.operator.small_scene import BOWL_M, GRASP_M, GRASP_OFFSET_M
 
 DOWN = np.diag([1.0, -1.0, -1.0])
 
@@ -151,3 +159,39 @@ def test_the_operator_expects_its_hand_to_end_as_it_meant_and_knows_how_unsure_t
     np.testing.assert_allclose(np.diag(cov)[1:], (sd * (1 - share)) ** 2, rtol=1e-9)
     # Timing the lag shorter, it expects less of the movement still to show.
     assert hand.to_end(t, lag, timed_lag_s=0.05, timing_weber=0.15)[0][0] < expected[0]
+
+
+def test_a_movement_finished_within_the_lag_is_still_unsure_on_the_display() -> None:
+    """A 0.2 s movement that ended 0.05 s ago, against a display 0.1 s old: the display showed
+    it at 0.15 s of its 0.2, so the share of its scatter not covered then is still to show."""
+    intended, sd = np.array([0.05, 0.0, 0.0]), 0.004
+    hand = Hand(np.zeros(3))
+    hand.add(Submovement(0.0, intended, 0.2, intended, sd))
+    for t in np.arange(0.0, 0.2501, 0.01):
+        hand.advance(t)
+        hand.remember(t)
+    assert not hand.moving
+    share = minimum_jerk_profile(np.array([0.15 / 0.2]))[0]
+    _, cov = hand.to_end(0.25, 0.1, timed_lag_s=0.1, timing_weber=0.15)
+    np.testing.assert_allclose(np.diag(cov)[1:], (sd * (1 - share)) ** 2, rtol=1e-9)
+    assert hand.scatter_m2(0.25) == 0.0  # nothing left now
+
+
+def test_the_operators_path_holds_where_it_meant_its_hand_at_each_sample() -> None:
+    """Stepped as a trial steps it, the efference copy's sample at t is the intended hand at t,
+    not the step's before (which would date every prediction a sample late)."""
+    task = PickAndPlace(GRASP_OFFSET_M, np.array([0.3, -0.56, 0.0]))
+    rng = np.random.default_rng(3)
+    op = SyntheticOperator(task, lambda p: p, ArmModel(), CalibrationPosture(), rng,
+                           OperatorParams(), OperatorTraits())  # fmt: skip
+    start = GRASP_M + [0.0, 0.0, 0.10]
+    op.start_phase("descend", start, 0.0)
+    view = display_frame(cues=MODALITIES["full"], time_s=0.0, bowl_m=BOWL_M,
+                         T_base_gripper=make_transform(DOWN, start))  # fmt: skip
+    moved = []
+    for t in np.arange(0.0, 1.5, 0.01):
+        op.step(float(t), view)
+        if op.hand.moving:
+            moved.append(float(np.linalg.norm(op.hand.moved_since(float(t)))))
+            assert moved[-1] == 0.0
+    assert len(moved) > 10  # it moved, so a late sample would have shown
