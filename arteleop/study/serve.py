@@ -44,7 +44,7 @@ from arteleop.ar_features.session_pages import SessionPages
 from arteleop.errors import ArteleopError
 from arteleop.lifetime import Closeable
 from arteleop.operator import HandTarget, live_source
-from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
+from arteleop.scene import HeadCameraConfig, RemoteSite
 from arteleop.study.plan import FAMILIARIZATION, TrialSpec
 from arteleop.study.protocol import trial_config, trial_record
 from arteleop.study.session import (
@@ -55,7 +55,6 @@ from arteleop.study.session import (
     ServedRun,
     SessionInputError,
 )
-from arteleop.study.sites import StudySite
 from arteleop.teleop import (
     ControllerConfig,
     TrialProgress,
@@ -154,7 +153,7 @@ class StudyServer(Closeable):
         self._on_link = on_link
         self._token: str | None = None
         self._observer: str | None = None
-        self._site = StudySite(SiteConfig(camera=camera) if camera else None)
+        self._site = run.site if camera is None else run.site.with_camera(camera)
         with RemoteSite(self._site.base) as site:
             # The layers are the trial's condition: no panel to switch them.
             self.view = OperatorView(replace(view, layer_panel=False), view_assets(site))

@@ -65,6 +65,7 @@ from arteleop.study.runner import (
     plan_run,
     utc_now,
 )
+from arteleop.study.sites import StudySite
 from arteleop.study.study_file import study_text
 
 INTERRUPTED_FILE = "interrupted.csv"
@@ -183,37 +184,46 @@ class ServedRun:
         study: StudyConfig,
         plan: list[TrialSpec],
         people: list[ParticipantSpec],
+        site: StudySite,
     ) -> None:
         self.folder = folder
+        self.site = site
+        """The site that planned the run, to build its trials' sites from."""
         self._key: bytes | None = None  # the links' key, read from the folder once
         self.study = study
         self.plan = plan
         self.people = people
 
     @classmethod
-    def create(cls, study: StudyConfig, out: Path) -> ServedRun:
-        """A new served run of ``study`` in the new or empty folder ``out``, which exists."""
+    def create(cls, study: StudyConfig, out: Path, site: StudySite | None = None) -> ServedRun:
+        """A new served run of ``study`` in the new or empty folder ``out``, which exists,
+        planned with ``site`` (a new one if none)."""
         folder = RunFolder(out)
         check_new(folder)
-        plan, people = plan_run(study)
+        site = site or StudySite()
+        plan, people = plan_run(study, site)
         text = study_text(study)
         manifest = {**new_manifest(study, text, plan, len(people)), "cohort": REAL}
         folder.start(text, manifest, table_text(PARTICIPANT_COLUMNS, []))
-        return cls(folder, study, plan, people)
+        return cls(folder, study, plan, people, site)
 
     @classmethod
-    def open(cls, out: Path, study: StudyConfig | None = None) -> ServedRun:
-        """The served run in ``out``, to go on with its next participant; with ``study``,
-        refused if the run was made from another definition."""
+    def open(
+        cls, out: Path, study: StudyConfig | None = None, site: StudySite | None = None
+    ) -> ServedRun:
+        """The served run in ``out``, to go on with its next participant, planned again with
+        ``site`` (a new one if none); with ``study``, refused if the run was made from another
+        definition."""
         folder = RunFolder(out)
-        study, plan, people, manifest = open_run(folder, study)
+        site = site or StudySite()
+        study, plan, people, manifest = open_run(folder, study, site)
         if manifest.get("cohort") != REAL:
             raise RunFolderError(
                 f"{folder.path} holds a simulated run: 'arteleop study resume {folder.path}' "
                 "continues it; give 'study serve' a new folder."
             )
         folder.done_rows(repair=True)  # a row a kill cut short is set aside now, and said
-        return cls(folder, study, plan, people)
+        return cls(folder, study, plan, people, site)
 
     def current(self) -> ParticipantSpec | None:
         """The participant whose session is under way or next: the first, in plan order, with

@@ -3,6 +3,7 @@ without starting a simulator."""
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Mapping
 from dataclasses import replace
 from typing import Any
@@ -13,6 +14,7 @@ from arteleop.errors import WorkspaceError
 from arteleop.robot import BaxterKinematics, TopDownReach, load_baxter_description
 from arteleop.scene import (
     CameraGeometry,
+    HeadCameraConfig,
     RemoteSite,
     SiteConfig,
     Workspace,
@@ -37,15 +39,25 @@ class StudySite:
     def __init__(self, base: SiteConfig | None = None) -> None:
         self.base = base or SiteConfig()
         description = load_baxter_description(self.base.robot)
-        kinematics = BaxterKinematics(description.urdf_path)
-        self._reach = TopDownReach.from_kinematics(kinematics)
-        camera = self.base.camera
-        # The head never pans: its pose, and so the camera's, is the same in every configuration.
-        self.camera = CameraGeometry(
-            camera, kinematics.frame_transform({}, camera.mount_link) @ camera.T_mount_camera()
-        )
+        self._kinematics = BaxterKinematics(description.urdf_path)
+        self._reach = TopDownReach.from_kinematics(self._kinematics)
+        self.camera = self._camera_geometry(self.base.camera)
         """The head camera's true pose and field of view, as every trial's site has it."""
         self._probe: RemoteSite | None = None
+
+    def _camera_geometry(self, camera: HeadCameraConfig) -> CameraGeometry:
+        # The head never pans: its pose, and so the camera's, is the same in every configuration.
+        T_base_mount = self._kinematics.frame_transform({}, camera.mount_link)
+        return CameraGeometry(camera, T_base_mount @ camera.T_mount_camera())
+
+    def with_camera(self, camera: HeadCameraConfig) -> StudySite:
+        """The same site seen through another head camera (its trials' frames and images), the
+        robot's model not loaded again."""
+        other = copy.copy(self)
+        other.base = replace(self.base, camera=camera)
+        other.camera = self._camera_geometry(camera)
+        other._probe = None
+        return other
 
     def seen_at_rest(self, xy_m: tuple[float, float]) -> bool:
         """Whether the head camera's tracker finds the bowl at ``xy_m`` while the arm rests

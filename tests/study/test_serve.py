@@ -145,6 +145,27 @@ def test_a_served_run_is_not_resumed_as_a_simulated_one(tmp_path: Path) -> None:
         ServedRun.open(tmp_path / "run", replace(STUDY, timeout_s=5.0))
 
 
+def test_the_server_loads_the_robots_model_once(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The run's planning and the server's trials share one model of the robot, whatever head
+    camera the trials see through (the server once loaded a second)."""
+    from arteleop.ar_features import ViewConfig
+    from arteleop.study import sites
+
+    loads: list[object] = []
+    load = sites.load_baxter_description
+    monkeypatch.setattr(sites, "load_baxter_description", lambda *a: loads.append(a) or load(*a))
+    camera = HeadCameraConfig(width_px=320, height_px=240)
+    with served_run(tmp_path / "run", STUDY) as run, StudyServer(run, ViewConfig(port=0), camera):
+        assert len(loads) == 1
+        T_default = run.site.camera.T_base_camera
+        seen = run.site.with_camera(camera).camera
+        assert (seen.config.width_px, seen.config.height_px) == (320, 240)
+        np.testing.assert_array_equal(seen.T_base_camera, T_default)  # the same head
+        assert run.site.camera.config.width_px != 320  # the run's own site untouched
+
+
 def _pairs() -> list[tuple[str, str]]:
     return [(c, i) for c in ("embodiment", "manipulation", "task")
             for i in ("presence", "embodiment", "ease")]  # fmt: skip
