@@ -19,6 +19,8 @@ from arteleop.errors import DisplayFrameError
 DISTANCE_LABEL_STEP_M = 0.001
 """The distance bar's label shows :meth:`DisplayFrame.grasp_distance_m` to this step (m): what a
 reader of the label can know of it."""
+HEIGHT_LABEL_STEP_M = 0.001
+"""The depth aids' label shows :meth:`DisplayFrame.height_m` to this step (m)."""
 DISTANCE_BAR_OFFSET_M = (-0.16, -0.03)
 """Where the distance bar's left end is drawn relative to the gripper, in the camera's image
 plane (m; x right, y down), so it stays beside the gripper on screen; its label is left of it."""
@@ -98,6 +100,10 @@ class DisplayFrame:
         predicted: Where the commands already sent will put the arm, at the operator's present
             (newer than ``time_s`` by the round trip); None where nothing predicts it (the
             predictive ghost then draws the arm of this frame).
+        depth_aids: The depth aids are drawn: a line from the gripper straight down to the
+            table, a ring where it meets it, and the gripper's height above the table. They are
+            no AR layer: a study shows them in every condition or in none (what a flat screen
+            lacks against the original's head-mounted display: stereo and head motion).
     """
 
     time_s: float
@@ -119,6 +125,7 @@ class DisplayFrame:
     cloud_spacing_rad: float | None = None
     predicted: PredictedArm | None = None
     start_m: NDArray[np.float64] | None = None
+    depth_aids: bool = False
 
     def __post_init__(self) -> None:
         shapes = {
@@ -181,6 +188,14 @@ class DisplayFrame:
         down): where a layer drawn beside the gripper on screen goes (base frame, m)."""
         R = self.T_base_camera[:3, :3]
         return self.gripper_m + R @ np.array([offset_m[0], offset_m[1], 0.0])
+
+    def height_m(self) -> float:
+        """The gripper's height above the table top, where the target marker lies (m)."""
+        return float(self.gripper_m[2] - self.target_m[2])
+
+    def drop_foot_m(self) -> NDArray[np.float64]:
+        """Where the line from the gripper straight down meets the table (base frame, m)."""
+        return np.append(self.gripper_m[:2], self.target_m[2])
 
     def distance_label_m(self) -> NDArray[np.float64]:
         """Where the distance bar's label is drawn (base frame, m), its right end."""

@@ -20,7 +20,8 @@ class Layer(ABC):
     """A drawn layer of the view.
 
     Subclasses set ``cue`` to the :class:`ArCues` field that switches them on (None: always
-    drawn), implement :meth:`update` and :meth:`_set_visible`.
+    drawn; or another switch of the frame's, by overriding :meth:`shown`), implement
+    :meth:`update` and :meth:`_set_visible`.
     """
 
     cue: ClassVar[str | None] = None
@@ -36,9 +37,13 @@ class Layer(ABC):
     def __init__(self) -> None:
         self._visible: bool | None = None
 
+    def shown(self, frame: DisplayFrame) -> bool:
+        """Whether ``frame`` shows the layer: as its cues say."""
+        return frame.cues.shows(self.cue)
+
     def draw(self, frame: DisplayFrame) -> None:
-        """Show or hide the layer as the frame's cues say, and redraw it when shown."""
-        on = frame.cues.shows(self.cue)
+        """Show or hide the layer as :meth:`shown` says, and redraw it when shown."""
+        on = self.shown(frame)
         if on != self._visible:
             self._set_visible(on)
             self._visible = on

@@ -16,7 +16,8 @@ import numpy as np
 import viser
 from numpy.typing import ArrayLike, NDArray
 
-GIZMO_SCALE_M = 0.15
+GIZMO_SIZE_PX = 90
+"""The gizmo's size on the screen (CSS px), the same near the camera and far from it."""
 STEPS_M = {"5 cm": 0.05, "1 cm": 0.01}
 """The step buttons' sizes: a reach's scale, and the bowl's placement tolerance's."""
 ACROSS = ("left", "away", "nearer", "right")
@@ -65,7 +66,9 @@ class LiveInput:
         self._stepping = threading.Lock()
         self._gizmo = server.scene.add_transform_controls(
             "/live/gripper_target",
-            scale=GIZMO_SCALE_M,
+            # In pixels: in metres it shrank to about 20 px on a far gripper's cloud.
+            scale=GIZMO_SIZE_PX,
+            fixed=True,
             disable_rotations=True,
             # Over the cloud: at the gripper its own points would hide most of the handles.
             depth_test=False,

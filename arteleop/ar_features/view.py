@@ -23,6 +23,7 @@ from arteleop.ar_features.layer import Layer
 from arteleop.ar_features.layers import (
     BeamLayer,
     CloudLayer,
+    DepthAidsLayer,
     DistanceBarLayer,
     GhostLayer,
     GripBarLayer,
@@ -48,11 +49,16 @@ class ViewConfig:
             :attr:`OperatorView.url` tells which one was bound.
         point_overlap: A drawn point's width as a share of its pixel's footprint at its distance
             (above 1: neighbours overlap a little, so no gaps show between them).
-        vertical_fov_deg: The browser camera's vertical field of view: the head camera's (the
-            Kinect's 57 deg horizontal over 640x480 pixels gives 44.3 deg).
+        vertical_fov_deg: The head camera's vertical field of view (the Kinect's 57 deg
+            horizontal over 640x480 pixels gives 44.3 deg); the browser camera's is wider by
+            the image's margin.
         horizontal_fov_deg: The head camera's horizontal field of view: a browser whose scene
             is narrower than the camera's 4:3 widens its vertical field until the whole
             camera image fits beside the docked panel.
+        image_margin: The share of the camera image's width and height shown beyond each of
+            its edges (0-0.5), empty of the cloud: what is drawn just outside the image stays in
+            view (the gripper at rest lies a few pixels past its right edge, and its gizmo and
+            ghost beyond).
         layer_panel: A panel to switch the AR layers live; off where the layers are a
             study's condition, not the viewer's choice (``arteleop study serve``).
         links: Admit only browsers that open a link with an allowed token
@@ -64,19 +70,34 @@ class ViewConfig:
     point_overlap: float = 1.25
     vertical_fov_deg: float = 44.3
     horizontal_fov_deg: float = 57.0
+    image_margin: float = 0.1
     layer_panel: bool = True
     links: bool = False
 
     def fitting_fov_rad(self, aspect: float) -> float:
-        """The vertical field of view (rad) that shows the whole camera image in a scene of
-        ``aspect`` (width over height)."""
-        half_v = np.tan(np.radians(self.vertical_fov_deg) / 2)
-        half_h = np.tan(np.radians(self.horizontal_fov_deg) / 2)
+        """The vertical field of view (rad) that shows the whole camera image and its margin in
+        a scene of ``aspect`` (width over height)."""
+        widen = 1 + 2 * self.image_margin
+        half_v = np.tan(np.radians(self.vertical_fov_deg) / 2) * widen
+        half_h = np.tan(np.radians(self.horizontal_fov_deg) / 2) * widen
         return float(2 * np.arctan(max(half_v, half_h / aspect)))
+
+    @property
+    def image_aspect(self) -> float:
+        """The camera image's width over its height."""
+        return float(
+            np.tan(np.radians(self.horizontal_fov_deg) / 2)
+            / np.tan(np.radians(self.vertical_fov_deg) / 2)
+        )
 
     def __post_init__(self) -> None:
         if not 0 <= self.port <= 65535:
             raise ConfigurationError(f"ViewConfig.port={self.port} is not a TCP port (0..65535)")
+        if not (math.isfinite(self.image_margin) and 0 <= self.image_margin <= 0.5):
+            raise ConfigurationError(
+                f"ViewConfig.image_margin={self.image_margin}: expected 0-0.5 (a share of the "
+                "camera image's width and height)."
+            )
         if not (math.isfinite(self.point_overlap) and 0.5 <= self.point_overlap <= 4):
             raise ConfigurationError(
                 f"ViewConfig.point_overlap={self.point_overlap}: expected 0.5-4 (a share of a "
@@ -110,7 +131,10 @@ class OperatorView(Closeable):
         # Docked beside the scene, the panel hides none of the camera image (floating, it
         # covered the right arm at rest and the bowl's start).
         server.gui.main_panel.dock_right()
-        self.layers: list[Layer] = [CloudLayer(server, config.point_overlap)]
+        self.layers: list[Layer] = [
+            CloudLayer(server, config.point_overlap),
+            DepthAidsLayer(server.scene),
+        ]
         if assets is not None:
             self.layers += [
                 GhostLayer(server, assets),
@@ -189,7 +213,7 @@ class OperatorView(Closeable):
             camera.position = eye
             camera.look_at = eye + forward
             camera.up = up
-            camera.fov = np.radians(self.config.vertical_fov_deg)
+            camera.fov = self.config.fitting_fov_rad(self.config.image_aspect)
         for camera in cameras[1:]:
             self._fit(camera)
 

@@ -186,6 +186,8 @@ class TeleopCommand:
     """one-way network delay between operator and robot (ms): the view shows each camera frame this long after it was taken, and the predictive ghost where the commands sent will put the arm"""
     timeout_s: float = 120.0
     """simulated time after which a trial ends as a timeout (s)"""
+    depth_aids: bool = False
+    """draw the depth aids: a line from the gripper straight down to the table, a ring at its foot and the gripper's height (what a flat screen cannot show; the simulated participant does not use them yet)"""
     width_px: int = 640
     """camera image width (px); the Kinect's 640x480 shows 30 frames/s, 47 ms from a sample to the view with OpenGL on two idle cores (fewer frames on a loaded machine, where 320x240 keeps 30 frames/s, 27 ms)"""
     height_px: int = 480
@@ -217,6 +219,7 @@ def teleop(cmd: TeleopCommand) -> int:
     trial_config = TrialConfig(
         modality=cmd.modality, seed=cmd.seed, timeout_s=cmd.timeout_s,
         network=NetworkConfig(delay_s=cmd.delay_ms / 1000), site=SiteConfig(camera=camera),
+        depth_aids=cmd.depth_aids,
     )  # fmt: skip
     config = TeleopAppConfig(cmd.operator, trial_config, ViewConfig(host=cmd.host, port=cmd.port))
     with RemoteSite(trial_config.site) as site, TeleopApp(config, site) as app:

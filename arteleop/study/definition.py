@@ -232,6 +232,12 @@ class StudyConfig:
             the data format (version 2) records.
         timeout_s: Simulated time after which an experimental trial ends as a timeout (s).
         delay_ms: One-way network delay between operator and robot (ms), in every trial.
+        depth_aids: The display draws the depth aids in every trial, practice included
+            (:attr:`~arteleop.ar_features.DisplayFrame.depth_aids`: a line from the gripper
+            down to the table, a ring at its foot, the gripper's height in numbers), for every
+            participant, simulated or real: what a flat screen lacks against the original's
+            head-mounted display. Off by default, as in the original; the simulated participant
+            does not yet use them (docs/operator-model.md).
         conditions: Instead of ``modalities`` and ``delay_ms``: the conditions, each a set of
             AR layers over a network profile (``[[conditions]]`` tables), e.g. delay crossed
             with cues; numbered in this order by the order schemes. Practice runs without
@@ -266,6 +272,7 @@ class StudyConfig:
     trials_per_modality: int = 1
     timeout_s: float = 120.0
     delay_ms: float = 0.0
+    depth_aids: bool = False
     camera_offset_mm: tuple[float, float, float] = (0.0, 0.0, 0.0)
     camera_offset_deg: tuple[float, float, float] = (0.0, 0.0, 0.0)
     camera_pose: tuple[tuple[float, ...], ...] = ()

@@ -76,6 +76,7 @@ def trial_config(study: StudyConfig, site: StudySite, spec: TrialSpec) -> TrialC
         controller=ControllerConfig(hand_filter=study.hand_filter),
         site=site.site_config(spec, study.camera_registration()),
         record_trace=True,
+        depth_aids=study.depth_aids,
     )
 
 

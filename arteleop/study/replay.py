@@ -44,6 +44,8 @@ class ReplaySource:
     trajectory: pd.DataFrame
     camera_registration: dict[str, Any] = field(default_factory=dict)
     """The study's :meth:`~arteleop.study.StudyConfig.camera_registration`."""
+    depth_aids: bool = False
+    """The study drew the depth aids (:attr:`~arteleop.study.StudyConfig.depth_aids`)."""
 
 
 def load_replay(run_dir: Path, participant: str, trial_index: int) -> ReplaySource:
@@ -88,7 +90,8 @@ def load_replay(run_dir: Path, participant: str, trial_index: int) -> ReplaySour
     if len(trajectory) == 0:
         raise RunFolderError(f"{path} has no rows to replay.")
     return ReplaySource(
-        spec, str(row["modality"]), str(row["outcome"]), trajectory, study.camera_registration()
+        spec, str(row["modality"]), str(row["outcome"]), trajectory, study.camera_registration(),
+        study.depth_aids,
     )  # fmt: skip
 
 
@@ -134,7 +137,7 @@ def replay(
         state = site.observe()
         frame = display_frame(
             state, site.sight_bowl(), site.frames, site.config.workspace, cues, engaged[k],
-            site.T_cloud_true,
+            site.T_cloud_true, source.depth_aids,
         )  # fmt: skip
         shown = with_cloud(frame, site.capture())
         if speed > 0:

@@ -159,7 +159,8 @@ class StudyServer(Closeable):
             self.view = OperatorView(replace(view, layer_panel=False), view_assets(site))
             rest = site.observe()
             self._rest_gripper_m, self._T_base_camera = rest.gripper_m, rest.camera.T_base_camera
-            self.view.show(site_frame(site, modality_cues("none")))  # the robot's view, plain
+            # The robot's view, plain: no AR layers, the depth aids if the study has them.
+            self.view.show(site_frame(site, modality_cues("none"), False, run.study.depth_aids))
         self._target = HandTarget(self._rest_gripper_m)
         self._actions: queue.Queue[tuple[str, Any]] = queue.Queue()
         self._lock = threading.Lock()
@@ -267,7 +268,8 @@ class StudyServer(Closeable):
                          realtime=True, render_camera=True)  # fmt: skip
         with RemoteSite(config.site) as site:
             # The scene as the trial will begin, its layers on, while the person gets ready.
-            self.view.show(site_frame(site, modality_cues(spec.modality), in_background=True))
+            cues = modality_cues(spec.modality)
+            self.view.show(site_frame(site, cues, True, config.depth_aids))
             self._show(lambda p: p.trial(heading, text, lambda: self._act("start")), driving=True)
             self._wait("start")
             if (live := self._live) is not None:  # a tab may go meanwhile

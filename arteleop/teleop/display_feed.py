@@ -72,11 +72,13 @@ def display_frame(
     cues: ArCues,
     engaged: bool,
     T_cloud_true: NDArray[np.float64] | None = None,
+    depth_aids: bool = False,
 ) -> DisplayFrame:
     """The display's content for a site state and the bowl's track at that instant, without a
     cloud. Placed through the site's frames: the eye at the camera's registration, the ghost at
     the arm's encoder readings, the target mesh at the target marker; ``T_cloud_true``: the
-    registration's error (:attr:`RemoteSite.T_cloud_true`)."""
+    registration's error (:attr:`RemoteSite.T_cloud_true`); ``depth_aids``: drawn
+    (:attr:`DisplayFrame.depth_aids`)."""
     frames.set_joints(dict(zip(RIGHT_ARM_JOINTS, state.arm_q_rad.tolist(), strict=True)))
     grasp = workspace.bowl.grasp_offset_m()
     return DisplayFrame(
@@ -95,6 +97,7 @@ def display_frame(
         cues=cues,
         engaged=engaged,
         T_cloud_true=T_cloud_true,
+        depth_aids=depth_aids,
     )
 
 
@@ -102,14 +105,17 @@ RENDER_TIMEOUT_S = 30.0
 """The longest wait for the render process's frame (s): its start takes a few seconds."""
 
 
-def site_frame(site: RemoteSite, cues: ArCues, in_background: bool = False) -> DisplayFrame:
+def site_frame(
+    site: RemoteSite, cues: ArCues, in_background: bool = False, depth_aids: bool = False
+) -> DisplayFrame:
     """The display of ``site`` as it is now, its cloud rendered: what a view shows between
     trials (the arm at rest, the bowl where the next trial starts), before any operator.
     ``in_background``: rendered by the site's render process, as a real-time trial's frames
-    are (a thread other than the site's own cannot use its OpenGL context)."""
+    are (a thread other than the site's own cannot use its OpenGL context); ``depth_aids``:
+    drawn."""
     frame = display_frame(
         site.observe(), site.sight_bowl(), site.frames, site.config.workspace, cues, False,
-        site.T_cloud_true,
+        site.T_cloud_true, depth_aids,
     )  # fmt: skip
     if not in_background:
         return with_cloud(frame, site.capture())
@@ -158,6 +164,7 @@ class DisplayFeed:
         timer: Times the ``camera``, ``point_cloud`` and ``display`` stages.
         latency: Collects the latency of each frame.
         track_every: The bowl's track is updated every this many camera frames.
+        depth_aids: The frames draw the depth aids.
     """
 
     def __init__(
@@ -171,8 +178,10 @@ class DisplayFeed:
         timer: StageTimer,
         latency: LatencyAccount,
         track_every: int = 1,
+        depth_aids: bool = False,
     ) -> None:
         self._site = site
+        self._depth_aids = depth_aids
         self._track_every = track_every
         self._ticks = 0
         self._track: BowlTrack | None = None
@@ -205,7 +214,7 @@ class DisplayFeed:
         self._ticks += 1
         frame = display_frame(
             state, self._track, self._site.frames, self._workspace, self._cues, engaged,
-            self._site.T_cloud_true,
+            self._site.T_cloud_true, self._depth_aids,
         )  # fmt: skip
         self._history.append(frame)
         px, m = self._site.colocation_errors(frame.T_base_gripper[None, :3, 3])
@@ -237,7 +246,7 @@ class DisplayFeed:
                 track = self._track or self._site.sight_bowl()
                 owed = display_frame(
                     state, track, self._site.frames, self._workspace, self._cues, engaged,
-                    self._site.T_cloud_true,
+                    self._site.T_cloud_true, self._depth_aids,
                 )  # fmt: skip
                 self._request(owed, applied_sample_time_s)
         if rgbd is None or finished is None:

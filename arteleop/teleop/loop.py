@@ -184,6 +184,7 @@ class _Loop:
             timer=self.timer,
             latency=self.latency,
             track_every=config.rates.frames_per_track,
+            depth_aids=config.depth_aids,
         )
         self._background = background
         self._delivering = delivering

@@ -55,6 +55,7 @@ class TrialConfig:
         skip_hidden_tracker_renders: After the release, do not render the tracker's frame when
             the tracker's model sees none of the bowl (:mod:`arteleop.teleop.task_monitor`);
             False renders every look, the plain path it is checked against.
+        depth_aids: The display draws the depth aids (:attr:`DisplayFrame.depth_aids`).
     """
 
     modality: str = "full"
@@ -68,6 +69,7 @@ class TrialConfig:
     controller: ControllerConfig = field(default_factory=ControllerConfig)
     record_trace: bool = False
     skip_hidden_tracker_renders: bool = True
+    depth_aids: bool = False
 
     def __post_init__(self) -> None:
         modality_cues(self.modality)

@@ -103,6 +103,16 @@ class _Egocentric:
         return np.round(self.size / 2 + self.f * pc[:2] / pc[2]).astype(int)
 
 
+def _in_image(shot: NDArray[np.uint8], config: ViewConfig, scene_px: tuple[float, float]):
+    """The part of a screenshot that shows the camera's image: the scene (left of the docked
+    panel) without the view's margin around the image."""
+    half = np.tan(np.radians([config.horizontal_fov_deg, config.vertical_fov_deg]) / 2)
+    f = scene_px[1] / 2 / np.tan(config.fitting_fov_rad(scene_px[0] / scene_px[1]) / 2)
+    (u0, v0), (u1, v1) = (np.round(np.array(scene_px) / 2 + k * f * half).astype(int)
+                          for k in (-1, 1))  # fmt: skip
+    return shot[v0:v1, u0:u1]
+
+
 def test_layers_appear_under_full_and_not_under_none(
     moments: tuple, tmp_path: Path, browser: Browser
 ) -> None:
@@ -182,8 +192,11 @@ def test_the_page_opens_on_the_head_cameras_view(
     expected = _Egocentric(frame, config, scene_px)(middle)
     assert np.hypot(u.mean() - expected[0], v.mean() - expected[1]) < 25
     # viser's default viewpoint showed the cloud as a 130x110 px patch; the table and what is
-    # on it now cover more than half of the page (beyond the table nothing returns: white).
-    background = (page_left > 250).all(axis=2)
+    # on it now cover more than half of the camera's image, which fills the page but for the
+    # view's margin (beyond the table nothing returns: white).
+    image = _in_image(shot, config, scene_px)
+    assert image.shape[1] > 0.75 * scene_px[0] or image.shape[0] > 0.75 * scene_px[1]
+    background = (image > 250).all(axis=2)
     assert background.mean() < 0.5
 
 
@@ -205,9 +218,13 @@ def test_live_input_shows_beside_the_docked_panel(
             assert page.shows("Grip")
             # The slider's ends say what it does (its ticks mark the thresholds).
             assert page.shows("closed")
-    u, v = _Egocentric(frame, config, scene_px)(rest_m)
+    pixel = _Egocentric(frame, config, scene_px)
+    u, v = pixel(rest_m)
     width = int(scene_px[0])
-    assert 0 < v < scene_px[1] and width - 120 < u < width + 60, "premise: at the image's edge"
+    # Past the camera image's right edge, inside the view's margin.
+    half = np.tan(np.radians(config.horizontal_fov_deg) / 2)
+    image_edge_u = pixel(frame.viewpoint_m + frame.T_base_camera[:3, :3] @ [half, 0.0, 1.0])[0]
+    assert 0 < v < scene_px[1] and image_edge_u < u < width - 40, "premise: past the image"
     # The gizmo's handles within the scene beside the panel: its red (a pink the cloud's
     # shaded red never reaches), green and blue, none of which the frame under no AR draws.
     near = shot[max(v - 120, 0) : v + 120, u - 120 : width].astype(int)
@@ -218,6 +235,35 @@ def test_live_input_shows_beside_the_docked_panel(
         "blue": int((b - np.maximum(r, g) > 35).sum()),
     }
     assert min(handles.values()) >= 50, handles
+
+
+def test_the_depth_aids_hang_from_the_gripper_to_the_table(
+    moment: tuple[DisplayFrame, ViewAssets, NDArray[np.float64]], tmp_path: Path, browser: Browser
+) -> None:
+    """With the depth aids, near-black pixels lie along the gripper's drop line to the table,
+    where the frame without them has few (the height's label is drawn in the scene's canvas:
+    its text is the layer's test's)."""
+    frame, assets, _ = moment
+    config = ViewConfig(port=0)
+    shots = {}
+    with OperatorView(config, assets) as view:
+        with browser.tab(view.url) as page:
+            for aids in (False, True):
+                view.show(replace(frame, cues=MODALITIES["none"], depth_aids=aids))
+                shots[aids] = page.screenshot(tmp_path / f"aids_{aids}.png")
+            scene_px = page.scene_size_px()
+    pixel = _Egocentric(frame, config, scene_px)
+    ends = pixel(frame.gripper_m), pixel(frame.drop_foot_m())
+    length_px = float(np.hypot(*(ends[1] - ends[0])))
+    assert length_px > 20, "premise: the drop line is long enough to see at this moment"
+    near_line = {}
+    for aids, shot in shots.items():
+        dark = (shot[:, : int(scene_px[0])].astype(int) < 50).all(axis=2)
+        v, u = np.nonzero(dark)
+        off_px = _distance_to_segment(np.column_stack([u, v]), *ends)
+        near_line[aids] = int((off_px <= 2).sum())
+    # The line is 3 px wide; the gripper's own points hide some of it.
+    assert near_line[True] - near_line[False] >= 0.5 * length_px * 2, (near_line, length_px)
 
 
 def _amber(shot: NDArray[np.uint8], scene_px: tuple[float, float]) -> NDArray[np.bool_]:
@@ -265,13 +311,15 @@ def test_each_frame_replaces_the_cloud_in_the_browser(
         frame, cloud_points_m=frame.cloud_points_m[half:], cloud_colors=frame.cloud_colors[half:]
     )
     shares = []
-    with OperatorView(ViewConfig(port=0), assets) as view:
+    config = ViewConfig(port=0)
+    with OperatorView(config, assets) as view:
         view.show(replace(frame, cues=MODALITIES["none"]))
         with browser.tab(view.url) as page:
             for name, shown in (("grey", frame), ("magenta", replace(frame, cloud_colors=magenta)),
                                 ("fewer", fewer)):  # fmt: skip
                 view.show(replace(shown, cues=MODALITIES["none"]))
                 shot = page.screenshot(tmp_path / f"{name}.png")
+                shot = _in_image(shot, config, page.scene_size_px())
                 r, g, b = (shot[..., k].astype(int) for k in range(3))
                 pink = (r > 200) & (g < 60) & (b > 200)
                 shares.append((pink.mean(), (shot > 250).all(axis=2).mean()))

@@ -81,6 +81,20 @@ def test_bad_view_settings_are_refused() -> None:
         ViewConfig(port=70000)
     with pytest.raises(ConfigurationError, match=r"point_overlap=0.1: expected 0.5-4"):
         ViewConfig(point_overlap=0.1)
+    with pytest.raises(ConfigurationError, match=r"image_margin=0.6: expected 0-0.5 \(a share"):
+        ViewConfig(image_margin=0.6)
+
+
+def test_the_field_shows_the_camera_image_and_its_margin() -> None:
+    """A 4:3 scene shows the image widened by the margin on both sides; a narrower scene
+    widens its vertical field until the image's width and margin fit."""
+    half_deg = np.degrees(np.arctan([0.3, 0.4]))
+    config = ViewConfig(vertical_fov_deg=2 * half_deg[0], horizontal_fov_deg=2 * half_deg[1],
+                        image_margin=0.1)  # fmt: skip
+    assert config.image_aspect == pytest.approx(4 / 3)
+    assert np.tan(config.fitting_fov_rad(4 / 3) / 2) == pytest.approx(0.3 * 1.2)
+    assert np.tan(config.fitting_fov_rad(1.0) / 2) == pytest.approx(0.4 * 1.2)
+    assert np.tan(config.fitting_fov_rad(2.0) / 2) == pytest.approx(0.3 * 1.2)
 
 
 class _Server:

@@ -17,7 +17,7 @@ from arteleop.scene import HeadCameraConfig
 from arteleop.study import CohortConfig, FamiliarizationConfig, StudyConfig, plan_study
 from arteleop.study.plan import EXPERIMENTAL
 from arteleop.study.runner import resume_study
-from arteleop.study.serve import IN_PROGRESS, ROUND_TRIP_TIMEOUT_S, StudyServer
+from arteleop.study.serve import IN_PROGRESS, OBSERVING, ROUND_TRIP_TIMEOUT_S, StudyServer
 from arteleop.study.session import (
     BROWSER_FILE,
     INTERRUPTED_FILE,
@@ -195,6 +195,9 @@ def _take_part(browser, server: StudyServer, links: queue.Queue, greens: list[in
     assert refused(server.url, gate)  # the server's bare address: a socket sent nothing
     participant, link = links.get(timeout=60)
     assert participant == "P01"
+    # The experimenter watches from the start, by their own link.
+    experimenter = browser.open(server.observer_link, for_pictures=False).playwright
+    experimenter.get_by_text(OBSERVING).wait_for()
     first_tab = browser.open(link, for_pictures=False)
     first = first_tab.playwright
     first.get_by_text("Information and consent").wait_for()
@@ -241,6 +244,11 @@ def _take_part(browser, server: StudyServer, links: queue.Queue, greens: list[in
     watcher.get_by_text("You can close this page", exact=False).wait_for(timeout=30_000)
     participant, next_link = links.get(timeout=30)
     assert participant == "P02" and next_link != link
+    # Through both tabs of P01's and into P02's session, the experimenter's tab stayed, read-only:
+    # it never took over nor drove the robot.
+    assert experimenter.get_by_text(OBSERVING).is_visible()
+    for text in ("Drive the robot", "Information and consent", IN_PROGRESS):
+        assert not experimenter.get_by_text(text).is_visible(), text
 
     # The next link admits its participant; P01's, no one now.
     def socket_url(address: str) -> str:

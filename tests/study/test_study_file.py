@@ -69,7 +69,7 @@ def test_study_init_writes_the_commented_default(tmp_path: Path, capsys) -> None
     [
         ('seed = 1\nordr = "williams"\n',
          "s.toml line 2: unknown key 'ordr'. Valid keys: name, consent, seed, modalities, order, "
-         "orders, trials_per_modality, timeout_s, delay_ms, camera_offset_mm, "
+         "orders, trials_per_modality, timeout_s, delay_ms, depth_aids, camera_offset_mm, "
          "camera_offset_deg, camera_pose, start_xy_m, target_xy_m, familiarization, cohort, "
          "participants, operator, hand_filter, conditions."),
         ("camera_offset_mm = [600, 0, 0]\n",

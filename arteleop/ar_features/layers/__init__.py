@@ -2,6 +2,7 @@
 
 from arteleop.ar_features.layers.beam import BeamLayer
 from arteleop.ar_features.layers.cloud import CloudLayer
+from arteleop.ar_features.layers.depth_aids import DepthAidsLayer
 from arteleop.ar_features.layers.distance_bar import DistanceBarLayer
 from arteleop.ar_features.layers.ghost import GhostLayer, PredictiveGhostLayer
 from arteleop.ar_features.layers.grip_bar import GripBarLayer
@@ -10,6 +11,7 @@ from arteleop.ar_features.layers.target import TargetLayer
 __all__ = [
     "BeamLayer",
     "CloudLayer",
+    "DepthAidsLayer",
     "DistanceBarLayer",
     "GhostLayer",
     "GripBarLayer",

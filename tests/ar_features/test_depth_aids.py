@@ -1,0 +1,67 @@
+"""The depth aids: a drop line from the gripper to the table, a ring at its foot and the
+gripper's height, drawn where the frame says, whatever its AR cues."""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from arteleop.ar_features import MODALITIES
+from arteleop.ar_features.layers import DepthAidsLayer
+from arteleop.ar_features.layers.depth_aids import FOOT_LIFT_M, FOOT_RADIUS_M, height_text
+from tests.ar_features.frames import GRIPPER_M, display_frame
+
+
+class _Scene:
+    """Keeps what a layer draws, by name, as viser's scene would hold it."""
+
+    def __init__(self) -> None:
+        self.nodes: dict[str, SimpleNamespace] = {}
+
+    def add_line_segments(self, name: str, points, colors, **kw) -> SimpleNamespace:
+        self.nodes[name] = SimpleNamespace(points=points, colors=colors, **kw)
+        return self.nodes[name]
+
+    def add_label(self, name: str, text: str, **kw) -> SimpleNamespace:
+        self.nodes[name] = SimpleNamespace(text=text, position=None, **kw)
+        return self.nodes[name]
+
+
+def test_the_aids_hang_from_the_gripper_to_the_table_and_read_its_height() -> None:
+    scene = _Scene()
+    layer = DepthAidsLayer(scene)  # type: ignore[arg-type]
+    line, ring, label = (scene.nodes[n] for n in ("/aids/drop_line", "/aids/foot", "/aids/height"))
+    # Off unless the frame asks, under any cues; on under none.
+    layer.draw(display_frame(cues=MODALITIES["full"]))
+    assert not (line.visible or ring.visible or label.visible)
+    layer.draw(display_frame(cues=MODALITIES["none"], depth_aids=True))
+    assert line.visible and ring.visible and label.visible
+    # The gripper at z -0.05 m, the table (where the target lies) at -0.2 m: 150 mm.
+    top, foot = line.points[0].astype(float)
+    np.testing.assert_allclose(top, GRIPPER_M, atol=1e-6)
+    np.testing.assert_allclose(foot, [GRIPPER_M[0], GRIPPER_M[1], -0.2 + FOOT_LIFT_M], atol=1e-6)
+    assert label.text == "height 150 mm"
+    # The ring lies on the table (just over its cloud) about the foot.
+    ends = ring.points.reshape(-1, 3).astype(float)
+    np.testing.assert_allclose(ends[:, 2], -0.2 + FOOT_LIFT_M, atol=1e-6)
+    np.testing.assert_allclose(np.linalg.norm(ends[:, :2] - foot[:2], axis=1), FOOT_RADIUS_M,
+                               rtol=1e-5)  # fmt: skip
+    # The label beside the ring, to the camera's right (its x is the base's x here).
+    assert label.position[0] > foot[0] + FOOT_RADIUS_M
+    layer.draw(display_frame(cues=MODALITIES["none"], depth_aids=False))
+    assert not (line.visible or ring.visible or label.visible)
+
+
+@pytest.mark.parametrize(
+    ("height_m", "text"),
+    [
+        (0.1504, "height 150 mm"),
+        (0.0006, "height 1 mm"),
+        (0.0, "height 0 mm"),
+        (-0.012, "height -12 mm"),
+    ],
+)
+def test_the_height_is_read_to_the_millimetre(height_m: float, text: str) -> None:
+    assert height_text(height_m) == text
