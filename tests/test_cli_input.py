@@ -134,6 +134,10 @@ def test_teleop_offers_live_input(capsys: pytest.CaptureFixture[str]) -> None:
     assert _error(capsys, ["teleop", "--timeout-s", "-1"]) == (
         "--timeout-s -1.0: give the trial a positive simulated time (s)."
     )
+    for command in (["teleop"], ["trial", "--view"]):
+        assert _error(capsys, [*command, "--port", "70000"]) == (
+            "--port 70000: expected a TCP port, 0-65535 (0: any free one)."
+        )
 
 
 def test_an_empty_recording_is_called_empty(
