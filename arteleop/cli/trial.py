@@ -48,6 +48,8 @@ class TrialCommand(CameraSize):
     """pace the loop with the wall clock"""
     view: bool = False
     """serve the operator's view (point cloud and AR layers) in the browser, in real time"""
+    depth_aids: bool = False
+    """draw the depth aids in the view: the gripper's drop line to the table, a ring at its foot and its height (the simulated participant does not use them yet)"""
     exit_when_done: bool = False
     """with --view: stop when the trial ends (else the view keeps its last frame until Ctrl-C)"""
     host: str = "127.0.0.1"
@@ -130,7 +132,7 @@ def trial(cmd: TrialCommand) -> int:
         realtime=cmd.realtime or cmd.view, render_camera=cmd.view,
         network=NetworkConfig(delay_s=cmd.delay_ms / 1000),
         controller=ControllerConfig(hand_filter=hand_filter),
-        site=SiteConfig(camera=cmd.camera_config()),
+        site=SiteConfig(camera=cmd.camera_config()), depth_aids=cmd.depth_aids,
     )  # fmt: skip
     with contextlib.ExitStack() as stack:
         site = stack.enter_context(RemoteSite(config.site))
