@@ -10,7 +10,7 @@ orders and the same seeds at every lag (paired). Through a block the person carr
 has learnt from one trial to the next (its belief at a trial's end is its belief at the next
 one's start), as people practise the lag of a block; the first trial of a block meets the lag
 with the belief from practice on the system (``familiar_lag_s``). ``--fresh`` makes every trial
-the block's first.
+the block's first. ``--depth-aids`` draws the depth aids in every trial.
 
 Measured as ISO 9241-9 asks (Soukoreff & MacKenzie 2004): the selection is the closure the
 operator decided (an earlier closure, the fingers pushed by the table, is a slip, counted); per
@@ -23,7 +23,8 @@ the index of difficulty, ``MT = a + (b + c lag) ID``), and each lag's effect on 
 against no lag, person by person (geometric mean of the paired ratios, 95 % t-interval).
 
     python benchmarks/bench_fitts.py [--people 16] [--reps 5] [--lags 0,75,150,225,450]
-                                     [--quick] [--fresh] [--workers 2] [--json OUT.json]
+                                     [--quick] [--fresh] [--depth-aids] [--workers 2]
+                                     [--json OUT.json]
 
 What it prints is what the model predicts: no constant of the operator is fitted to it.
 """
@@ -64,6 +65,7 @@ class Block:
     lag_ms: float
     trials: tuple[Trial, ...]
     fresh: bool = False
+    depth_aids: bool = False
 
 
 def block_trials(person: int, reps: int) -> tuple[Trial, ...]:
@@ -91,7 +93,8 @@ def run(block: Block) -> list[dict[str, float]]:
     rows = []
     for trial in block.trials:
         r = run_pointing_trial(trial.distance_m, trial.width_m, traits, trial.seed,
-                               block.lag_ms / 1000, params=practice)  # fmt: skip
+                               block.lag_ms / 1000, params=practice,
+                               depth_aids=block.depth_aids)  # fmt: skip
         if not block.fresh:
             practice = replace(practice, familiar_lag_s=r.believed_lag_s)
         rows.append({"person": block.person, "lag_ms": block.lag_ms, **vars(trial),
@@ -147,6 +150,8 @@ def main() -> None:
                         help="4 people, 3 repetitions, the lags 0 and 225 ms: a few minutes")  # fmt: skip
     parser.add_argument("--fresh", action="store_true",
                         help="every trial meets its lag anew: no practice within a block")  # fmt: skip
+    parser.add_argument("--depth-aids", action="store_true",
+                        help="draw the depth aids (drop line, ring, height label) in every trial")  # fmt: skip
     parser.add_argument("--workers", type=int, default=len(os.sched_getaffinity(0)))
     parser.add_argument("--json", help="write the lag table, the fits and the cells to this file")
     args = parser.parse_args()
@@ -157,7 +162,7 @@ def main() -> None:
     if args.workers < 1:
         parser.error(f"--workers {args.workers}: give 1 or more")
     people, reps, lags = (4, 3, [0.0, 225.0]) if args.quick else (args.people, args.reps, args.lags)
-    blocks = [Block(p, lag, block_trials(p, reps), args.fresh)
+    blocks = [Block(p, lag, block_trials(p, reps), args.fresh, args.depth_aids)
               for lag in lags for p in range(people)]  # fmt: skip
     t0 = time.perf_counter()
     with ProcessPoolExecutor(args.workers) as pool:

@@ -21,6 +21,14 @@ DISTANCE_LABEL_STEP_M = 0.001
 reader of the label can know of it."""
 HEIGHT_LABEL_STEP_M = 0.001
 """The depth aids' label shows :meth:`DisplayFrame.height_m` to this step (m)."""
+FOOT_LIFT_M = 0.005
+"""The depth aids' ring and the drop line's foot are drawn this far above the table (m): the
+table's cloud points, drawn facing the viewer, stand up to half a point's footprint proud of it and
+hid a ring on it."""
+FOOT_RADIUS_M = 0.015
+"""The ring on the table under the gripper (m): about 9 px at the head camera's 1.3 m."""
+HEIGHT_LABEL_GAP_M = 0.03
+"""The height's label sits this far right of the ring, in the camera's image plane (m)."""
 DISTANCE_BAR_OFFSET_M = (-0.16, -0.03)
 """Where the distance bar's left end is drawn relative to the gripper, in the camera's image
 plane (m; x right, y down), so it stays beside the gripper on screen; its label is left of it."""
@@ -193,9 +201,21 @@ class DisplayFrame:
         """The gripper's height above the table top, where the target marker lies (m)."""
         return float(self.gripper_m[2] - self.target_m[2])
 
+    def height_shown_m(self) -> float:
+        """The height the depth aids' label shows: :meth:`height_m` to
+        :data:`HEIGHT_LABEL_STEP_M` (m)."""
+        return round(self.height_m() / HEIGHT_LABEL_STEP_M) * HEIGHT_LABEL_STEP_M
+
     def drop_foot_m(self) -> NDArray[np.float64]:
-        """Where the line from the gripper straight down meets the table (base frame, m)."""
+        """Where the line from the gripper straight down meets the table (base frame, m); the
+        ring is drawn :data:`FOOT_LIFT_M` above it."""
         return np.append(self.gripper_m[:2], self.target_m[2])
+
+    def height_label_m(self) -> NDArray[np.float64]:
+        """Where the depth aids' label is drawn (base frame, m), its left end: right of the
+        ring in the camera's image plane."""
+        foot = self.drop_foot_m() + [0.0, 0.0, FOOT_LIFT_M]
+        return foot + self.T_base_camera[:3, 0] * (FOOT_RADIUS_M + HEIGHT_LABEL_GAP_M)
 
     def distance_label_m(self) -> NDArray[np.float64]:
         """Where the distance bar's label is drawn (base frame, m), its right end."""

@@ -49,7 +49,7 @@ class TrialCommand(CameraSize):
     view: bool = False
     """serve the operator's view (point cloud and AR layers) in the browser, in real time"""
     depth_aids: bool = False
-    """draw the depth aids in the view: the gripper's drop line to the table, a ring at its foot and its height (the simulated participant does not use them yet)"""
+    """draw the depth aids in the view: the gripper's drop line to the table, a ring at its foot and its height (the simulated participant judges them too)"""
     exit_when_done: bool = False
     """with --view: stop when the trial ends (else the view keeps its last frame until Ctrl-C)"""
     host: str = "127.0.0.1"
@@ -193,7 +193,7 @@ class TeleopCommand:
     timeout_s: float = 120.0
     """simulated time after which a trial ends as a timeout (s)"""
     depth_aids: bool = False
-    """draw the depth aids: a line from the gripper straight down to the table, a ring at its foot and the gripper's height (what a flat screen cannot show; the simulated participant does not use them yet)"""
+    """draw the depth aids: a line from the gripper straight down to the table, a ring at its foot and the gripper's height (what a flat screen cannot show; the simulated participant judges them too)"""
     width_px: int = 640
     """camera image width (px); the Kinect's 640x480 shows 30 frames/s, 47 ms from a sample to the view with OpenGL on two idle cores (fewer frames on a loaded machine, where 320x240 keeps 30 frames/s, 27 ms)"""
     height_px: int = 480

@@ -19,7 +19,12 @@ there is to judge:
 - the ghost shows the arm when the camera cannot; without it, an unseen gripper is estimated
   from the operator's own arm (proprioception);
 - what the point cloud shows is displaced by the camera's registration error
-  (``DisplayFrame.T_cloud_true``), the AR layers are not.
+  (``DisplayFrame.T_cloud_true``), the AR layers are not;
+- the depth aids (``DisplayFrame.depth_aids``, in every condition of a study or in none) give a
+  second judgement of a mark on the table against the gripper: the ring at the drop line's foot
+  against the mark, both on the table, so the judgement is held to its plane; and, where the
+  height matters, the gripper's height read off the label. A person combines it with the mark
+  judged against the gripper, each by its precision (Ernst & Banks 2002).
 
 A judgement of the display errs afresh at each glance (a longer look averages it) and, along the
 line of sight, by the person's lasting depth scale, which the person does not know of. A
@@ -36,7 +41,12 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from arteleop.ar_features import DISTANCE_LABEL_STEP_M, DisplayFrame
+from arteleop.ar_features import (
+    DISTANCE_LABEL_STEP_M,
+    FOOT_LIFT_M,
+    HEIGHT_LABEL_STEP_M,
+    DisplayFrame,
+)
 from arteleop.checks import Bounds, check_fields
 from arteleop.operator.acuity import (
     Acuities,
@@ -256,6 +266,43 @@ def perceive(
         cov = (a_sd**2 * along + sd.across_sd_m**2 * (np.eye(3) - along)) / glances
         return point + a * (z[0] * a_sd) + across + lasting, cov
 
+    def with_aids(
+        stream: str,
+        point: NDArray[np.float64],
+        judged: NDArray[np.float64],
+        cov: NDArray[np.float64],
+        grain_rad: float,
+        read_height: bool,
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], int]:
+        """``point``, a mark on the table, ``judged`` against the shown gripper with believed
+        covariance ``cov``, combined with its judgement against the depth aids' ring, held to
+        the table's plane, and (``read_height``) the gripper's height read off the label; each
+        weighed by its information (inverse covariance). The combined judgement, its
+        covariance, and the fixations it takes with the shown gripper: the ring seen, the label
+        read."""
+        aimed = (point, shown_gripper)
+        if not view.depth_aids:
+            return judged, cov, fixated(*aimed)
+        ring = view.drop_foot_m() + [0.0, 0.0, FOOT_LIFT_M]
+        on_ring, ring_cov = seen(stream + " on the ring", point, ring, grain_rad)
+        # Both lie on the table: the judgement nearest in its believed error within the plane.
+        ring_info = np.linalg.inv(ring_cov)
+        plane = np.eye(3)[:, :2]
+        info_2 = plane.T @ ring_info @ plane
+        error_2 = np.linalg.solve(info_2, plane.T @ ring_info @ (on_ring - point))
+        # The line hangs from the gripper: the mark against the ring is the mark against it.
+        aided = point - view.gripper_m + plane @ error_2
+        aided_info = plane @ info_2 @ plane.T
+        read_m: tuple[NDArray[np.float64], ...] = ()
+        if read_height:
+            aided[2] = point[2] - view.target_m[2] - view.height_shown_m()
+            aided_info[2, 2] += 1.0 / reading_sd_m(HEIGHT_LABEL_STEP_M) ** 2
+            read_m = (view.height_label_m(),)
+        combined_cov = np.linalg.inv(np.linalg.inv(cov) + aided_info)
+        direct = np.linalg.solve(cov, judged - shown_gripper)
+        relative = combined_cov @ (direct + aided_info @ aided)
+        return shown_gripper + relative, combined_cov, fixated(*aimed, ring, read_m=read_m)
+
     def centre(
         point: NDArray[np.float64], grain_rad: float
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -317,11 +364,13 @@ def perceive(
         # The mark against the gripper over it.
         grain = params.display.pixel_rad if cues.target_mesh else cloud_grain
         mark, mark_cov = seen("target", mark_point, shown_gripper, grain)
+        mark, mark_cov, placement_fixations = with_aids(
+            "target", mark_point, mark, mark_cov, grain, read_height=False
+        )
         centring, centring_cov = centre(mark_point, grain)
         target = gripper + mark - shown_gripper + centring
         placement_cov = mark_cov + centring_cov
         placed_by_gripper = True
-        placement_fixations = fixated(mark_point, shown_gripper)
     elif cues.target_mesh and bowl is not None and tracked is not None:
         # Coincidence of the real and the virtual bowl: their offset, at the mesh's grain.
         offset_m = float(np.linalg.norm((tracked - view.target_m)[:2]))
@@ -345,10 +394,14 @@ def perceive(
         marker, marker_cov = seen(
             "target", mark_point, against, cloud_grain, stretched=bowl is None
         )
+        placement_fixations = fixated(mark_point, against)
+        if bowl is None and gripper_seen:
+            marker, marker_cov, placement_fixations = with_aids(
+                "target", mark_point, marker, marker_cov, cloud_grain, read_height=False
+            )
         centring, centring_cov = centre(mark_point, cloud_grain)
         target = marker + centring
         placement_cov = marker_cov + centring_cov
-        placement_fixations = fixated(mark_point, against)
         if bowl_cov is not None:
             placement_cov = placement_cov + bowl_cov
         else:
@@ -363,8 +416,10 @@ def perceive(
         cross = view.in_cloud(view.start_m)
         if gripper_seen:
             mark, start_cov = seen("start", cross, shown_gripper, cloud_grain)
+            mark, start_cov, start_fixations = with_aids(
+                "start", cross, mark, start_cov, cloud_grain, read_height=True
+            )
             start = gripper + mark - shown_gripper
-            start_fixations = fixated(cross, shown_gripper)
         else:
             against = tracked if tracked is not None else mark_point
             start, mark_cov = seen("start", cross, against, cloud_grain)

@@ -290,7 +290,7 @@ _COMMENTS = {
     "timeout_s": "simulated time after which a trial ends as a timeout (s)",
     "delay_ms": "one-way network delay between operator and robot (ms), in every trial",
     "depth_aids": "draw the gripper's drop line to the table and its height, in every trial "
-    "(for people on a flat screen; the simulated participant does not use them yet)",
+    "(for people on a flat screen; the simulated participant judges them too)",
     "camera_offset_mm": "error of the head camera's registration: translation (mm, camera frame)",
     "camera_offset_deg": "and rotation vector (deg, camera frame); zero is a perfect registration",
     "camera_pose": "or its registered pose, 4 rows of T_base_camera (m); camera_graph = "

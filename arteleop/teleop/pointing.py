@@ -68,12 +68,13 @@ def run_pointing_trial(
     round_trip_lag_s: float = 0.0,
     timeout_s: float = 40.0,
     params: OperatorParams | None = None,
+    depth_aids: bool = False,
 ) -> PointingResult:
     """A pointing trial at a target ``distance_m`` away and ``width_m`` wide (m), by a person
     with ``traits`` and the operator's constants ``params`` (the defaults; a person who has
     practised a lag brings its belief as ``familiar_lag_s``), with ``round_trip_lag_s`` (s) of
-    network delay, half each way."""
-    config = pointing_config(distance_m, width_m, seed, round_trip_lag_s, timeout_s)
+    network delay, half each way; the display draws the depth aids if ``depth_aids``."""
+    config = pointing_config(distance_m, width_m, seed, round_trip_lag_s, timeout_s, depth_aids)
     ws = config.site.workspace
     with RemoteSite(config.site) as site:
         source = pointing_source(config, site.observe().gripper_m, traits, params=params)
@@ -106,16 +107,19 @@ def pointing_config(
     seed: int,
     round_trip_lag_s: float = 0.0,
     timeout_s: float = 40.0,
+    depth_aids: bool = False,
 ) -> TrialConfig:
     """The trial of a pointing movement ``distance_m`` long at a target ``width_m`` wide (m),
-    under ``round_trip_lag_s`` (s) of network delay, half each way; its trace recorded."""
+    under ``round_trip_lag_s`` (s) of network delay, half each way, the depth aids drawn if
+    ``depth_aids``; its trace recorded."""
     target_xy = (POINTING_START_XY_M[0], POINTING_START_XY_M[1] + distance_m)
     ws = Workspace(start_xy_m=POINTING_START_XY_M, target_xy_m=target_xy,
                    bowl_xy_m=BOWL_AWAY_XY_M, target_circle_radius_m=width_m / 2,
                    marker_line_width_m=width_m / 4)  # fmt: skip
     return TrialConfig(modality="none", seed=seed, timeout_s=timeout_s,
                        network=NetworkConfig(delay_s=round_trip_lag_s / 2),
-                       site=SiteConfig(workspace=ws), record_trace=True)  # fmt: skip
+                       site=SiteConfig(workspace=ws), record_trace=True,
+                       depth_aids=depth_aids)  # fmt: skip
 
 
 def pointing_source(

@@ -8,9 +8,10 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from arteleop.ar_features import MODALITIES
+from arteleop.ar_features import FOOT_LIFT_M, FOOT_RADIUS_M, MODALITIES
 from arteleop.ar_features.layers import DepthAidsLayer
-from arteleop.ar_features.layers.depth_aids import FOOT_LIFT_M, FOOT_RADIUS_M, height_text
+from arteleop.ar_features.layers.depth_aids import height_text
+from arteleop.transforms import make_transform
 from tests.ar_features.frames import GRIPPER_M, display_frame
 
 
@@ -64,4 +65,8 @@ def test_the_aids_hang_from_the_gripper_to_the_table_and_read_its_height() -> No
     ],
 )
 def test_the_height_is_read_to_the_millimetre(height_m: float, text: str) -> None:
-    assert height_text(height_m) == text
+    # The table (where the target lies) at -0.2 m.
+    gripper = make_transform(np.eye(3), (0.68, -0.37, -0.2 + height_m))
+    frame = display_frame(T_base_gripper=gripper, depth_aids=True)
+    assert height_text(frame) == text
+    assert frame.height_shown_m() == pytest.approx(int(text.split()[1]) / 1000)

@@ -481,3 +481,65 @@ def test_a_task_that_aims_the_gripper_judges_the_start_cross_against_it() -> Non
     unseen = display_frame(T_base_gripper=over, start_m=start, gripper_in_camera=False)
     felt = perceive(unseen, P, _independent(0), aims_gripper=True)
     assert felt.start_cov is not None and np.all(np.diag(felt.start_cov) > P.proprioception_sd_m**2)
+
+
+def _loewner_smaller(a: np.ndarray, b: np.ndarray) -> bool:
+    """``a`` is no larger than ``b`` in every direction, and smaller in some."""
+    gap = np.linalg.eigvalsh(b - a)
+    return bool(gap.min() > -1e-15 and gap.max() > 1e-12)
+
+
+def test_the_depth_aids_add_the_ring_on_the_table_and_the_height_off_its_label() -> None:
+    """With the depth aids drawn, a mark on the table is judged a second time, against the ring
+    at the drop line's foot, held to the table's plane; the start's height is read off the label.
+    Each judgement is weighed by its precision, so the person believes itself more precise and
+    is, as precise as it believes (no bias here); the height errs by the label's rounding. One
+    fixation reads the label, 4.5 cm beside the ring, and sees the cross and the gripper in its
+    parafovea."""
+    start = display_frame().target_m + [0.0, -0.2, 0.0]
+    over = make_transform(np.diag([1.0, -1.0, -1.0]), start + [0.0, 0.0, 0.0504])
+    plain = display_frame(T_base_gripper=over, start_m=start)
+    aided = replace(plain, depth_aids=True)
+    truth = start - plain.gripper_m
+
+    def judged(view: DisplayFrame) -> tuple[np.ndarray, Perceived]:
+        noise = _independent(2)
+        seen = [perceive(view, P, noise, aims_gripper=True) for _ in range(3000)]
+        return np.array([s.start_m - s.gripper_m - truth for s in seen]), seen[0]
+
+    errors_plain, one_plain = judged(plain)
+    errors_aided, one_aided = judged(aided)
+    assert one_plain.start_cov is not None and one_aided.start_cov is not None
+    assert _loewner_smaller(one_aided.start_cov, one_plain.start_cov)
+    # The height: read off "height 50 mm", 0.4 mm short of the truth, trusted nearly wholly.
+    assert one_aided.start_cov[2, 2] < reading_sd_m(0.001) ** 2
+    assert errors_aided[:, 2].mean() == pytest.approx(0.0004, abs=0.0001)
+    assert errors_plain[:, 2].std() > 10 * errors_aided[:, 2].std()
+    # In the table's plane as precise as believed, and more precise than without the aids.
+    believed = one_aided.start_cov[:2, :2]
+    np.testing.assert_allclose(np.cov(errors_aided[:, :2].T), believed, rtol=0.1, atol=1e-9)
+    assert np.trace(np.cov(errors_aided[:, :2].T)) < np.trace(np.cov(errors_plain[:, :2].T))
+    assert (one_plain.start_fixations, one_aided.start_fixations) == (1, 1)
+    # The target, judged in the plane (pointing at it): the ring, no label.
+    target = replace(aided, T_base_gripper=make_transform(
+        np.diag([1.0, -1.0, -1.0]), aided.target_m + [0.0, 0.0, 0.05]))  # fmt: skip
+    pointed = perceive(target, P, _independent(0), aims_gripper=True)
+    alone = perceive(replace(target, depth_aids=False), P, _independent(0), aims_gripper=True)
+    assert pointed.placement_fixations == alone.placement_fixations == 1
+    assert _loewner_smaller(pointed.placement_cov[:2, :2], alone.placement_cov[:2, :2])
+
+
+def test_a_hidden_bowl_is_placed_by_the_gripper_over_the_ring() -> None:
+    """The bowl in hand hidden and no mesh: the marker is judged against the gripper, and with
+    the aids against the ring as well; without a gripper shown there is no line's top to take
+    for it, and the aids add nothing."""
+    view = display_frame(cues=MODALITIES["none"], bowl_m=None, depth_aids=True)
+    aided = perceive(view, P, _independent(0))
+    plain = perceive(replace(view, depth_aids=False), P, _independent(0))
+    assert aided.placed_by_gripper and plain.placed_by_gripper
+    assert _loewner_smaller(aided.placement_cov[:2, :2], plain.placement_cov[:2, :2])
+    unseen = replace(view, gripper_in_camera=False)
+    felt = perceive(unseen, P, _independent(0))
+    felt_plain = perceive(replace(unseen, depth_aids=False), P, _independent(0))
+    np.testing.assert_array_equal(felt.placement_cov, felt_plain.placement_cov)
+    np.testing.assert_array_equal(felt.target_m, felt_plain.target_m)

@@ -7,25 +7,18 @@ from __future__ import annotations
 import numpy as np
 import viser
 
-from arteleop.ar_features.display_frame import HEIGHT_LABEL_STEP_M, DisplayFrame
+from arteleop.ar_features.display_frame import FOOT_LIFT_M, FOOT_RADIUS_M, DisplayFrame
 from arteleop.ar_features.layer import Layer
 from arteleop.ar_features.layers.colors import AIDS_RGB
 
 DROP_LINE_WIDTH_PX = 3.0
-FOOT_LIFT_M = 0.005
-"""The ring and the line's foot are drawn this far above the table (m): the table's cloud points,
-drawn facing the viewer, stand up to half a point's footprint proud of it and hid a ring on it."""
-FOOT_RADIUS_M = 0.015
-"""The ring on the table under the gripper (m): about 9 px at the head camera's 1.3 m."""
 FOOT_SEGMENTS = 24
-LABEL_GAP_M = 0.03
-"""The height's label sits this far right of the ring, in the camera's image plane (m)."""
 
 
-def height_text(height_m: float) -> str:
-    """The label: the height above the table, to :data:`HEIGHT_LABEL_STEP_M`, in mm."""
-    shown_mm = round(height_m / HEIGHT_LABEL_STEP_M) * HEIGHT_LABEL_STEP_M * 1000
-    return f"height {shown_mm:.0f} mm"
+def height_text(frame: DisplayFrame) -> str:
+    """The label: the height above the table as the frame shows it
+    (:meth:`DisplayFrame.height_shown_m`), in mm."""
+    return f"height {1000 * frame.height_shown_m():.0f} mm"
 
 
 class DepthAidsLayer(Layer):
@@ -56,9 +49,8 @@ class DepthAidsLayer(Layer):
         foot = frame.drop_foot_m() + [0.0, 0.0, FOOT_LIFT_M]
         self._line.points = np.stack([frame.gripper_m, foot])[None].astype(np.float32)
         self._ring.points = (self._circle + foot).astype(np.float32)
-        right = frame.T_base_camera[:3, 0]
-        self._label.position = foot + right * (FOOT_RADIUS_M + LABEL_GAP_M)
-        self._label.text = height_text(frame.height_m())
+        self._label.position = frame.height_label_m()
+        self._label.text = height_text(frame)
 
     def _set_visible(self, visible: bool) -> None:
         for handle in (self._line, self._ring, self._label):
