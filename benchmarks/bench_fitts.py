@@ -20,7 +20,9 @@ projected on the task axis, the effective distance ``D_e`` their mean, ``ID_e = 
 Per lag it fits ``MT = a + b ID_e`` over the cells, then MacKenzie & Ware's (CHI 1993) two lag
 models over every lag (lag adding to movement time, ``MT = a + b ID + c lag``, or multiplying
 the index of difficulty, ``MT = a + (b + c lag) ID``), and each lag's effect on movement time
-against no lag, person by person (geometric mean of the paired ratios, 95 % t-interval).
+against no lag, person by person (geometric mean of the paired ratios, 95 % t-interval). Last,
+where the movement time goes, per lag and width: the operator's time moving, watching the display
+settle, looking and waiting, with its corrections and looks.
 
     python benchmarks/bench_fitts.py [--people 16] [--reps 5] [--lags 0,75,150,225,450]
                                      [--quick] [--fresh] [--depth-aids] [--workers 2]
@@ -85,7 +87,7 @@ def run(block: Block) -> list[dict[str, float]]:
     """A block's pointing trials, one after the other, the person carrying its belief of the lag
     from each to the next (unless the block is fresh): each trial's movement time, the
     selection's endpoint, hit and slips."""
-    from arteleop.operator import Expertise, OperatorParams, TraitDistribution
+    from arteleop.operator import ACTIVITIES, Expertise, OperatorParams, TraitDistribution
     from arteleop.teleop.pointing import run_pointing_trial
 
     traits = TraitDistribution().draw(0, f"F{block.person:02d}", Expertise())
@@ -100,7 +102,9 @@ def run(block: Block) -> list[dict[str, float]]:
         rows.append({"person": block.person, "lag_ms": block.lag_ms, **vars(trial),
                      "selected": float(r.selected), "movement_time_s": r.movement_time_s,
                      "along_m": r.along_m, "across_m": r.across_m, "hit": float(r.hit),
-                     "slips": float(r.slips), "believed_lag_s": r.believed_lag_s})  # fmt: skip
+                     "slips": float(r.slips), "believed_lag_s": r.believed_lag_s,
+                     "corrections": float(r.corrections), "looks": float(r.looks),
+                     **{f"{a}_s": r.activity_s.get(a, 0.0) for a in ACTIVITIES}})  # fmt: skip
     return rows
 
 
@@ -302,10 +306,39 @@ def report(rows: list[dict], lags: list[float], json_path: str | None) -> None:
         for name, m in models.items():
             print(f"\n{name}: a = {m['a_s']:.2f} s, b = {m['b_s_per_bit']:.2f} s/bit, "
                   f"c = {m['c']:.2f}, R^2 = {m['r2']:.3f}")  # fmt: skip
+    breakdown = time_breakdown(rows, lags)
     if json_path:
         with open(json_path, "w", encoding="utf-8") as f:
-            json.dump({**per_lag, "fits": fits, "cells": cells, "people": people}, f, indent=1)
+            json.dump({**per_lag, "fits": fits, "cells": cells, "people": people,
+                       "breakdown": breakdown}, f, indent=1)  # fmt: skip
         print(f"\nwrote {json_path}")
+
+
+def time_breakdown(rows: list[dict], lags: list[float]) -> list[dict]:
+    """Per lag and target width, where the movement time of the selected trials went: the mean
+    seconds in each of the operator's activities (they add up to the mean movement time), and
+    the mean corrections and looks per trial; printed as a table."""
+    from arteleop.operator import ACTIVITIES
+
+    out = []
+    print("\n## Where the movement time goes (means over the selected trials)\n")
+    print("| lag (ms) | W (mm) | trials | MT (s) | " + " | ".join(f"{a} (s)" for a in ACTIVITIES)
+          + " | corrections | looks |")  # fmt: skip
+    print("| ---: " * (6 + len(ACTIVITIES)) + "|")
+    for lag in lags:
+        for w in WIDTHS_M:
+            done = [r for r in rows if r["lag_ms"] == lag and r["width_m"] == w and r["selected"]]
+            if not done:
+                continue
+            entry = {"lag_ms": lag, "W_m": w, "trials": len(done)}
+            for key in ("movement_time_s", *(f"{a}_s" for a in ACTIVITIES), "corrections",
+                        "looks"):  # fmt: skip
+                entry[key] = float(np.mean([r[key] for r in done]))
+            out.append(entry)
+            print(f"| {lag:g} | {1000 * w:.0f} | {len(done)} | {entry['movement_time_s']:.2f} | "
+                  + " | ".join(f"{entry[f'{a}_s']:.2f}" for a in ACTIVITIES)
+                  + f" | {entry['corrections']:.1f} | {entry['looks']:.1f} |")  # fmt: skip
+    return out
 
 
 if __name__ == "__main__":

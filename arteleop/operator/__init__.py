@@ -35,7 +35,7 @@ from arteleop.operator.perception import (
     PerceptualErrors,
     perceive,
 )
-from arteleop.operator.phase_log import PhaseRecord
+from arteleop.operator.phase_log import ACTIVITIES, PhaseRecord
 from arteleop.operator.posture import CalibrationPosture, hand_from_calibration
 from arteleop.operator.recording import (
     COLUMNS,
@@ -76,6 +76,7 @@ from arteleop.operator.wearable import (
 )
 
 __all__ = [
+    "ACTIVITIES",
     "COLUMNS",
     "SEGMENTS",
     "Action",

@@ -112,6 +112,7 @@ class SyntheticOperator:
         self._last_amend_s = -np.inf
         self._homing_from_s = 0.0  # in-flight corrections start half-way through the primary
         self._moved_in_phase = False
+        self._last_step_s: float | None = None
         self.setbacks = 0
         self.corrections_total = 0
         """Corrective submovements, in flight or after a look."""
@@ -224,6 +225,7 @@ class SyntheticOperator:
         self._look.start(t)
         self._glancing = None
         self.looks_total += 1
+        self._log.looked(t)
 
     def _take_glance(self, t: float, view: DisplayFrame) -> None:
         """A look's glances, one after the other: each sees the display as it is when it
@@ -352,6 +354,9 @@ class SyntheticOperator:
         operator's decisions, never the time at which the hand is evaluated.
         """
         t = time_s
+        if self._last_step_s is not None:  # since the last sample, it did what it was doing
+            self._log.spent(self._mode.value, self._last_step_s, t)
+        self._last_step_s = t
         self._watch.see(t, view)
         moves_in_task = self._task_phase is not None and self._task_phase.action is Action.MOVE
         if self._mode is _Mode.MOVE:

@@ -8,7 +8,8 @@ operator has selected (closed the gripper).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
@@ -46,6 +47,11 @@ class PointingResult:
         slips: Closures before the decision.
         believed_lag_s: The display's lag as the operator believed it at the trial's end (s):
             what it brings to its next trial under the same lag.
+        activity_s: Where the movement time went: the seconds the operator spent in each of
+            :data:`~arteleop.operator.ACTIVITIES` (they add up to ``movement_time_s``).
+        corrections: Submovements after the pointing movement's first, in flight or after a
+            look.
+        looks: Looks begun during the movement time.
     """
 
     movement_time_s: float
@@ -54,6 +60,9 @@ class PointingResult:
     hit: bool
     slips: int = 0
     believed_lag_s: float = float("nan")
+    activity_s: Mapping[str, float] = field(default_factory=dict)
+    corrections: int = 0
+    looks: int = 0
 
     @property
     def selected(self) -> bool:
@@ -98,6 +107,9 @@ def run_pointing_trial(
         bool(np.linalg.norm(off) <= width_m / 2),
         slips,
         believed_lag_s,
+        dict(pointing[0].activity_s),
+        pointing[0].corrections,
+        pointing[0].looks,
     )
 
 

@@ -38,6 +38,14 @@ def test_a_harder_target_takes_longer(times: dict) -> None:
     assert np.mean(times[0.4, 0.01, 0.0]) > 1.5 * np.mean(times[0.1, 0.04, 0.0][:2])
 
 
+def test_the_movement_time_is_what_the_operator_did_in_it(trials: dict) -> None:
+    """Moving, watching, looking and waiting add up to the movement time, sample by sample."""
+    for runs in trials.values():
+        for r in runs:
+            assert sum(r.activity_s.values()) == pytest.approx(r.movement_time_s, abs=1e-9)
+            assert r.activity_s["move"] > 0 and r.looks >= 1  # the selection follows a look
+
+
 def test_lag_raises_the_movement_time(times: dict) -> None:
     """Medians over four people (measured: 1.2 s without lag, 3.3 s with 0.6 s; two people
     alone, once, gave the opposite)."""
