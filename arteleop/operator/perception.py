@@ -23,8 +23,10 @@ there is to judge:
 - the depth aids (``DisplayFrame.depth_aids``, in every condition of a study or in none) give a
   second judgement of a mark on the table against the gripper: the ring at the drop line's foot
   against the mark, both on the table, so the judgement is held to its plane; and, where the
-  height matters, the gripper's height read off the label. A person combines it with the mark
-  judged against the gripper, each by its precision (Ernst & Banks 2002).
+  height matters, the gripper's height read off the label. Above the rim, the line passes the
+  rim's height where the gripper, lowered, would be: the grasp point against that point of the
+  line, level. A person combines each with the judgement without the aids, each by its
+  precision (Ernst & Banks 2002).
 
 A judgement of the display errs afresh at each glance (a longer look averages it) and, along the
 line of sight, by the person's lasting depth scale, which the person does not know of. A
@@ -223,6 +225,9 @@ def perceive(
     cues = view.cues
     gripper_seen = view.gripper_in_camera or cues.ghost or cues.predictive_ghost
     shown_gripper = shown_gripper_m(view)
+    predicted = view.shown_predicted
+    # How far the predictive ghost leads the frame's own arm (m), which the person sees.
+    lead_m = np.zeros(3) if predicted is None else predicted.gripper_m - view.gripper_m
     cloud_grain = view.cloud_spacing_rad or 0.0  # batch frames carry no cloud: the display's
 
     def fixated(*seen_m: NDArray[np.float64], read_m: tuple = ()) -> int:
@@ -266,6 +271,38 @@ def perceive(
         cov = (a_sd**2 * along + sd.across_sd_m**2 * (np.eye(3) - along)) / glances
         return point + a * (z[0] * a_sd) + across + lasting, cov
 
+    def held_level(
+        stream: str,
+        point: NDArray[np.float64],
+        on_line_m: NDArray[np.float64],
+        grain_rad: float,
+        ahead_m: NDArray[np.float64],
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """``point`` judged against ``on_line_m``, where the depth aids' drop line passes its
+        height (the ring, for a mark on the table), taking both to be level: the judgement held
+        to their horizontal plane, the estimate nearest in its believed error. The line hangs
+        from the frame's arm, so that is ``point`` relative to the arm in the plane; returned
+        relative to the gripper the judgement is about, ``ahead_m`` (m) ahead of the arm (the
+        predictive ghost's lead, or none), with its information in the plane (inverse
+        covariance, m^-2; none about the height)."""
+        on_line, line_cov = seen(stream, point, on_line_m, grain_rad)
+        line_info = np.linalg.inv(line_cov)
+        plane = np.eye(3)[:, :2]
+        info_2 = plane.T @ line_info @ plane
+        level = np.linalg.solve(info_2, plane.T @ line_info @ (on_line - on_line_m))
+        return plane @ level - ahead_m, plane @ info_2 @ plane.T
+
+    def combined(
+        relative: NDArray[np.float64],
+        cov: NDArray[np.float64],
+        aided: NDArray[np.float64],
+        aided_info: NDArray[np.float64],
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Two judgements of one interval (m), believed with covariance ``cov`` and information
+        ``aided_info``, weighed by their information: the combination and its covariance."""
+        combined_cov = np.linalg.inv(np.linalg.inv(cov) + aided_info)
+        return combined_cov @ (np.linalg.solve(cov, relative) + aided_info @ aided), combined_cov
+
     def with_aids(
         stream: str,
         point: NDArray[np.float64],
@@ -275,32 +312,21 @@ def perceive(
         read_height: bool,
     ) -> tuple[NDArray[np.float64], NDArray[np.float64], int]:
         """``point``, a mark on the table, ``judged`` against the shown gripper with believed
-        covariance ``cov``, combined with its judgement against the depth aids' ring, held to
-        the table's plane, and (``read_height``) the gripper's height read off the label; each
-        weighed by its information (inverse covariance). The combined judgement, its
-        covariance, and the fixations it takes with the shown gripper: the ring seen, the label
-        read."""
+        covariance ``cov``, combined with its judgement against the depth aids' ring
+        (:func:`held_level`) and (``read_height``) the gripper's height read off the label.
+        The combined judgement, its covariance, and the fixations it takes with the shown
+        gripper: the ring seen, the label read."""
         aimed = (point, shown_gripper)
         if not view.depth_aids:
             return judged, cov, fixated(*aimed)
         ring = view.drop_foot_m() + [0.0, 0.0, FOOT_LIFT_M]
-        on_ring, ring_cov = seen(stream + " on the ring", point, ring, grain_rad)
-        # Both lie on the table: the judgement nearest in its believed error within the plane.
-        ring_info = np.linalg.inv(ring_cov)
-        plane = np.eye(3)[:, :2]
-        info_2 = plane.T @ ring_info @ plane
-        error_2 = np.linalg.solve(info_2, plane.T @ ring_info @ (on_ring - point))
-        # The line hangs from the gripper: the mark against the ring is the mark against it.
-        aided = point - view.gripper_m + plane @ error_2
-        aided_info = plane @ info_2 @ plane.T
+        aided, aided_info = held_level(stream + " on the ring", point, ring, grain_rad, lead_m)
         read_m: tuple[NDArray[np.float64], ...] = ()
-        if read_height:
-            aided[2] = point[2] - view.target_m[2] - view.height_shown_m()
+        if read_height:  # the mark on the table, the gripper the label's height above it
+            aided[2] = -view.height_shown_m() - lead_m[2]
             aided_info[2, 2] += 1.0 / reading_sd_m(HEIGHT_LABEL_STEP_M) ** 2
             read_m = (view.height_label_m(),)
-        combined_cov = np.linalg.inv(np.linalg.inv(cov) + aided_info)
-        direct = np.linalg.solve(cov, judged - shown_gripper)
-        relative = combined_cov @ (direct + aided_info @ aided)
+        relative, combined_cov = combined(judged - shown_gripper, cov, aided, aided_info)
         return shown_gripper + relative, combined_cov, fixated(*aimed, ring, read_m=read_m)
 
     def centre(
@@ -329,16 +355,29 @@ def perceive(
         # is not tracked.
         grain = params.display.pixel_rad if cues.beam else cloud_grain
         beam = view.gripper_m - grasp
+        read_m: tuple[NDArray[np.float64], ...] = ()
+        ahead = np.zeros(3)  # the beam and the bar hang from the frame's arm, as the line does
         if cues.distance_bar and np.linalg.norm(beam) > 1e-6:
             reading = reading_sd_m(DISTANCE_LABEL_STEP_M)
             judged, grasp_cov = seen("gripper", view.gripper_m, grasp, grain, reading, beam)
-            grasp_fixations = fixated(view.gripper_m, grasp, read_m=(view.distance_label_m(),))
+            seen_m = (view.gripper_m, grasp)
+            read_m = (view.distance_label_m(),)
         elif cues.beam:
             judged, grasp_cov = seen("gripper", view.gripper_m, grasp, grain)
-            grasp_fixations = fixated(view.gripper_m, grasp)
+            seen_m = (view.gripper_m, grasp)
         else:
             judged, grasp_cov = seen("gripper", shown_gripper, grasp, grain)
-            grasp_fixations = fixated(shown_gripper, grasp)
+            seen_m = (shown_gripper, grasp)
+            ahead = lead_m
+        if view.depth_aids and view.gripper_m[2] >= grasp[2]:
+            # The drop line passes the rim's height where the gripper, lowered, would be: the
+            # rim against that point of the line, both level.
+            on_line = np.append(view.gripper_m[:2], grasp[2])
+            aided, aided_info = held_level("grasp on the line", grasp, on_line, grain, ahead)
+            relative, grasp_cov = combined(grasp - judged, grasp_cov, aided, aided_info)
+            judged = grasp - relative
+            seen_m += (on_line,)
+        grasp_fixations = fixated(*seen_m, read_m=read_m)
         gripper = bowl + judged - tracked
         gripper_cov = grasp_cov
     elif gripper_seen:  # against a remembered bowl: seen apart, in other glances
@@ -426,11 +465,9 @@ def perceive(
             start_cov = mark_cov + grasp_cov
             start_fixations = fixated(cross, against)
     closure_known = gripper_seen or cues.grip_bar
-    predicted = view.shown_predicted
-    lead = np.zeros(3) if predicted is None else predicted.gripper_m - view.gripper_m
     return Perceived(
         gripper, bowl, target, gripper_seen, closure_known, grasp_cov, placement_cov,
-        placed_by_gripper, lead, grasp_fixations, placement_fixations, start, start_cov,
+        placed_by_gripper, lead_m, grasp_fixations, placement_fixations, start, start_cov,
         start_fixations,
     )  # fmt: skip
 

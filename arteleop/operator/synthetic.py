@@ -142,6 +142,7 @@ class SyntheticOperator:
         """Put the operator, engaged, at the start of the task's phase ``name`` with its hand
         at ``hand_m`` (torso frame, m) at ``time_s`` (s): to study one phase on its own."""
         self.hand = Hand(np.asarray(hand_m, dtype=np.float64))
+        self._last_step_s = None
         self._enter(phase_named(self.task, name), time_s)
         self._mode, self._wait_until = _Mode.WAIT, time_s
 

@@ -237,8 +237,7 @@ class StudyConfig:
             down to the table, a ring at its foot, the gripper's height in numbers), for every
             participant, simulated or real: what a flat screen lacks against the original's
             head-mounted display. Off by default, as in the original; the simulated participant
-            judges marks on the table against the ring and reads the height
-            (docs/operator-model.md).
+            judges them too (docs/operator-model.md).
         conditions: Instead of ``modalities`` and ``delay_ms``: the conditions, each a set of
             AR layers over a network profile (``[[conditions]]`` tables), e.g. delay crossed
             with cues; numbered in this order by the order schemes. Practice runs without
