@@ -211,11 +211,15 @@ class DisplayFrame:
         ring is drawn :data:`FOOT_LIFT_M` above it."""
         return np.append(self.gripper_m[:2], self.target_m[2])
 
+    def ring_m(self) -> NDArray[np.float64]:
+        """The centre of the depth aids' ring (base frame, m): :data:`FOOT_LIFT_M` above
+        :meth:`drop_foot_m`, where the drawn line ends."""
+        return self.drop_foot_m() + [0.0, 0.0, FOOT_LIFT_M]
+
     def height_label_m(self) -> NDArray[np.float64]:
         """Where the depth aids' label is drawn (base frame, m), its left end: right of the
         ring in the camera's image plane."""
-        foot = self.drop_foot_m() + [0.0, 0.0, FOOT_LIFT_M]
-        return foot + self.T_base_camera[:3, 0] * (FOOT_RADIUS_M + HEIGHT_LABEL_GAP_M)
+        return self.ring_m() + self.T_base_camera[:3, 0] * (FOOT_RADIUS_M + HEIGHT_LABEL_GAP_M)
 
     def distance_label_m(self) -> NDArray[np.float64]:
         """Where the distance bar's label is drawn (base frame, m), its right end."""

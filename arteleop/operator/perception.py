@@ -45,7 +45,6 @@ from numpy.typing import NDArray
 
 from arteleop.ar_features import (
     DISTANCE_LABEL_STEP_M,
-    FOOT_LIFT_M,
     HEIGHT_LABEL_STEP_M,
     DisplayFrame,
 )
@@ -319,7 +318,7 @@ def perceive(
         aimed = (point, shown_gripper)
         if not view.depth_aids:
             return judged, cov, fixated(*aimed)
-        ring = view.drop_foot_m() + [0.0, 0.0, FOOT_LIFT_M]
+        ring = view.ring_m()
         aided, aided_info = held_level(stream + " on the ring", point, ring, grain_rad, lead_m)
         read_m: tuple[NDArray[np.float64], ...] = ()
         if read_height:  # the mark on the table, the gripper the label's height above it

@@ -40,6 +40,9 @@ class PhaseLog:
 
     def __init__(self) -> None:
         self.records: list[PhaseRecord] = []
+        # The open record's activity times, which it shows read-only: counted in place at every
+        # sample, not copied into a new record.
+        self._activity_s: dict[str, float] = {}
 
     def enter(self, name: str | None, time_s: float) -> None:
         """The phase under way ends at ``time_s`` (s); the task's phase ``name`` begins (None:
@@ -47,7 +50,9 @@ class PhaseLog:
         if self._open():
             self.records[-1] = replace(self.records[-1], end_s=time_s)
         if name is not None:
-            self.records.append(PhaseRecord(name, time_s))
+            self._activity_s = dict.fromkeys(ACTIVITIES, 0.0)
+            activity_s = MappingProxyType(self._activity_s)
+            self.records.append(PhaseRecord(name, time_s, activity_s=activity_s))
 
     def moved(self, start_s: float) -> None:
         """A submovement starts at ``start_s`` (s) in the phase under way."""
@@ -69,13 +74,9 @@ class PhaseLog:
         (s): counted from the phase's first movement on."""
         if not self._moving_since(to_s):
             return
-        record = self.records[-1]
-        assert record.first_move_s is not None
-        spent_s = to_s - max(from_s, record.first_move_s)
-        if spent_s > 0:
-            activity_s = dict(record.activity_s)
-            activity_s[activity] += spent_s
-            self.records[-1] = replace(record, activity_s=MappingProxyType(activity_s))
+        first_move_s = self.records[-1].first_move_s
+        assert first_move_s is not None
+        self._activity_s[activity] += max(0.0, to_s - max(from_s, first_move_s))
 
     def _moving_since(self, time_s: float) -> bool:
         """A phase is under way and its first movement had started by ``time_s`` (s)."""

@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import viser
 
-from arteleop.ar_features.display_frame import FOOT_LIFT_M, FOOT_RADIUS_M, DisplayFrame
+from arteleop.ar_features.display_frame import FOOT_RADIUS_M, DisplayFrame
 from arteleop.ar_features.layer import Layer
 from arteleop.ar_features.layers.colors import AIDS_RGB
 
@@ -46,7 +46,7 @@ class DepthAidsLayer(Layer):
         return frame.depth_aids
 
     def update(self, frame: DisplayFrame) -> None:
-        foot = frame.drop_foot_m() + [0.0, 0.0, FOOT_LIFT_M]
+        foot = frame.ring_m()
         self._line.points = np.stack([frame.gripper_m, foot])[None].astype(np.float32)
         self._ring.points = (self._circle + foot).astype(np.float32)
         self._label.position = frame.height_label_m()
