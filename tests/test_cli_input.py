@@ -23,6 +23,7 @@ import pytest
 from arteleop import cli
 from arteleop.ar_features import MODALITIES, OperatorView, ViewConfig
 from arteleop.cli import main
+from arteleop.study import FORMAT_VERSION
 
 ARTELEOP = [sys.executable, "-m", "arteleop.cli"]
 
@@ -346,7 +347,7 @@ def test_study_serve_refuses_what_it_cannot_serve_into(
     simulated = tmp_path / "simulated"
     simulated.mkdir()
     (simulated / "study.toml").write_text('name = "sim"\n')
-    (simulated / "manifest.json").write_text('{"format_version": 4}\n')
+    (simulated / "manifest.json").write_text(f'{{"format_version": {FORMAT_VERSION}}}\n')
     assert _error(capsys, ["study", "serve", "--out", str(simulated)]) == (
         f"{simulated} holds a simulated run: 'arteleop study resume {simulated}' continues it; "
         "give 'study serve' a new folder."

@@ -15,6 +15,7 @@ import pandas as pd
 import pytest
 
 from arteleop.cli import main
+from arteleop.study import FORMAT_VERSION
 from tests.analysis.make_study import make_run
 
 ARTELEOP = [sys.executable, "-m", "arteleop.cli"]
@@ -118,7 +119,7 @@ def _run_folder(tmp_path: Path) -> Path:
     run = tmp_path / "run"
     run.mkdir()
     (run / "study.toml").write_text("seed = 0\n")
-    (run / "manifest.json").write_text('{"format_version": 4}\n')
+    (run / "manifest.json").write_text(f'{{"format_version": {FORMAT_VERSION}}}\n')
     return run
 
 

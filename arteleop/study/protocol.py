@@ -9,13 +9,13 @@ outcome with its reason and is kept like any other trial.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
 
 from arteleop.errors import SimulationError
-from arteleop.operator import Expertise, OperatorTraits
+from arteleop.operator import Expertise, OperatorParams, OperatorTraits
 from arteleop.scene import RemoteSite
 from arteleop.study.definition import ParticipantSpec, StudyConfig
 from arteleop.study.plan import TrialSpec
@@ -81,32 +81,46 @@ def trial_config(study: StudyConfig, site: StudySite, spec: TrialSpec) -> TrialC
 
 
 def run_planned_trial(
-    study: StudyConfig, site: StudySite, person: ParticipantSpec, spec: TrialSpec
+    study: StudyConfig,
+    site: StudySite,
+    person: ParticipantSpec,
+    spec: TrialSpec,
+    believed_lag_s: float | None = None,
 ) -> TrialRecord:
-    """Run one planned trial with the participant's synthetic operator."""
+    """Run one planned trial with the participant's synthetic operator, who brings to it the
+    display's lag as it believed it at the end of its last trial (``believed_lag_s``, s; None
+    for its first: the lag it knows from practice on the system, ``familiar_lag_s``)."""
     config = trial_config(study, site, spec)
+    params = OperatorParams()
+    if believed_lag_s is not None:
+        params = replace(params, familiar_lag_s=believed_lag_s)
     start = time.perf_counter()
     with RemoteSite(config.site) as remote:
         source = trial_operator(
             remote,
             config,
+            params=params,
             traits=operator_traits(study, person),
         )
         result = run_trial(source, config, remote)
-    return trial_record(spec, result, time.perf_counter() - start)
+    return trial_record(spec, result, time.perf_counter() - start, source.operator.lag_s)
 
 
-def trial_record(spec: TrialSpec, result: TrialResult, wall_s: float) -> TrialRecord:
-    """What a study keeps of a planned trial's result, whoever the participant was."""
+def trial_record(
+    spec: TrialSpec, result: TrialResult, wall_s: float, believed_lag_s: float = float("nan")
+) -> TrialRecord:
+    """What a study keeps of a planned trial's result, whoever the participant was; a synthetic
+    one's ``believed_lag_s`` (s) at the trial's end, NaN for a person."""
     if result.trace is None:
         raise SimulationError("The trial recorded no trace although its config asked for one.")
-    return TrialRecord(spec, trial_row(spec, result.to_row()), result.trace,
-                       result.duration_s, wall_s)  # fmt: skip
+    row = trial_row(spec, {**result.to_row(), "believed_lag_s": believed_lag_s})
+    return TrialRecord(spec, row, result.trace, result.duration_s, wall_s)
 
 
 def trial_row(spec: TrialSpec, measured: dict[str, object]) -> dict[str, object]:
     """A planned trial's row of ``trials.csv``: the plan's columns around what was measured
-    (:meth:`~arteleop.teleop.TrialResult.to_row`'s columns; absent ones stay empty)."""
+    (:meth:`~arteleop.teleop.TrialResult.to_row`'s columns and the operator's belief of the
+    lag; absent ones stay empty)."""
     return {
         "participant": spec.participant,
         "phase": spec.phase,

@@ -1,13 +1,16 @@
 """Run a study: plan it, run its trials through an executor, keep every trial as it ends.
 
-Trials are independent (each has its own site, seed and operator), so they run in any order on
-any worker: a process per core by default, or any :class:`concurrent.futures.Executor`, such as
-a Dask cluster's (``distributed.Client(...).get_executor()``; docs/guides/running-a-study.md
-shows Ray's equivalent). Whatever the order, the finished folder's CSVs are the same bytes.
+Each trial has its own site and seed; a participant's trials run one after the other, each
+bringing what the participant believed of the display's lag at the end of the one before (a
+person adapts to a delay over many trials), and participants run side by side on any worker: a
+process per core by default, or any :class:`concurrent.futures.Executor`, such as a Dask
+cluster's (``distributed.Client(...).get_executor()``; docs/guides/running-a-study.md shows
+Ray's equivalent). Whatever the order, the finished folder's CSVs are the same bytes.
 """
 
 from __future__ import annotations
 
+import csv
 import dataclasses
 import hashlib
 import multiprocessing
@@ -17,7 +20,7 @@ import signal
 import threading
 import time
 from collections.abc import Callable, Sequence
-from concurrent.futures import Executor, Future, ProcessPoolExecutor, as_completed
+from concurrent.futures import FIRST_COMPLETED, Executor, Future, ProcessPoolExecutor, wait
 from dataclasses import dataclass
 from datetime import UTC, datetime
 from importlib import metadata
@@ -25,7 +28,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from arteleop.analysis.data import PARTICIPANT_COLUMNS, QUESTIONNAIRE_COLUMNS
+from arteleop.analysis.data import PARTICIPANT_COLUMNS, QUESTIONNAIRE_COLUMNS, TRIAL_COLUMNS
 from arteleop.blas_kernel import blas_description
 from arteleop.errors import RunFolderError, StudyDefinitionError
 from arteleop.scene.gl_renderer import renderer_description, resolve_renderer
@@ -299,20 +302,28 @@ def _execute(
     by_id = {p.id: p for p in people}
     count = len(plan) - len(pending)
     speed: list[tuple[float, float]] = []
+    ends = {key: _believed_lag_s(folder, key, line) for key, line in done.items()}
+    previous = _previous_trials(plan)
 
     def keep(record: TrialRecord) -> None:
         nonlocal count
         folder.append_trial(record.row, record.trace)
+        ends[record.spec.key] = _row_lag_s(record.row)
         speed.append((record.duration_s, record.wall_s))
         count += 1
         if progress is not None:
             progress(record.spec, count, len(plan))
 
+    def brought(spec: TrialSpec) -> float | None:
+        """The lag the participant believes as the trial starts: its last trial's end."""
+        before = previous[spec.key]
+        return None if before is None else ends[before]
+
     # More processes than trials only costs memory (each holds a simulator).
     workers = min(workers or os.cpu_count() or 1, max(len(pending), 1))
     if executor is None and (workers == 1 or len(pending) <= 1):
-        for spec in pending:
-            keep(run_planned_trial(study, site, by_id[spec.participant], spec))
+        for spec in pending:  # plan order: each participant's trials in order
+            keep(run_planned_trial(study, site, by_id[spec.participant], spec, brought(spec)))
     else:
         own = executor is None
         pool = executor or ProcessPoolExecutor(
@@ -321,16 +332,28 @@ def _execute(
             initializer=_start_worker,
             initargs=(os.getpid(),),
         )
-        futures: list[Future[TrialRecord]] = []
+        # A participant's trials run one after the other, each bringing the last one's belief
+        # of the lag; participants run side by side.
+        waiting = {p: [s for s in pending if s.participant == p] for p in by_id}
+        running: dict[Future[TrialRecord], str] = {}
+
+        def submit_next(participant: str) -> None:
+            if waiting[participant]:
+                spec = waiting[participant].pop(0)
+                future = pool.submit(_run_in_worker, study, by_id[participant], spec,
+                                     brought(spec))  # fmt: skip
+                running[future] = participant
+
         try:
-            futures = [
-                pool.submit(_run_in_worker, study, by_id[spec.participant], spec)
-                for spec in pending
-            ]
-            for future in as_completed(futures):
-                keep(future.result())
+            for participant in by_id:
+                submit_next(participant)
+            while running:
+                finished, _ = wait(running, return_when=FIRST_COMPLETED)
+                for future in finished:
+                    keep(future.result())
+                    submit_next(running.pop(future))
         except BaseException:
-            for future in futures:
+            for future in running:
                 future.cancel()
             if own:  # a stop (Ctrl-C, a failed write) must not wait for the trials under way
                 _stop_workers(pool)  # type: ignore[arg-type]
@@ -377,12 +400,49 @@ def _stop_workers(pool: ProcessPoolExecutor) -> None:
         process.terminate()
 
 
-def _run_in_worker(study: StudyConfig, person: ParticipantSpec, spec: TrialSpec) -> TrialRecord:
+def _run_in_worker(
+    study: StudyConfig, person: ParticipantSpec, spec: TrialSpec, believed_lag_s: float | None
+) -> TrialRecord:
     """One trial in a worker process; the worker keeps its :class:`StudySite` between trials."""
     global _WORKER_SITE
     if _WORKER_SITE is None:
         _WORKER_SITE = StudySite()
-    return run_planned_trial(study, _WORKER_SITE, person, spec)
+    return run_planned_trial(study, _WORKER_SITE, person, spec, believed_lag_s)
+
+
+def _previous_trials(plan: Sequence[TrialSpec]) -> dict[tuple[str, int], tuple[str, int] | None]:
+    """Each planned trial's key, to the key of the same participant's trial before it in the
+    plan (None for its first)."""
+    last: dict[str, tuple[str, int]] = {}
+    previous = {}
+    for spec in plan:
+        previous[spec.key] = last.get(spec.participant)
+        last[spec.participant] = spec.key
+    return previous
+
+
+def _row_lag_s(row: dict[str, object]) -> float | None:
+    value = row.get("believed_lag_s")
+    return None if value is None or value != value else float(value)  # type: ignore[arg-type]
+
+
+def _believed_lag_s(folder: RunFolder, key: tuple[str, int], line: str) -> float | None:
+    """The lag the participant believed at the end of the trial ``key`` whose row of
+    trials.csv is ``line`` (s); None where the column is empty (a person's trial)."""
+    value = dict(zip(TRIAL_COLUMNS, next(csv.reader([line])), strict=True))["believed_lag_s"]
+    if value == "":
+        return None
+    try:
+        lag = float(value)
+    except ValueError:
+        lag = float("nan")
+    if not 0 <= lag < float("inf"):
+        raise RunFolderError(
+            f"{folder.trials_path}, participant {key[0]} trial {key[1]}, column believed_lag_s: "
+            f"{value!r}; expected seconds (0 or more) or empty. Correct the row or move it out "
+            "of the file, then resume."
+        )
+    return lag
 
 
 def _participants_text(people: Sequence[ParticipantSpec]) -> str:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -16,6 +17,7 @@ import pytest
 from arteleop.blas_kernel import blas_description
 from arteleop.cli import main
 from arteleop.errors import RunFolderError
+from arteleop.operator import OperatorParams
 from arteleop.study import (
     CohortConfig,
     FamiliarizationConfig,
@@ -26,12 +28,14 @@ from arteleop.study import (
     run_study,
     study_text,
 )
+from arteleop.study.protocol import run_planned_trial
 
-# Two participants, two modalities, one practice trial: six trials of a few simulated seconds.
+# Two participants, two modalities, one practice trial: six trials of a few simulated seconds,
+# long enough for the second and third to teach the operator something of the display's lag.
 SMALL = StudyConfig(
     seed=5,
     modalities=("none", "full"),
-    timeout_s=3.0,
+    timeout_s=8.0,
     familiarization=FamiliarizationConfig(trials=1, timeout_s=2.0),
     cohort=CohortConfig(size=2, avr_experts=1, games_experts=1, both_experts=0),
 )
@@ -50,11 +54,43 @@ def _files(folder: Path) -> dict[str, bytes]:
 
 
 @pytest.fixture(scope="module")
-def series(tmp_path_factory: pytest.TempPathFactory) -> dict[str, bytes]:
+def chained(tmp_path_factory: pytest.TempPathFactory) -> tuple[dict[str, bytes], list, Path]:
+    """The small study in series: its files, each trial's (participant, trial_index) with the
+    lag its operator was given to believe at the start, and the run folder."""
     folder = tmp_path_factory.mktemp("series") / "run"
-    run = run_study(SMALL, folder, workers=1)
+    given = []
+
+    def spy(study, site, person, spec, believed_lag_s=None):
+        given.append((spec.key, believed_lag_s))
+        return run_planned_trial(study, site, person, spec, believed_lag_s)
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr("arteleop.study.runner.run_planned_trial", spy)
+        run = run_study(SMALL, folder, workers=1)
     assert run.ran == 6 and len(run.trials) == 6
-    return _files(folder)
+    return _files(folder), given, folder
+
+
+@pytest.fixture(scope="module")
+def series(chained: tuple[dict[str, bytes], list, Path]) -> dict[str, bytes]:
+    return chained[0]
+
+
+def test_each_trial_brings_the_lag_believed_at_the_end_of_the_one_before(
+    chained: tuple[dict[str, bytes], list, Path],
+) -> None:
+    files, given, _ = chained
+    lines = files["trials.csv"].decode().splitlines()
+    column = lines[0].split(",").index("believed_lag_s")
+    ends = {(f[0], int(f[2])): float(f[column]) for f in (x.split(",") for x in lines[1:])}
+    assert given == [
+        (("P01", 1), None), (("P01", 2), ends["P01", 1]), (("P01", 3), ends["P01", 2]),
+        (("P02", 1), None), (("P02", 2), ends["P02", 1]), (("P02", 3), ends["P02", 2]),
+    ]  # fmt: skip
+    familiar = OperatorParams().familiar_lag_s
+    # The practice trial is too short to teach it anything; the next ones teach it a little.
+    assert ends["P01", 1] == ends["P02", 1] == familiar
+    assert ends["P01", 2] != familiar and ends["P01", 3] != ends["P01", 2]
 
 
 def test_a_run_holds_every_file_of_the_format(series: dict[str, bytes]) -> None:
@@ -73,7 +109,7 @@ def test_a_run_holds_every_file_of_the_format(series: dict[str, bytes]) -> None:
         ["P02", "experimental", "3", "none", "2"],
     ]
     trace = series["trajectories/P01/2.csv"].decode().splitlines()
-    assert len(trace) == 1 + 301  # 3 s at 100 Hz, both ends
+    assert len(trace) == 1 + 801  # 8 s at 100 Hz, both ends
     assert trace[0].startswith("time_s,hand_x_m,hand_y_m,hand_z_m,grip,upper_arm_qw,")
     assert series["study.toml"].decode() == study_text(SMALL)
     assert len(series["questionnaire.csv"].decode().splitlines()) == 1 + 2 * 9
@@ -151,6 +187,26 @@ def test_a_run_killed_at_a_random_moment_resumes_to_the_same_bytes(
     assert _files(folder) == series, delay_s
     assert RunFolder(folder).report_finished()
     assert (folder / "report" / "report.md").is_file()
+
+
+def test_resume_refuses_a_belief_of_the_lag_that_is_not_seconds(
+    chained: tuple[dict[str, bytes], list, Path], tmp_path: Path
+) -> None:
+    folder = tmp_path / "run"
+    shutil.copytree(chained[2], folder)
+    trials = folder / "trials.csv"
+    header, *rows = trials.read_text().splitlines()
+    column = header.split(",").index("believed_lag_s")
+    fields = rows[1].split(",")
+    fields[column] = "soon"
+    trials.write_text("\n".join([header, rows[0], ",".join(fields), *rows[2:5]]) + "\n")
+    with pytest.raises(RunFolderError) as err:
+        resume_study(folder, workers=1)
+    assert str(err.value) == (
+        f"{trials}, participant P01 trial 2, column believed_lag_s: 'soon'; expected seconds (0 "
+        "or more) or empty. Correct the row or move it out of the file, then resume."
+    )
+    assert trials.read_text().count("\n") == 1 + 5  # nothing run, nothing set aside
 
 
 def test_resume_refuses_what_is_not_its_run(tmp_path: Path, capsys) -> None:
