@@ -252,6 +252,19 @@ def last_beliefs(rows: list[dict], lag: float) -> list[float]:
     return list(last.values())
 
 
+MW_RATIO_AT_225_MS = 1.64
+"""People's movement time under 225 ms of lag against none, pointing with a mouse (MacKenzie &
+Ware, CHI 1993: +64 %). Both of their lag models are linear in the lag at a given ID."""
+
+
+def people_ratio(lag_ms: float, own_lag_s: float) -> float:
+    """The yardstick: people's movement time under ``lag_ms`` added to a display whose own lag
+    is ``own_lag_s`` (s), against none added, on MacKenzie & Ware's line (taken past their 225 ms
+    where the total lag is longer: not a fit, a comparison)."""
+    slope_per_s = (MW_RATIO_AT_225_MS - 1) / 0.225
+    return (1 + slope_per_s * (own_lag_s + lag_ms / 1000)) / (1 + slope_per_s * own_lag_s)
+
+
 def report(rows: list[dict], lags: list[float], json_path: str | None) -> None:
     people = person_cells(rows)
     cells = cell_medians(people, lags)
@@ -279,13 +292,20 @@ def report(rows: list[dict], lags: list[float], json_path: str | None) -> None:
             fits[f"fitts_nominal{key}"] = {"a_s": a0, "b_s_per_bit": b0, "r2": r20}
             print(f"\nMT = {a:.2f} s + {b:.2f} s/bit x ID_e, R^2 = {r2:.2f} "
                   f"(nominal ID: {a0:.2f} s + {b0:.2f} s/bit, R^2 = {r20:.2f})\n")  # fmt: skip
+    from arteleop.operator import OperatorParams
+
+    own_lag_s = OperatorParams().familiar_lag_s  # the display's lag with none added, measured
     per_lag: dict[str, list] = {"lag_ms": [], "movement_time_s": [], "error_rate": [],
                                 "ratio": [], "ratio_low": [], "ratio_high": [],
-                                "believed_lag_s": []}  # fmt: skip
+                                "believed_lag_s": [], "people_ratio": []}  # fmt: skip
     print("## Under added lag (round trip)\n")
+    print(
+        f"The yardstick: people's ratio on MacKenzie & Ware's line (+64 % at 225 ms), from this "
+        f"display's own lag of {own_lag_s:.3f} s (docs/operator-model.md).\n"
+    )
     print("| lag (ms) | MT (s, median of cells) | MT / no lag, paired by person (95 % CI) | people "
-          "| errors | slips | lag believed at the end (s) |")  # fmt: skip
-    print("| ---: | ---: | --- | ---: | ---: | ---: | ---: |")
+          "| yardstick | errors | slips | lag believed at the end (s) |")  # fmt: skip
+    print("| ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: |")
     for lag in lags:
         c = [x for x in cells if x["lag_ms"] == lag]
         if not c:
@@ -294,10 +314,13 @@ def report(rows: list[dict], lags: list[float], json_path: str | None) -> None:
         err = float(np.mean([x["error_rate"] for x in c]))
         ratio, low, high, n = lag_effect(people, lag, lags[0])
         believed = float(np.median(last_beliefs(rows, lag)))
-        for key, value in zip(per_lag, (lag, mt, err, ratio, low, high, believed), strict=True):
+        yardstick = people_ratio(lag, own_lag_s)
+        values = (lag, mt, err, ratio, low, high, believed, yardstick)
+        for key, value in zip(per_lag, values, strict=True):
             per_lag[key].append(value)
         print(f"| {lag:g} | {mt:.2f} | x {ratio:.2f} ({low:.2f}-{high:.2f}) | {n} | "
-              f"{100 * err:.0f} % | {sum(x['slips'] for x in c):.0f} | {believed:.2f} |")  # fmt: skip
+              f"x {yardstick:.2f} | {100 * err:.0f} % | {sum(x['slips'] for x in c):.0f} | "
+              f"{believed:.2f} |")  # fmt: skip
     if len(per_lag["lag_ms"]) > 1:
         ids = np.array([c["id"] for c in cells])
         lag_s = np.array([c["lag_ms"] / 1000 for c in cells])
