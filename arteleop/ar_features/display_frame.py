@@ -21,10 +21,12 @@ DISTANCE_LABEL_STEP_M = 0.001
 reader of the label can know of it."""
 HEIGHT_LABEL_STEP_M = 0.001
 """The depth aids' label shows :meth:`DisplayFrame.height_m` to this step (m)."""
-FOOT_LIFT_M = 0.005
-"""The depth aids' ring and the drop line's foot are drawn this far above the table (m): the
-table's cloud points, drawn facing the viewer, stand up to half a point's footprint proud of it and
-hid a ring on it."""
+FOOT_LIFT_M = 0.01
+"""The depth aids' ring and the drop line's foot are drawn this far off the table towards the
+head camera, along its line of sight (m), where the camera sees them just where the line meets the
+table (lifted straight up, the ring showed a few millimetres beyond): in front of the table's
+cloud points, drawn facing the viewer, which hid parts of a ring on the table, and at 5 mm still
+some of its edge (a screenshot of the view)."""
 FOOT_RADIUS_M = 0.015
 """The ring on the table under the gripper (m): about 9 px at the head camera's 1.3 m."""
 HEIGHT_LABEL_GAP_M = 0.03
@@ -208,13 +210,22 @@ class DisplayFrame:
 
     def drop_foot_m(self) -> NDArray[np.float64]:
         """Where the line from the gripper straight down meets the table (base frame, m); the
-        ring is drawn :data:`FOOT_LIFT_M` above it."""
+        ring is drawn :data:`FOOT_LIFT_M` from it towards the camera."""
         return np.append(self.gripper_m[:2], self.target_m[2])
 
     def ring_m(self) -> NDArray[np.float64]:
-        """The centre of the depth aids' ring (base frame, m): :data:`FOOT_LIFT_M` above
-        :meth:`drop_foot_m`, where the drawn line ends."""
-        return self.drop_foot_m() + [0.0, 0.0, FOOT_LIFT_M]
+        """The centre of the depth aids' ring (base frame, m), where the drawn line ends:
+        :data:`FOOT_LIFT_M` from :meth:`drop_foot_m` towards the camera, on its line of sight."""
+        foot = self.drop_foot_m()
+        toward = self.viewpoint_m - foot
+        return foot + FOOT_LIFT_M * toward / np.linalg.norm(toward)
+
+    def drop_line_at_m(self, height_m: float) -> NDArray[np.float64]:
+        """Where the drawn drop line, from the gripper to :meth:`ring_m`, passes the height
+        ``height_m`` (base frame z, m; between the two ends)."""
+        top, foot = self.gripper_m, self.ring_m()
+        share = (top[2] - height_m) / (top[2] - foot[2]) if top[2] != foot[2] else 0.0
+        return top + float(np.clip(share, 0.0, 1.0)) * (foot - top)
 
     def height_label_m(self) -> NDArray[np.float64]:
         """Where the depth aids' label is drawn (base frame, m), its left end: right of the

@@ -371,7 +371,7 @@ def perceive(
         if view.depth_aids and view.gripper_m[2] >= grasp[2]:
             # The drop line passes the rim's height where the gripper, lowered, would be: the
             # rim against that point of the line, both level.
-            on_line = np.append(view.gripper_m[:2], grasp[2])
+            on_line = view.drop_line_at_m(float(grasp[2]))
             aided, aided_info = held_level("grasp on the line", grasp, on_line, grain, ahead)
             relative, grasp_cov = combined(grasp - judged, grasp_cov, aided, aided_info)
             judged = grasp - relative

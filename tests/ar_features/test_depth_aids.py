@@ -37,18 +37,30 @@ def test_the_aids_hang_from_the_gripper_to_the_table_and_read_its_height() -> No
     # Off unless the frame asks, under any cues; on under none.
     layer.draw(display_frame(cues=MODALITIES["full"]))
     assert not (line.visible or ring.visible or label.visible)
-    layer.draw(display_frame(cues=MODALITIES["none"], depth_aids=True))
+    frame = display_frame(cues=MODALITIES["none"], depth_aids=True)
+    layer.draw(frame)
     assert line.visible and ring.visible and label.visible
     # The gripper at z -0.05 m, the table (where the target lies) at -0.2 m: 150 mm.
     top, foot = line.points[0].astype(float)
     np.testing.assert_allclose(top, GRIPPER_M, atol=1e-6)
-    np.testing.assert_allclose(foot, [GRIPPER_M[0], GRIPPER_M[1], -0.2 + FOOT_LIFT_M], atol=1e-6)
+    # The foot: where the line straight down meets the table, pulled FOOT_LIFT_M towards the
+    # camera along its line of sight (in front of the table's cloud, and where the camera sees
+    # the line meet the table).
+    on_table = np.array([GRIPPER_M[0], GRIPPER_M[1], -0.2])
+    camera = frame.viewpoint_m
+    np.testing.assert_allclose(np.linalg.norm(foot - on_table), FOOT_LIFT_M, rtol=1e-4)
+    sight = (camera - on_table) / np.linalg.norm(camera - on_table)
+    np.testing.assert_allclose((foot - on_table) / FOOT_LIFT_M, sight, atol=1e-4)
     assert label.text == "height 150 mm"
-    # The ring lies on the table (just over its cloud) about the foot.
+    # The ring lies level about the foot.
     ends = ring.points.reshape(-1, 3).astype(float)
-    np.testing.assert_allclose(ends[:, 2], -0.2 + FOOT_LIFT_M, atol=1e-6)
+    np.testing.assert_allclose(ends[:, 2], foot[2], atol=1e-6)
     np.testing.assert_allclose(np.linalg.norm(ends[:, :2] - foot[:2], axis=1), FOOT_RADIUS_M,
                                rtol=1e-5)  # fmt: skip
+    # The line passes a height between its ends on its way to the foot.
+    halfway = frame.drop_line_at_m((GRIPPER_M[2] + foot[2]) / 2)
+    np.testing.assert_allclose(halfway, (top + foot) / 2, atol=1e-6)
+    np.testing.assert_allclose(frame.drop_line_at_m(GRIPPER_M[2]), top, atol=1e-6)
     # The label beside the ring, to the camera's right (its x is the base's x here).
     assert label.position[0] > foot[0] + FOOT_RADIUS_M
     layer.draw(display_frame(cues=MODALITIES["none"], depth_aids=False))

@@ -521,7 +521,10 @@ def test_the_depth_aids_add_the_ring_on_the_table_and_the_height_off_its_label()
     assert one_aided.start_cov[2, 2] < reading_sd_m(0.001) ** 2
     assert errors_aided[:, 2].mean() == pytest.approx(0.0004, abs=0.0001)
     assert errors_plain[:, 2].std() > 10 * errors_aided[:, 2].std()
-    # In the table's plane as precise as believed, and more precise than without the aids.
+    # In the table's plane as precise as believed, and more precise than without the aids; the
+    # ring, drawn off the table along the camera's line of sight, shows where the line meets
+    # it (drawn straight above it, it biased the judgement 2.2 mm).
+    assert np.linalg.norm(errors_aided[:, :2].mean(axis=0)) < 1e-4
     believed = one_aided.start_cov[:2, :2]
     np.testing.assert_allclose(np.cov(errors_aided[:, :2].T), believed, rtol=0.1, atol=1e-9)
     assert np.trace(np.cov(errors_aided[:, :2].T)) < np.trace(np.cov(errors_plain[:, :2].T))
@@ -587,5 +590,5 @@ def test_under_the_predictive_ghost_the_aids_are_judged_from_the_frames_arm() ->
     errors = np.array([s.start_m - s.gripper_m - truth
                        for s in (perceive(view, P, noise, aims_gripper=True)
                                  for _ in range(2000))])  # fmt: skip
-    # Unbiased but for the ring's 5 mm over the table, seen as on it (a few mm).
-    assert np.linalg.norm(errors.mean(axis=0)) < 0.004
+    # Unbiased, but for the height's rounding on the label.
+    assert np.linalg.norm(errors.mean(axis=0)) < 0.001
