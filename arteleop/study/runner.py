@@ -13,6 +13,7 @@ from __future__ import annotations
 import csv
 import dataclasses
 import hashlib
+import math
 import multiprocessing
 import os
 import platform
@@ -422,8 +423,9 @@ def _previous_trials(plan: Sequence[TrialSpec]) -> dict[tuple[str, int], tuple[s
 
 
 def _row_lag_s(row: dict[str, object]) -> float | None:
-    value = row.get("believed_lag_s")
-    return None if value is None or value != value else float(value)  # type: ignore[arg-type]
+    """A trial's row's belief of the lag at its end (s); None for a person's (NaN)."""
+    value = float(row.get("believed_lag_s", math.nan))  # type: ignore[arg-type]
+    return None if math.isnan(value) else value
 
 
 def _believed_lag_s(folder: RunFolder, key: tuple[str, int], line: str) -> float | None:
