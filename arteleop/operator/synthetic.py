@@ -110,7 +110,8 @@ class SyntheticOperator:
         self._look = Look(self.traits, self.p.max_look_s)
         self._glancing: tuple[Perceived, Goal | None] | None = None  # a look's glance under way
         self._last_amend_s = -np.inf
-        self._homing_from_s = 0.0  # in-flight corrections start half-way through the primary
+        # In-flight corrections are made over the primary's second half, its deceleration.
+        self._homing_from_s = self._homing_until_s = 0.0
         self._moved_in_phase = False
         self._last_step_s: float | None = None
         self.setbacks = 0
@@ -274,6 +275,7 @@ class SyntheticOperator:
         self._move(t, self._hand_delta(error), t + self.p.motor_delay_s)
         primary = self.hand.moves[-1]
         self._homing_from_s = primary.start_s + 0.5 * primary.duration_s
+        self._homing_until_s = primary.start_s + primary.duration_s
         self._watch.await_response(
             error,
             visible_at_s=primary.time_to_cover_s(self.p.motion_threshold_m),
@@ -293,7 +295,7 @@ class SyntheticOperator:
             or t < self._look.next_glance_s
             # A correction's effect must be on the display before the next one is planned.
             or t < self._last_amend_s + p.visuomotor_delay_s + self.lag_s
-            or t < self._homing_from_s
+            or not self._homing_from_s <= t < self._homing_until_s
         ):
             return
         self._errors.new_look()

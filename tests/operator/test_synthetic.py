@@ -16,6 +16,7 @@ from arteleop.operator import (
     OperatorParams,
     OperatorTraits,
     PerceptionParams,
+    SyntheticOperator,
     TraitDistribution,
     expected_time_s,
     probability_within,
@@ -89,6 +90,42 @@ def test_a_long_lag_the_operator_knows_makes_it_move_and_wait_without_overshoot(
     waiting = _mean(cues, lag_s=0.8, params=OperatorParams(familiar_lag_s=0.8))
     assert waiting["overshoot_m"] < 0.01
     assert waiting["duration_s"] > short["duration_s"]
+
+
+def test_corrections_in_flight_are_made_over_the_primarys_second_half_only(monkeypatch) -> None:
+    """Online control acts in the primary's deceleration (Elliott, Helsen & Chua 2001): from
+    half-way through it to its planned end; an error left after it is the next look's. Unbounded,
+    an operator believing another lag than the display's chained corrections in flight: in the
+    delay study's first run on this mechanism, one moved the bowl to and fro for a minute, its
+    hand never stopping to look. Here the lag is unpractised, and corrections in flight many."""
+    primaries: list[tuple[float, float]] = []
+    in_flight: list[float] = []
+    correct, home_in = SyntheticOperator._correct, SyntheticOperator._home_in
+
+    def correct_spy(self, t, error):
+        moves = len(self.hand.moves)
+        correct(self, t, error)
+        if len(self.hand.moves) > moves:
+            primaries.append((self.hand.moves[-1].start_s, self.hand.moves[-1].duration_s))
+
+    def home_in_spy(self, t, view):
+        made = self.corrections_total
+        home_in(self, t, view)
+        if self.corrections_total > made:
+            in_flight.append(t)
+
+    monkeypatch.setattr(SyntheticOperator, "_correct", correct_spy)
+    monkeypatch.setattr(SyntheticOperator, "_home_in", home_in_spy)
+    unpractised = OperatorParams(familiar_lag_s=0.0)
+    for seed in range(4):
+        primaries.clear()
+        in_flight.clear()
+        descend(MODALITIES["manipulation"], seed, lag_s=0.3, params=unpractised,
+                start_above_m=0.35)  # fmt: skip
+        assert len(in_flight) >= 3
+        for t in in_flight:
+            start_s, duration_s = max(p for p in primaries if p[0] <= t)
+            assert start_s + duration_s / 2 <= t < start_s + duration_s
 
 
 def test_a_participants_traits_last_across_their_trials_and_differ_between_people() -> None:
