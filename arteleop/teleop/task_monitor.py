@@ -4,9 +4,8 @@
   than ``START_SPEED_M_S``. The completion timer starts there.
 - A grasp attempt is each closure of the gripper command; the bowl is grasped when both finger
   pads touch it while the gripper is closed and it has left the table (a grip that slips off
-  as the arm lifts is a missed attempt, not a grasp, and so is a bowl that slips out of the
-  closed gripper later and lies on the table again); it is released when the gripper opens
-  while it is grasped.
+  as the arm lifts is a missed attempt, not a grasp); it is released when the gripper opens
+  after that.
 - Placement: after the release, with the bowl at rest, the head camera's tracker looks for it
   every ``TRACKING_PERIOD_S``; the first frame in which it is found ends the trial as a success.
   A look at which the tracker's model (:class:`~arteleop.scene.BowlSight`) sees not one point of
@@ -69,11 +68,6 @@ class TaskMonitor:
         lifted = state.bowl_m[2] > self._ws.table_top_z_m + LIFTED_M
         if gripper_closed and state.grasped and lifted:
             self.grasped = True
-        elif self.grasped and gripper_closed and not (state.grasped or lifted):
-            # The bowl slipped out of the closed gripper and lies on the table again: a missed
-            # attempt, like a grip that slips off as the arm lifts; opening the empty hand to
-            # reach again is not a release.
-            self.grasped = False
         if self.grasped and not gripper_closed:
             self.released = True
         self._was_closed = gripper_closed
