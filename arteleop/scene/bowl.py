@@ -86,6 +86,18 @@ class BowlSpec:
         span = self.rim_radius_m - self.bottom_radius_m
         return self.bottom_radius_m + span * np.sin(0.5 * np.pi * h / self.height_m)
 
+    def lowest_z_m(self, T_base_bowl: NDArray[np.float64]) -> float:
+        """Height (m, base frame) of the lowest point of the outer wall with the bowl at
+        ``T_base_bowl``: its bottom face's centre when upright, its foot's edge when tilted.
+
+        Each circle of the wall, radius ``r(h)`` at height ``h`` on the axis ``a``, reaches
+        ``h a_z - r(h) sqrt(1 - a_z^2)`` below the origin; the lowest of 64 circles is taken.
+        """
+        a_z = float(T_base_bowl[2, 2])
+        h = np.linspace(0.0, self.height_m, 64)
+        reach = h * a_z - self.outer_radius_m(h) * np.sqrt(max(0.0, 1.0 - a_z * a_z))
+        return float(T_base_bowl[2, 3] + reach.min())
+
     def profile(self, n: int = 16) -> NDArray[np.float64]:
         """Closed wall cross-section as (r, h) points, shape (2n + 2, 2), counter-clockwise.
 

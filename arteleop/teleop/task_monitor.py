@@ -3,9 +3,13 @@
 - Motion onset: the first control tick, once engaged, at which the operator's hand moves faster
   than ``START_SPEED_M_S``. The completion timer starts there.
 - A grasp attempt is each closure of the gripper command; the bowl is grasped when both finger
-  pads touch it while the gripper is closed and it has left the table (a grip that slips off
-  as the arm lifts is a missed attempt, not a grasp); it is released when the gripper opens
-  after that.
+  pads touch it while the gripper is closed and it has left the table: all of it, its lowest
+  point ``LIFTED_M`` above the top (a grip that slips off as the arm lifts is a missed attempt,
+  not a grasp, and so is a bowl tilted on the table by the fingers). It is released when the
+  gripper opens after that, unless it dropped out of the closed gripper first: the fingers
+  closed on nothing (``EMPTY_CLOSURE``) while the bowl was in the air. A dropped bowl lies
+  wherever it fell, and opening the empty hand to reach for it again is no release; a bowl set
+  down on the table is released even if the fingers slid off it before they opened.
 - Placement: after the release, with the bowl at rest, the head camera's tracker looks for it
   every ``TRACKING_PERIOD_S``; the first frame in which it is found ends the trial as a success.
   A look at which the tracker's model (:class:`~arteleop.scene.BowlSight`) sees not one point of
@@ -35,7 +39,11 @@ BOWL_AT_REST_M_S = 0.01
 DROP_DEPTH_M = 0.05
 """A bowl this far below the table top has fallen off it (m)."""
 LIFTED_M = 0.01
-"""A held bowl this far above the table top has been lifted: it is grasped (m)."""
+"""A held bowl whose lowest point is this far above the table top has been lifted: it is
+grasped (m)."""
+EMPTY_CLOSURE = 0.95
+"""Measured closure above which the closed fingers hold nothing: the bowl's 4 mm wall stops them
+at 0.82-0.90 (every hold in the default study's runs of seeds 1-3); empty, they reach 1."""
 
 
 class TaskMonitor:
@@ -65,9 +73,11 @@ class TaskMonitor:
                 self.motion_onset_s = t
         if gripper_closed and not self._was_closed:
             self.grasp_attempts += 1
-        lifted = state.bowl_m[2] > self._ws.table_top_z_m + LIFTED_M
+        lifted = self._ws.bowl.lowest_z_m(state.T_base_bowl) > self._ws.table_top_z_m + LIFTED_M
         if gripper_closed and state.grasped and lifted:
             self.grasped = True
+        elif self.grasped and gripper_closed and lifted and state.gripper_closure > EMPTY_CLOSURE:
+            self.grasped = False  # dropped out of the closed hand: a missed attempt
         if self.grasped and not gripper_closed:
             self.released = True
         self._was_closed = gripper_closed

@@ -2,7 +2,10 @@ import numpy as np
 import pybullet as p
 import pytest
 import trimesh
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 from scipy.integrate import quad
+from scipy.spatial.transform import Rotation
 
 from arteleop.errors import ConfigurationError
 from arteleop.scene import BowlSpec, RemoteSite, bowl_collision_boxes, bowl_mesh
@@ -70,3 +73,39 @@ def test_bowl_rests_on_the_table(site: RemoteSite) -> None:
 def test_bad_bowl_spec(kwargs: dict, message: str) -> None:
     with pytest.raises(ConfigurationError, match=message):
         BowlSpec(**kwargs)
+
+
+_FINE_VERTICES = bowl_mesh(BowlSpec(), segments=512, rings=128)[0]
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    st.floats(-1.0, 1.0),
+    st.floats(-1.0, 1.0),
+    st.floats(-1.0, 1.0),
+    st.floats(0.0, np.pi),
+)
+def test_the_lowest_point_is_the_lowest_vertex_of_the_mesh(
+    x: float, y: float, z: float, angle_rad: float
+) -> None:
+    """Whatever the bowl's attitude, the lowest point of its wall is its mesh's lowest vertex:
+    upright the bottom face, tilted the foot's edge, on its side the rim."""
+    axis = np.array([x, y, z])
+    assume(np.linalg.norm(axis) > 1e-3)
+    spec = BowlSpec()
+    T = np.eye(4)
+    T[:3, :3] = Rotation.from_rotvec(angle_rad * axis / np.linalg.norm(axis)).as_matrix()
+    T[:3, 3] = [0.6, -0.1, -0.2]
+    assert spec.lowest_z_m(T) == pytest.approx(
+        transform_points(T, _FINE_VERTICES)[:, 2].min(), abs=2e-4
+    )
+
+
+def test_the_lowest_point_of_a_tilted_bowl_is_its_foots_edge() -> None:
+    spec = BowlSpec()
+    T = np.eye(4)
+    T[:3, 3] = [0.0, 0.0, 0.01]
+    assert spec.lowest_z_m(T) == pytest.approx(0.01)
+    tilt_rad = np.radians(10.0)
+    T[:3, :3] = Rotation.from_euler("x", tilt_rad).as_matrix()
+    assert spec.lowest_z_m(T) == pytest.approx(0.01 - spec.bottom_radius_m * np.sin(tilt_rad))
