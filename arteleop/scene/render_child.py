@@ -1,7 +1,8 @@
 """Entry point of the render process: ``python -m arteleop.scene.render_child FD``.
 
-A module of its own, which the package never imports, so that ``-m`` runs it fresh. Ctrl-C
-reaches the whole process group: the parent stops this child, which ignores it.
+A module of its own, which the package never imports, so that ``-m`` runs it fresh. The parent
+starts it in a process group of its own and stops it; it ignores Ctrl-C all the same, should
+someone send it one.
 """
 
 import signal

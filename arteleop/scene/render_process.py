@@ -9,6 +9,10 @@ The child is a fresh interpreter (``python -m arteleop.scene.render_child``), ta
 socket pair. Not ``fork``: the parent may run threads (viser's server) that a forked child would
 inherit half-copied. Not multiprocessing's ``spawn`` either: it re-imports the user's main script
 in the child, which re-runs any script without an ``if __name__ == "__main__"`` guard.
+
+The child runs in a process group of its own, so Ctrl-C at the terminal reaches the parent only,
+which stops the child: in the parent's group, a Ctrl-C during the child's first second (its
+imports, before it could ignore the signal) printed the child's traceback.
 """
 
 from __future__ import annotations
@@ -47,17 +51,23 @@ class RenderProcess(Closeable):
         self._process = subprocess.Popen(
             [sys.executable, "-m", "arteleop.scene.render_child", str(theirs.fileno())],
             pass_fds=[theirs.fileno()],
+            process_group=0,
         )
         theirs.close()
         self._conn = Connection(ours.detach())
         self._busy = False
-        self._conn.send((str(robot_urdf), ws, body_ids, moving_joints, renderer))
-        if not self._conn.poll(START_TIMEOUT_S):
-            self.close()
-            raise RenderProcessError(
-                f"The render process did not start within {START_TIMEOUT_S:.0f} s."
-            )
-        started = self._conn.recv()
+        try:
+            self._conn.send((str(robot_urdf), ws, body_ids, moving_joints, renderer))
+            if not self._conn.poll(START_TIMEOUT_S):
+                raise RenderProcessError(
+                    f"The render process did not start within {START_TIMEOUT_S:.0f} s."
+                )
+            started = self._conn.recv()
+        except BaseException:  # Ctrl-C while it starts, too: the child must not outlive us
+            self._process.kill()
+            self._process.wait()
+            self._conn.close()
+            raise
         if isinstance(started, BaseException):
             self.close()
             raise RenderProcessError(
@@ -84,7 +94,11 @@ class RenderProcess(Closeable):
         return self._check(self._conn.recv())
 
     def close(self) -> None:
-        """Stop the child (it finishes the frame in hand first)."""
+        """Stop the child: told to when idle; killed with a frame in flight, which it may be
+        blocked sending (a full frame is larger than the socket's buffer, and no one reads)."""
+        if self._busy and self._process.poll() is None:
+            self._process.kill()
+            self._process.wait()
         if self._process.poll() is None:
             try:
                 self._conn.send(None)
@@ -113,10 +127,13 @@ def serve(conn: Connection) -> None:
     try:
         world = RenderWorld(Path(robot_urdf), ws, body_ids, moving_joints, renderer)
     except Exception as err:  # sent to the parent, which raises it
-        conn.send(err)
+        try:
+            conn.send(err)
+        except OSError:
+            pass  # the parent went away while the world was built
         return
-    conn.send("ready")
     try:
+        conn.send("ready")
         while (message := conn.recv()) is not None:
             state, request = message
             try:

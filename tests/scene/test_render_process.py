@@ -96,3 +96,25 @@ def test_a_child_that_cannot_start_says_why(site: RemoteSite, tmp_path: Path) ->
     missing = tmp_path / "no-such-robot.urdf"
     with pytest.raises(RenderProcessError, match=r"did not start.*no-such-robot"):
         RenderProcess(missing, site.config.workspace, site.render_world.body_ids)
+
+
+def test_ctrl_c_at_the_terminal_reaches_the_parent_only(site: RemoteSite) -> None:
+    """The child runs in a process group of its own: a Ctrl-C during its imports, before it
+    could ignore the signal, printed its traceback; its parent stops it."""
+    import os
+
+    child = site.start_render_process()._process
+    assert os.getpgid(child.pid) == child.pid != os.getpgid(0)
+    site.request_frame()
+    assert _wait(site) is not None
+
+
+def test_closing_with_a_frame_in_flight_does_not_wait_for_it(site: RemoteSite) -> None:
+    """The child may be blocked sending a full frame no one reads: it is killed, not waited
+    for (Ctrl-C took 5.7 s, the wait's timeout, to stop a teleoperation)."""
+    renderer = site.start_render_process()
+    site.request_frame()
+    start = time.monotonic()
+    renderer.close()
+    assert time.monotonic() - start < 3.0
+    assert renderer._process.poll() is not None
