@@ -94,9 +94,15 @@ class BowlSpec:
         ``h a_z - r(h) sqrt(1 - a_z^2)`` below the origin; the lowest of 64 circles is taken.
         """
         a_z = float(T_base_bowl[2, 2])
-        h = np.linspace(0.0, self.height_m, 64)
-        reach = h * a_z - self.outer_radius_m(h) * np.sqrt(max(0.0, 1.0 - a_z * a_z))
+        h, r = self._wall_circles
+        reach = h * a_z - r * np.sqrt(max(0.0, 1.0 - a_z * a_z))
         return float(T_base_bowl[2, 3] + reach.min())
+
+    @cached_property
+    def _wall_circles(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """64 heights up the outer wall and their radii (m): built once, read every tick."""
+        h = np.linspace(0.0, self.height_m, 64)
+        return h, self.outer_radius_m(h)
 
     def profile(self, n: int = 16) -> NDArray[np.float64]:
         """Closed wall cross-section as (r, h) points, shape (2n + 2, 2), counter-clockwise.

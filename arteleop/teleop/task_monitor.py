@@ -73,11 +73,12 @@ class TaskMonitor:
                 self.motion_onset_s = t
         if gripper_closed and not self._was_closed:
             self.grasp_attempts += 1
-        lifted = self._ws.bowl.lowest_z_m(state.T_base_bowl) > self._ws.table_top_z_m + LIFTED_M
-        if gripper_closed and state.grasped and lifted:
-            self.grasped = True
-        elif self.grasped and gripper_closed and lifted and state.gripper_closure > EMPTY_CLOSURE:
-            self.grasped = False  # dropped out of the closed hand: a missed attempt
+        if gripper_closed and (state.grasped or self.grasped):  # only then does lifting matter
+            lifted = self._ws.bowl.lowest_z_m(state.T_base_bowl) > self._ws.table_top_z_m + LIFTED_M
+            if state.grasped and lifted:
+                self.grasped = True
+            elif self.grasped and lifted and state.gripper_closure > EMPTY_CLOSURE:
+                self.grasped = False  # dropped out of the closed hand: a missed attempt
         if self.grasped and not gripper_closed:
             self.released = True
         self._was_closed = gripper_closed
