@@ -326,3 +326,42 @@ def test_each_frame_replaces_the_cloud_in_the_browser(
     (grey, white), (pink, _), (after, white_after) = shares
     assert grey == 0 and pink > 0.3, shares
     assert after == 0 and white_after > white + 0.1, shares
+
+
+def test_a_person_reads_the_bars_labels_and_sees_the_bowl_and_target(
+    moment: tuple[DisplayFrame, ViewAssets], tmp_path: Path, browser: Browser
+) -> None:
+    """What a person reads off the screen is what the frame holds: the distance bar's and the
+    grip bar's labels (WebGL text, read from the pixels), the bowl and the target circle where
+    the camera's image puts them, at the moment and with the gripper half closed."""
+    from tests.instruments.screen_reading import (
+        bowl_spot,
+        distance_mm,
+        grip_percent,
+        require_tesseract,
+        target_spot,
+    )
+
+    require_tesseract()
+    frame, assets, _ = moment
+    config = ViewConfig(port=0)
+    read = []
+    with OperatorView(config, assets) as view, browser.tab(view.url) as page:
+        for closure in (frame.gripper_closure, 0.47):
+            shown = replace(frame, cues=MODALITIES["manipulation"], gripper_closure=closure)
+            view.show(shown)
+            shot = page.screenshot(tmp_path / f"labels_{closure:.2f}.png")
+            scene = np.ascontiguousarray(shot[:, : int(page.scene_size_px()[0])])
+            read.append((shown, scene))
+        scene_px = page.scene_size_px()
+    for shown, scene in read:
+        assert distance_mm(scene) == round(1000 * shown.grasp_distance_m())
+        assert grip_percent(scene) == round(100 * shown.gripper_closure)
+    pixel = _Egocentric(frame, config, scene_px)
+    bowl, target = bowl_spot(read[0][1]), target_spot(read[0][1])
+    assert bowl is not None and target is not None
+    # Within a third of each one's size on the screen (the bowl about 100 px wide, the circle
+    # 85): the bowl's yellow is its inside and rim, above its base; the circle's near half is
+    # drawn larger than its far half.
+    assert np.hypot(*(np.array([bowl.x_px, bowl.y_px]) - pixel(frame.bowl_m))) < 30
+    assert np.hypot(*(np.array([target.x_px, target.y_px]) - pixel(frame.target_m))) < 25

@@ -19,6 +19,9 @@ BAR_WIDTH_M = 0.012
 
 
 SCALE_OPACITY = 0.3
+LABEL_SCALE = 1.3
+"""The labels' size, a multiple of the page's font (about 16 px tall at 1.3): read at a glance on
+a laptop's screen, and by OCR (at 0.9 Tesseract misread one label in three)."""
 
 
 class Bar:
@@ -42,7 +45,7 @@ class Bar:
         )
         self._fill = scene.add_box(f"{name}/fill", color=rgb, dimensions=dims)
         self._label = scene.add_label(
-            f"{name}/label", "", font_screen_scale=0.9, anchor="center-right"
+            f"{name}/label", "", font_screen_scale=LABEL_SCALE, anchor="center-right"
         )
         self.handles = (self._frame, self._fill, self._label)
 

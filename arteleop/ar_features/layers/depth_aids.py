@@ -9,6 +9,7 @@ import viser
 
 from arteleop.ar_features.display_frame import FOOT_RADIUS_M, DisplayFrame
 from arteleop.ar_features.layer import Layer
+from arteleop.ar_features.layers.bar import LABEL_SCALE
 from arteleop.ar_features.layers.colors import AIDS_RGB
 
 DROP_LINE_WIDTH_PX = 3.0
@@ -36,7 +37,7 @@ class DepthAidsLayer(Layer):
             thickness=DROP_LINE_WIDTH_PX, thickness_units="screen", visible=False,
         )  # fmt: skip
         self._label = scene.add_label(
-            "/aids/height", "", font_screen_scale=0.9, anchor="center-left", visible=False
+            "/aids/height", "", font_screen_scale=LABEL_SCALE, anchor="center-left", visible=False
         )
         angles = np.linspace(0.0, 2 * np.pi, FOOT_SEGMENTS + 1)
         circle = FOOT_RADIUS_M * np.column_stack([np.cos(angles), np.sin(angles), 0 * angles])
