@@ -7,7 +7,7 @@
   point ``LIFTED_M`` above the top (a grip that slips off as the arm lifts is a missed attempt,
   not a grasp, and so is a bowl tilted on the table by the fingers). It is released when the
   gripper opens after that, unless it dropped out of the closed gripper first: the fingers
-  closed on nothing (``EMPTY_CLOSURE``) while the bowl was in the air. A dropped bowl lies
+  closed on nothing (``EMPTY_CLOSURE``) while the bowl was in the air (``FALLING_M``). A dropped bowl lies
   wherever it fell, and opening the empty hand to reach for it again is no release; a bowl set
   down on the table is released even if the fingers slid off it before they opened.
 - Placement: after the release, with the bowl at rest, the head camera's tracker looks for it
@@ -44,6 +44,11 @@ grasped (m)."""
 EMPTY_CLOSURE = 0.95
 """Measured closure above which the closed fingers hold nothing: the bowl's 4 mm wall stops them
 at 0.82-0.90 (every hold in the default study's runs of seeds 1-3); empty, they reach 1."""
+FALLING_M = 0.005
+"""A bowl the closed fingers lose with its lowest point this far above the table top fell (m):
+one resting on the table reads up to 1 mm (the physics' contact margin). Lower than
+``LIFTED_M``: a bowl that tilts as it slips out has its low edge under ``LIFTED_M`` when the
+fingers shut (the delay example's P07, trial 8: 8 mm, its centre 41 mm up)."""
 
 
 class TaskMonitor:
@@ -74,10 +79,10 @@ class TaskMonitor:
         if gripper_closed and not self._was_closed:
             self.grasp_attempts += 1
         if gripper_closed and (state.grasped or self.grasped):  # only then does lifting matter
-            lifted = self._ws.bowl.lowest_z_m(state.T_base_bowl) > self._ws.table_top_z_m + LIFTED_M
-            if state.grasped and lifted:
+            above_m = self._ws.bowl.lowest_z_m(state.T_base_bowl) - self._ws.table_top_z_m
+            if state.grasped and above_m > LIFTED_M:
                 self.grasped = True
-            elif self.grasped and lifted and state.gripper_closure > EMPTY_CLOSURE:
+            elif self.grasped and above_m > FALLING_M and state.gripper_closure > EMPTY_CLOSURE:
                 self.grasped = False  # dropped out of the closed hand: a missed attempt
         if self.grasped and not gripper_closed:
             self.released = True

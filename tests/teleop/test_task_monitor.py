@@ -69,3 +69,20 @@ def test_a_bowl_tilted_on_the_table_by_the_fingers_is_not_grasped() -> None:
     assert tilted.bowl_m[2] > WS.table_top_z_m + 0.01
     monitor = _monitor((True, tilted), (True, tilted), (False, _state(0.0, 0.0, pads=False)))
     assert not monitor.grasped and not monitor.released
+
+
+def test_a_bowl_that_tilts_as_it_slips_out_is_dropped_though_its_edge_is_low() -> None:
+    """Lifted barely past the grasp's threshold, the bowl tilts as it slips out: when the
+    fingers shut, its low edge is 8 mm over the table, its centre 41 mm (the delay example's P07,
+    trial 8, on eb52e90: scored a success 23 cm off the target when the empty hand opened)."""
+    tilt_deg = 30.0
+    low = _state(0.0, EMPTY, pads=False, tilt_deg=tilt_deg)
+    edge_m = WS.bowl.lowest_z_m(low.T_base_bowl) - WS.table_top_z_m  # below the table: negative
+    monitor = _monitor(
+        (True, _state(0.0, HELD, pads=True)),
+        (True, _state(0.012, HELD, pads=True)),  # 12 mm up, level: grasped
+        (True, _state(0.008 - edge_m, 0.963, pads=False, tilt_deg=tilt_deg)),  # edge 8 mm up
+        (True, _state(0.0, EMPTY, pads=False)),  # on the table
+        (False, _state(0.0, 0.5, pads=False)),  # the empty hand opens
+    )
+    assert monitor.grasp_attempts == 1 and not monitor.released
