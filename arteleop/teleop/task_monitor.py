@@ -7,9 +7,10 @@
   point ``LIFTED_M`` above the top (a grip that slips off as the arm lifts is a missed attempt,
   not a grasp, and so is a bowl tilted on the table by the fingers). It is released when the
   gripper opens after that, unless it dropped out of the closed gripper first: the fingers
-  closed on nothing (``EMPTY_CLOSURE``) while the bowl was in the air (``FALLING_M``). A dropped bowl lies
-  wherever it fell, and opening the empty hand to reach for it again is no release; a bowl set
-  down on the table is released even if the fingers slid off it before they opened.
+  closed on nothing (``EMPTY_CLOSURE``) while the bowl was in the air (``FALLING_M``). A
+  dropped bowl lies wherever it fell, and opening the empty hand to reach for it again is no
+  release; a bowl set down on the table is released even if the fingers slid off it before
+  they opened.
 - Placement: after the release, with the bowl at rest, the head camera's tracker looks for it
   every ``TRACKING_PERIOD_S``; the first frame in which it is found ends the trial as a success.
   A look at which the tracker's model (:class:`~arteleop.scene.BowlSight`) sees not one point of
