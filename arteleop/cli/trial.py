@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from arteleop.cli.interrupt import check_ctrl_c
 from arteleop.cli.options import CameraSize, Modality, Renderer, check_seed
 from arteleop.cli.progress import trial_progress
 from arteleop.errors import ConfigurationError
@@ -237,5 +238,5 @@ def teleop(cmd: TeleopCommand) -> int:
             state, summary = trial_summary(result)
             print(f"trial {len(app.results)}: {state}; {summary}")
 
-        app.run(report)
+        app.run(report, check_ctrl_c)  # a Ctrl-C swallowed by a library's import still stops
     return 0
