@@ -11,7 +11,6 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from arteleop.cli.interrupt import check_ctrl_c
 from arteleop.cli.options import CameraSize, Modality, Renderer, check_seed
 from arteleop.cli.progress import trial_progress
 from arteleop.errors import ConfigurationError
@@ -238,5 +237,5 @@ def teleop(cmd: TeleopCommand) -> int:
             state, summary = trial_summary(result)
             print(f"trial {len(app.results)}: {state}; {summary}")
 
-        app.run(report, check_ctrl_c)  # a Ctrl-C swallowed by a library's import still stops
+        app.run(report)
     return 0

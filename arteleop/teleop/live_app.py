@@ -96,17 +96,9 @@ class TeleopApp(Closeable):
         self.panel.on_start(self.start_trial)
         self.panel.on_reset(self.reset)
         self.results: list[TrialResult] = []
-        self._on_tick: Callable[[], None] | None = None
 
-    def run(
-        self,
-        on_trial: Callable[[TrialResult], None] | None = None,
-        on_tick: Callable[[], None] | None = None,
-    ) -> None:
-        """Trial after trial until :meth:`stop`; ``on_trial`` hears each trial's result, and
-        ``on_tick`` is called at every control tick and every 0.1 s between trials (whatever it
-        raises ends the run: the command's check for a Ctrl-C that a library swallowed)."""
-        self._on_tick = on_tick
+    def run(self, on_trial: Callable[[TrialResult], None] | None = None) -> None:
+        """Trial after trial until :meth:`stop`; ``on_trial`` hears each trial's result."""
         seed = self._trial.seed
         if self._live is None:
             self._start.set()  # a simulated or recorded operator's first trial starts at once
@@ -114,8 +106,6 @@ class TeleopApp(Closeable):
             self._show_rest()
             self.panel.finished(READY, "")
         while not self._stopped.is_set():
-            if on_tick is not None:
-                on_tick()
             if not self._start.wait(timeout=0.1):
                 continue
             self._start.clear()
@@ -175,8 +165,6 @@ class TeleopApp(Closeable):
         return trial_operator(self.site, config)
 
     def _tick(self, status: TrialProgress) -> None:
-        if self._on_tick is not None:
-            self._on_tick()
         if self._interrupt.is_set():
             raise TrialInterrupted("stopped from the panel")
         self.panel.show(self._trial.modality, status.elapsed_s, status.state)

@@ -101,21 +101,6 @@ def test_the_app_runs_trial_after_trial_with_the_next_seed(app: TeleopApp) -> No
     assert app.panel._last.value == "seed 5: timeout after 2 s"
 
 
-def test_what_the_tick_hook_raises_ends_the_run_mid_trial(app: TeleopApp) -> None:
-    """The command's check for a swallowed Ctrl-C: raised at a control tick of the first trial,
-    it ends the run there."""
-    ticks: list[float] = []
-
-    def on_tick() -> None:
-        ticks.append(app.site.time_s)
-        if app.site.time_s > 0.5:
-            raise KeyboardInterrupt
-
-    with pytest.raises(KeyboardInterrupt):
-        app.run(on_tick=on_tick)
-    assert app.results == [] and 0.5 < ticks[-1] < 1.0
-
-
 def test_reset_stops_the_trial_and_waits_for_start(app: TeleopApp) -> None:
     """...and the view shows the robot at rest when the panel says so, not the stopped
     trial's last frame."""
