@@ -4,6 +4,7 @@ missing system package."""
 from __future__ import annotations
 
 import os
+import signal
 from typing import NoReturn
 
 import numpy as np
@@ -46,3 +47,10 @@ def unavailable(err: Exception) -> NoReturn:
     if os.environ.get("CI"):
         pytest.fail(str(err))
     pytest.skip(str(err))
+
+
+def ctrl_c_reaches_it() -> None:
+    """In a child process (``preexec_fn``): Ctrl-C's default action, whatever the test runner
+    inherited (a runner started in the background by a shell without job control ignores
+    SIGINT, and so would every child)."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)

@@ -24,15 +24,9 @@ from arteleop import cli
 from arteleop.ar_features import MODALITIES, OperatorView, ViewConfig
 from arteleop.cli import main
 from arteleop.study import FORMAT_VERSION
+from tests.helpers import ctrl_c_reaches_it
 
 ARTELEOP = [sys.executable, "-m", "arteleop.cli"]
-
-
-def _ctrl_c_reaches_it() -> None:
-    """In the child: Ctrl-C's default action, whatever the test runner inherited (a runner
-    started in the background by a shell without job control ignores SIGINT, and so would
-    every child)."""
-    signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
 def _error(capsys: pytest.CaptureFixture[str], argv: list[str]) -> str:
@@ -202,7 +196,7 @@ def test_ctrl_c_ends_a_trial_cleanly() -> None:
         [*ARTELEOP, "trial"],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
-        preexec_fn=_ctrl_c_reaches_it,
+        preexec_fn=ctrl_c_reaches_it,
     )
     # Into the trial, whatever the machine's speed: its progress shows a simulated second or
     # more (a whole trial takes 4 s of wall on a fast machine, so a fixed wait may be too late).
@@ -230,7 +224,7 @@ def test_ctrl_c_stops_a_parallel_study_at_once_and_resume_finishes_it(tmp_path) 
     proc = subprocess.Popen(
         [*ARTELEOP, "study", "run", str(definition), "--out", str(run), "--workers", "2"],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
-        preexec_fn=_ctrl_c_reaches_it,
+        preexec_fn=ctrl_c_reaches_it,
     )  # fmt: skip
     deadline = time.monotonic() + 120  # start-up and planning take longer on a busy machine
     while not (run / "trials.csv").exists() and time.monotonic() < deadline:
@@ -283,7 +277,7 @@ def test_the_view_keeps_serving_after_the_trial_until_ctrl_c() -> None:
     proc = subprocess.Popen(
         [*ARTELEOP, "trial", "--view", "--port", "0", "--timeout-s", "2", "--quiet",
          "--width-px", "160", "--height-px", "120"],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, preexec_fn=_ctrl_c_reaches_it,
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, preexec_fn=ctrl_c_reaches_it,
     )  # fmt: skip
     assert proc.stdout is not None
     lines = []

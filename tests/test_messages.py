@@ -17,6 +17,7 @@ import pytest
 from arteleop.cli import main
 from arteleop.study import FORMAT_VERSION
 from tests.analysis.make_study import make_run
+from tests.helpers import ctrl_c_reaches_it
 
 ARTELEOP = [sys.executable, "-m", "arteleop.cli"]
 
@@ -188,7 +189,8 @@ def test_operator_synth_into_a_folder_is_refused(tmp_path: Path, capsys) -> None
 def test_ctrl_c_stops_teleop_and_its_render_process_without_a_traceback() -> None:
     """Ctrl-C reaches the whole process group: the render process stays quiet."""
     view = subprocess.Popen([*ARTELEOP, "teleop", "--port", "0"], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True, start_new_session=True)  # fmt: skip
+                            stderr=subprocess.PIPE, text=True, start_new_session=True,
+                            preexec_fn=ctrl_c_reaches_it)  # fmt: skip
     assert view.stdout is not None and "operator's view at" in view.stdout.readline()
     time.sleep(3)  # trials under way: the render process is drawing
     os.killpg(view.pid, signal.SIGINT)
