@@ -20,6 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from arteleop.ar_features.layers.colors import DISTANCE_RGB, GRIP_RGB
+from arteleop.errors import ArteleopError
 
 OCR_SCALE = 3
 """The labels' text is about 12 px high: Tesseract reads it best three times larger."""
@@ -33,7 +34,7 @@ LABEL_WIDTH_PX = 110
 LABEL_HEIGHT_PX = 24
 
 
-class ScreenReadingError(RuntimeError):
+class ScreenReadingError(ArteleopError):
     """Tesseract is missing: the scripted participant cannot read."""
 
 
