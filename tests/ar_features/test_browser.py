@@ -28,7 +28,10 @@ from arteleop.ar_features.live_input import LiveInput
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig, Workspace
 from arteleop.teleop import TrialConfig, display_frames_at, trial_operator, view_assets
 from tests.instruments.browser import Browser, chromium, require_chromium
+from tests.instruments.screen_reading import of_hue
 
+GREEN, BLUE = (0, 255, 0), (0, 0, 255)
+"""Hues, for :func:`of_hue`: the distance bar's and target's green, the grip bar's blue."""
 MOMENT_S = 5.0
 """Seed 0 is on its reach to the bowl then: bowl, gripper, a long beam and target all in view
 (the tests check what they need of it)."""
@@ -73,11 +76,12 @@ def _classes(shot: NDArray[np.uint8], scene_px: tuple[float, float]) -> dict[str
     """Pixel counts of each cue's colour in the scene, left of the docked panel. The beam is
     pure red, unlike the shaded red of the robot in the cloud; the yellow bowl and grey table
     are neither."""
-    r, g, b = (shot[:, : int(scene_px[0]), k].astype(int) for k in range(3))
+    scene = shot[:, : int(scene_px[0])]
+    r, g, b = (scene[..., k].astype(int) for k in range(3))
     return {
         "red": int(((r > 200) & (g < 70) & (b < 70)).sum()),
-        "green": int((g - np.maximum(r, b) > 35).sum()),
-        "blue": int((b - np.maximum(r, g) > 35).sum()),
+        "green": int(of_hue(scene, GREEN).sum()),
+        "blue": int(of_hue(scene, BLUE).sum()),
     }
 
 
@@ -185,8 +189,7 @@ def test_the_page_opens_on_the_head_cameras_view(
             scene_px = page.scene_size_px()
     # Left of the panel, whose "connected" icon is green too.
     page_left = shot[:, : int(scene_px[0])]
-    green = (page_left[..., 1].astype(int) - np.maximum(page_left[..., 0], page_left[..., 2])) > 35
-    v, u = np.nonzero(green)
+    v, u = np.nonzero(of_hue(page_left, GREEN))
     # The mesh's middle: half the bowl's height above the target (its bottom centre).
     middle = frame.target_m + [0.0, 0.0, Workspace().bowl.height_m / 2]
     expected = _Egocentric(frame, config, scene_px)(middle)
@@ -227,12 +230,12 @@ def test_live_input_shows_beside_the_docked_panel(
     assert 0 < v < scene_px[1] and image_edge_u < u < width - 40, "premise: past the image"
     # The gizmo's handles within the scene beside the panel: its red (a pink the cloud's
     # shaded red never reaches), green and blue, none of which the frame under no AR draws.
-    near = shot[max(v - 120, 0) : v + 120, u - 120 : width].astype(int)
-    r, g, b = (near[..., k] for k in range(3))
+    near = shot[max(v - 120, 0) : v + 120, u - 120 : width]
+    r, g, b = (near[..., k].astype(int) for k in range(3))
     handles = {
         "red": int((r - np.maximum(g, b) > 120).sum()),
-        "green": int((g - np.maximum(r, b) > 35).sum()),
-        "blue": int((b - np.maximum(r, g) > 35).sum()),
+        "green": int(of_hue(near, GREEN).sum()),
+        "blue": int(of_hue(near, BLUE).sum()),
     }
     assert min(handles.values()) >= 50, handles
 

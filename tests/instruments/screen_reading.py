@@ -50,12 +50,12 @@ def require_tesseract() -> None:
         )
 
 
-def _of_hue(rgb: NDArray[np.uint8], hue_rgb: tuple[int, int, int]) -> NDArray[np.uint8]:
-    """Mask of the pixels whose dominant channel is ``hue_rgb``'s."""
+def of_hue(rgb: NDArray[np.uint8], hue_rgb: tuple[int, int, int]) -> NDArray[np.bool_]:
+    """Mask of the pixels whose strongest channel is ``hue_rgb``'s, beating the others by
+    :data:`DOMINANCE` (the AR cues' green, blue, and the gizmo's)."""
     c = rgb.astype(np.int16)
     k = int(np.argmax(hue_rgb))
-    others = np.max(np.delete(c, k, axis=-1), axis=-1)
-    return (c[..., k] - others > DOMINANCE).astype(np.uint8)
+    return c[..., k] - np.max(np.delete(c, k, axis=-1), axis=-1) > DOMINANCE
 
 
 def _components(mask: NDArray[np.uint8]) -> list[tuple[int, int, int, int, int]]:
@@ -67,7 +67,8 @@ def _components(mask: NDArray[np.uint8]) -> list[tuple[int, int, int, int, int]]
 def bar_box(rgb: NDArray[np.uint8], hue_rgb: tuple[int, int, int]) -> tuple[int, ...] | None:
     """The bar of ``hue_rgb``: the widest flat component of its hue (x, y, width, height in px),
     or None if none is drawn (the target mesh, of the same green, is not flat)."""
-    flat = [b for b in _components(_of_hue(rgb, hue_rgb)) if b[2] > 3 * b[3] and b[3] >= 3]
+    parts = _components(of_hue(rgb, hue_rgb).astype(np.uint8))
+    flat = [b for b in parts if b[2] > 3 * b[3] and b[3] >= 3]
     return max(flat, key=lambda b: b[2])[:4] if flat else None
 
 

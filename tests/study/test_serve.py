@@ -28,6 +28,7 @@ from arteleop.study.session import (
     SessionInputError,
     served_run,
 )
+from tests.instruments.screen_reading import of_hue
 from tests.instruments.view_probe import admitted, refused
 
 STUDY = StudyConfig(
@@ -188,8 +189,7 @@ SHOTS = Path(os.environ.get("ARTELEOP_SHOTS", "/tmp"))
 
 def _green_pixels(shot: np.ndarray) -> int:
     """Pixels of the target mesh's green (and the gizmo's) in an RGB screenshot."""
-    r, g, b = (shot[..., k].astype(int) for k in range(3))
-    return int((g - np.maximum(r, b) > 35).sum())
+    return int(of_hue(shot, (0, 255, 0)).sum())
 
 
 def _take_part(browser, server: StudyServer, links: queue.Queue, greens: list[int]) -> None:
