@@ -1,8 +1,8 @@
 """What a person reads off the operator's view: the scene's pixels, never its messages.
 
 The AR layers' labels are drawn by WebGL, not the page's text, so they are read as a person reads
-them: from a screenshot of the scene, beside the bar they belong to (the label sits left of its
-bar), with Tesseract OCR. Where things are, as a person sees them: the bowl by its yellow, the
+them: from a screenshot of the scene, each white box of dark text, with Tesseract OCR; what it
+says tells which label it is. Where things are, as a person sees them: the bowl by its yellow, the
 target circle by its black ring on the table. A scripted participant (issue 44) is to decide its
 moves from these alone.
 
@@ -19,19 +19,23 @@ import cv2
 import numpy as np
 from numpy.typing import NDArray
 
-from arteleop.ar_features.layers.colors import DISTANCE_RGB, GRIP_RGB
 from arteleop.errors import ArteleopError
 
 OCR_SCALE = 3
 """The labels' text is about 12 px high: Tesseract reads it best three times larger."""
 INK = 140
-"""A label's text is darker than this (0-255), its white box and the grey table lighter."""
+"""A label's text is darker than this (0-255) at its strokes' middle, its white box and the grey
+table lighter."""
 DOMINANCE = 35
-"""A pixel is of a bar's hue where its strongest channel beats the others by this (0-255): the
+"""A pixel is of a cue's hue where its strongest channel beats the others by this (0-255): the
 bars are shaded and translucent, their exact colour is nowhere on the screen."""
-LABEL_WIDTH_PX = 110
-"""Room left of a bar for its label (CSS px): "grip 100 %" at the labels' size."""
-LABEL_HEIGHT_PX = 24
+LINE_MIN_HEIGHT_PX = 8
+LINE_MAX_HEIGHT_PX = 24
+LINE_MAX_WIDTH_PX = 160
+"""A label's line of text is this tall and wide (CSS px): "0 mm" to "height 1000 mm" at the
+labels' size; the target circle's ring is taller."""
+LETTERS = "eghimprt%"
+"""What the labels hold besides digits: "mm", "grip N %", "height"."""
 
 
 class ScreenReadingError(ArteleopError):
@@ -58,18 +62,18 @@ def of_hue(rgb: NDArray[np.uint8], hue_rgb: tuple[int, int, int]) -> NDArray[np.
     return c[..., k] - np.max(np.delete(c, k, axis=-1), axis=-1) > DOMINANCE
 
 
+@dataclass(frozen=True)
+class Spot:
+    """Where something is seen in the scene (CSS px from its top-left corner)."""
+
+    x_px: float
+    y_px: float
+
+
 def _components(mask: NDArray[np.uint8]) -> list[tuple[int, int, int, int, int]]:
     """Connected components of ``mask``: (x, y, width, height, area) in px."""
     n, _, stats, _ = cv2.connectedComponentsWithStats(mask)
     return [tuple(int(v) for v in stats[i]) for i in range(1, n)]  # type: ignore[misc]
-
-
-def bar_box(rgb: NDArray[np.uint8], hue_rgb: tuple[int, int, int]) -> tuple[int, ...] | None:
-    """The bar of ``hue_rgb``: the widest flat component of its hue (x, y, width, height in px),
-    or None if none is drawn (the target mesh, of the same green, is not flat)."""
-    parts = _components(of_hue(rgb, hue_rgb).astype(np.uint8))
-    flat = [b for b in parts if b[2] > 3 * b[3] and b[3] >= 3]
-    return max(flat, key=lambda b: b[2])[:4] if flat else None
 
 
 def ocr_line(rgb: NDArray[np.uint8]) -> str:
@@ -85,50 +89,81 @@ def ocr_line(rgb: NDArray[np.uint8]) -> str:
         return ""
     text = gray[max(ys.min() - 2, 0) : ys.max() + 3, max(xs.min() - 2, 0) : xs.max() + 3]
     big = cv2.resize(text, None, fx=OCR_SCALE, fy=OCR_SCALE, interpolation=cv2.INTER_CUBIC)
-    big = np.where(big < INK, 0, 255).astype(np.uint8)
+    # Otsu's split between ink and box: a fixed one lost a thin "0" or "i" of the grey text.
+    _, big = cv2.threshold(big, 0, 255, cv2.THRESH_BINARY + cv2.THRESH_OTSU)
     big = cv2.copyMakeBorder(big, 20, 20, 20, 20, cv2.BORDER_CONSTANT, value=255)
-    config = "--psm 7 -c tessedit_char_whitelist=0123456789gimpr%"
+    config = f"--psm 7 -c tessedit_char_whitelist=0123456789{LETTERS}"
     return re.sub(r"\s", "", pytesseract.image_to_string(big, config=config))
 
 
-def label_left_of(rgb: NDArray[np.uint8], box: tuple[int, ...]) -> str:
-    """The text of the label drawn left of the bar in ``box``."""
-    x, y, _, h = box
-    top = max(y + h // 2 - LABEL_HEIGHT_PX // 2, 0)
-    return ocr_line(rgb[top : top + LABEL_HEIGHT_PX, max(x - LABEL_WIDTH_PX, 0) : max(x - 1, 1)])
+def label_lines(rgb: NDArray[np.uint8]) -> list[tuple[int, int, int, int]]:
+    """Where lines of the labels' text may be (x, y, width, height in px): runs of dark grey
+    ink of a line's height, as a person finds them, wherever their bars are (a bar inside the
+    bowl's cloud is hidden by it, its label is not; the beam may cross a label)."""
+    c = rgb.astype(np.int16)
+    ink = (c.max(axis=-1) < INK) & (c.max(axis=-1) - c.min(axis=-1) <= 40)
+    # Closed along the rows, a line's glyphs and the spaces between its words are one.
+    words = cv2.morphologyEx(ink.astype(np.uint8), cv2.MORPH_CLOSE, np.ones((1, 9), np.uint8))
+    return [
+        (max(x - 3, 0), max(y - 3, 0), w + 6, h + 6)
+        for x, y, w, h, _ in _components(words)
+        if LINE_MIN_HEIGHT_PX <= h <= LINE_MAX_HEIGHT_PX and 2 * h <= w <= LINE_MAX_WIDTH_PX
+    ]
+
+
+def find_label(rgb: NDArray[np.uint8], pattern: str) -> tuple[int, Spot] | None:
+    """The number of the first label whose text (spaces dropped) is ``pattern``, a regular
+    expression with one group of digits, and where the label is; None where none reads so."""
+    for x, y, w, h in label_lines(rgb):
+        found = re.fullmatch(pattern, ocr_line(rgb[y : y + h, x : x + w]))
+        if found:
+            return int(found.group(1)), Spot(x + w / 2, y + h / 2)
+    return None
+
+
+def read_label(rgb: NDArray[np.uint8], pattern: str) -> int | None:
+    """The number of :func:`find_label`'s label."""
+    found = find_label(rgb, pattern)
+    return None if found is None else found[0]
+
+
+DISTANCE = r"(\d+)mm"
+"""The distance bar's label, "N mm"."""
 
 
 def distance_mm(rgb: NDArray[np.uint8]) -> int | None:
-    """The distance bar's label, "N mm"; None where no bar is drawn or its label is not read."""
-    box = bar_box(rgb, DISTANCE_RGB)
-    found = box and re.fullmatch(r"(\d+)mm", label_left_of(rgb, box))
-    return int(found.group(1)) if found else None
+    """The distance bar's label, "N mm"; None where it is not drawn or not read."""
+    return read_label(rgb, DISTANCE)
 
 
 def grip_percent(rgb: NDArray[np.uint8]) -> int | None:
-    """The grip bar's label, "grip N %"; None where no bar is drawn or its label is not read."""
-    box = bar_box(rgb, GRIP_RGB)
-    found = box and re.fullmatch(r"grip(\d+)%", label_left_of(rgb, box))
-    return int(found.group(1)) if found else None
+    """The grip bar's label, "grip N %"; None where it is not drawn or not read."""
+    return read_label(rgb, r"grip(\d+)%")
 
 
-@dataclass(frozen=True)
-class Spot:
-    """Where something is seen in the scene (CSS px from its top-left corner)."""
-
-    x_px: float
-    y_px: float
+def height_mm(rgb: NDArray[np.uint8]) -> int | None:
+    """The depth aids' label, "height N mm"; None where it is not drawn or not read."""
+    return read_label(rgb, r"height(\d+)mm")
 
 
-def bowl_spot(rgb: NDArray[np.uint8]) -> Spot | None:
-    """The bowl: the middle of its yellow (red and green over blue); None if not seen."""
+def _bowl_box(rgb: NDArray[np.uint8]) -> tuple[int, int, int, int, int] | None:
+    """The bowl's largest yellow part (red and green over blue); None if not seen."""
     c = rgb.astype(np.int16)
     yellow = (np.minimum(c[..., 0], c[..., 1]) - c[..., 2] > 80).astype(np.uint8)
     parts = [b for b in _components(yellow) if b[4] > 200]
-    if not parts:
-        return None
-    x, y, w, h, _ = max(parts, key=lambda b: b[4])
-    return Spot(x + w / 2, y + h / 2)
+    return max(parts, key=lambda b: b[4]) if parts else None
+
+
+def bowl_spot(rgb: NDArray[np.uint8]) -> Spot | None:
+    """The bowl: the middle of its yellow; None if not seen."""
+    box = _bowl_box(rgb)
+    return None if box is None else Spot(box[0] + box[2] / 2, box[1] + box[3] / 2)
+
+
+def bowl_width_px(rgb: NDArray[np.uint8]) -> float:
+    """How wide the bowl looks (px); 0 if not seen."""
+    box = _bowl_box(rgb)
+    return 0.0 if box is None else float(box[2])
 
 
 def target_spot(rgb: NDArray[np.uint8]) -> Spot | None:
