@@ -148,3 +148,27 @@ def browser_page(url: str) -> Iterator[Page]:
     """A headless Chromium tab on ``url``, the software-WebGL notice dismissed."""
     with chromium() as browser:
         yield browser.open(url)
+
+
+def text_field(tab: Any, label: str) -> Any:
+    """A text input of ``tab`` by its label (viser's text inputs are not linked to their
+    labels)."""
+    row = f"//label[text()='{label}']/ancestor::div[contains(@class,'mantine-Flex-root')][1]"
+    return tab.locator(f"xpath={row}//input").first
+
+
+def press_button(tab: Any, name: str, timeout_s: float = 60.0) -> None:
+    """Click the button of ``tab`` named ``name``."""
+    tab.get_by_role("button", name=name, exact=True).click(timeout=timeout_s * 1000)
+
+
+CHOICES = {"Gender": "female", "Handedness": "right", "AR/VR per week": "2-5 h",
+           "Video games per week": "under 1 h"}  # fmt: skip
+"""A participant's answers to the start page's dropdowns."""
+
+
+def choose(tab: Any, choices: dict[str, str] = CHOICES) -> None:
+    """Pick each dropdown's option: ``choices`` maps a dropdown's label to the option."""
+    for label, option in choices.items():
+        tab.get_by_role("combobox", name=label).click()
+        tab.get_by_role("option", name=option, exact=True).click()

@@ -70,6 +70,14 @@ class Spot:
     y_px: float
 
 
+@dataclass(frozen=True)
+class Box(Spot):
+    """Something seen: its middle, and its width and height (CSS px)."""
+
+    width_px: float
+    height_px: float
+
+
 def _components(mask: NDArray[np.uint8]) -> list[tuple[int, int, int, int, int]]:
     """Connected components of ``mask``: (x, y, width, height, area) in px."""
     n, _, stats, _ = cv2.connectedComponentsWithStats(mask)
@@ -146,27 +154,24 @@ def height_mm(rgb: NDArray[np.uint8]) -> int | None:
     return read_label(rgb, r"height(\d+)mm")
 
 
-def _bowl_box(rgb: NDArray[np.uint8]) -> tuple[int, int, int, int, int] | None:
-    """The bowl's largest yellow part (red and green over blue); None if not seen."""
+def bowl_box(rgb: NDArray[np.uint8]) -> Box | None:
+    """The bowl: its largest yellow part (red and green over blue); None if not seen."""
     c = rgb.astype(np.int16)
     yellow = (np.minimum(c[..., 0], c[..., 1]) - c[..., 2] > 80).astype(np.uint8)
     parts = [b for b in _components(yellow) if b[4] > 200]
-    return max(parts, key=lambda b: b[4]) if parts else None
+    if not parts:
+        return None
+    x, y, w, h, _ = max(parts, key=lambda b: b[4])
+    return Box(x + w / 2, y + h / 2, w, h)
 
 
 def bowl_spot(rgb: NDArray[np.uint8]) -> Spot | None:
-    """The bowl: the middle of its yellow; None if not seen."""
-    box = _bowl_box(rgb)
-    return None if box is None else Spot(box[0] + box[2] / 2, box[1] + box[3] / 2)
+    """The middle of :func:`bowl_box`."""
+    box = bowl_box(rgb)
+    return None if box is None else Spot(box.x_px, box.y_px)
 
 
-def bowl_width_px(rgb: NDArray[np.uint8]) -> float:
-    """How wide the bowl looks (px); 0 if not seen."""
-    box = _bowl_box(rgb)
-    return 0.0 if box is None else float(box[2])
-
-
-def target_spot(rgb: NDArray[np.uint8]) -> Spot | None:
+def target_ring(rgb: NDArray[np.uint8]) -> Box | None:
     """The target circle on the table: the largest black ring (its middle empty); None if not
     seen. The depth aids' ring, near-black too, is smaller and hangs from its line."""
     black = (rgb.max(axis=-1) < 60).astype(np.uint8)
@@ -178,4 +183,10 @@ def target_spot(rgb: NDArray[np.uint8]) -> Spot | None:
     if not rings:
         return None
     x, y, w, h, _ = max(rings, key=lambda b: b[2])
-    return Spot(x + w / 2, y + h / 2)
+    return Box(x + w / 2, y + h / 2, w, h)
+
+
+def target_spot(rgb: NDArray[np.uint8]) -> Spot | None:
+    """Where :func:`target_ring` is seen."""
+    ring = target_ring(rgb)
+    return None if ring is None else Spot(ring.x_px, ring.y_px)

@@ -28,6 +28,7 @@ from arteleop.study.session import (
     SessionInputError,
     served_run,
 )
+from tests.instruments.browser import choose, press_button, text_field
 from tests.instruments.screen_reading import of_hue
 from tests.instruments.view_probe import admitted, refused
 
@@ -174,16 +175,6 @@ def _pairs() -> list[tuple[str, str]]:
             for i in ("presence", "embodiment", "ease")]  # fmt: skip
 
 
-def _field(tab, label: str):
-    """A text input by its label (viser's text inputs are not linked to their labels)."""
-    row = f"//label[text()='{label}']/ancestor::div[contains(@class,'mantine-Flex-root')][1]"
-    return tab.locator(f"xpath={row}//input").first
-
-
-def _click(tab, name: str, timeout_s: float = 60.0) -> None:
-    tab.get_by_role("button", name=name, exact=True).click(timeout=timeout_s * 1000)
-
-
 SHOTS = Path(os.environ.get("ARTELEOP_SHOTS", "/tmp"))
 
 
@@ -209,21 +200,17 @@ def _take_part(browser, server: StudyServer, links: queue.Queue, greens: list[in
     watcher = watching_tab.playwright
     watcher.get_by_text(IN_PROGRESS).wait_for()
     first.get_by_text("I have read the information above").click()
-    _click(first, "Continue")
-    _field(first, "Age (years)").fill("17")
-    _click(first, "Continue")
+    press_button(first, "Continue")
+    text_field(first, "Age (years)").fill("17")
+    press_button(first, "Continue")
     first.get_by_text("age 17: expected a whole number 18-99 (years).").wait_for()
-    _field(first, "Age (years)").fill("31")
-    choices = {"Gender": "female", "Handedness": "right", "AR/VR per week": "2-5 h",
-               "Video games per week": "under 1 h"}  # fmt: skip
-    for label, option in choices.items():
-        first.get_by_role("combobox", name=label).click()
-        first.get_by_role("option", name=option, exact=True).click()
-    _click(first, "Continue")
+    text_field(first, "Age (years)").fill("31")
+    choose(first)
+    press_button(first, "Continue")
     first.get_by_text("How to drive the robot").wait_for()
-    _click(first, "Continue")
+    press_button(first, "Continue")
     first.get_by_text("Trial 1 of 2").wait_for()
-    _click(first, "Start")
+    press_button(first, "Start")
     # Closed as soon as the trial shows it runs (its page's heading outlives it, on the outcome).
     first.get_by_text("waiting for the hand to align", exact=False).wait_for()
     first.close()
@@ -232,7 +219,7 @@ def _take_part(browser, server: StudyServer, links: queue.Queue, greens: list[in
         watcher.get_by_text("Drive the robot").wait_for()
         if k == 1:  # the trial cut short, again, its scene shown as it will start
             greens.append(_green_pixels(watching_tab.screenshot(SHOTS / "before-start.png")))
-        _click(watcher, "Start")
+        press_button(watcher, "Start")
         if k == 2:  # driven by a step button: the device is recorded
             # Once the trial's status has replaced the prompt, Start's reset is behind.
             watcher.get_by_text("press Start when ready", exact=False).wait_for(state="hidden")
@@ -240,9 +227,9 @@ def _take_part(browser, server: StudyServer, links: queue.Queue, greens: list[in
             watcher.get_by_role("button", name="down", exact=True).focus()
             watcher.keyboard.press("Space")
         watcher.get_by_text("Not placed: timeout.").wait_for(timeout=60_000)
-        _click(watcher, "Next")
+        press_button(watcher, "Next")
     watcher.get_by_text("Questionnaire").wait_for(timeout=30_000)
-    _click(watcher, "Submit")
+    press_button(watcher, "Submit")
     watcher.get_by_text("You can close this page", exact=False).wait_for(timeout=30_000)
     participant, next_link = links.get(timeout=30)
     assert participant == "P02" and next_link != link

@@ -1,0 +1,361 @@
+"""A scripted participant: does a pick-and-place trial in a real browser from what the page
+shows a person, through the keyboard and the page's controls.
+
+It reads the distance bar's and the grip bar's labels and sees the bowl and the target circle
+(:mod:`tests.instruments.screen_reading`), and drives with the step buttons (focused, and
+Space), the Step dropdown and the Grip slider. No server-side shortcut, no page messages: what
+it decides, a person at the screen could decide. Its way is a person's who cannot judge depth
+and counts their steps (the step buttons' directions are at right angles: across the image,
+into it on the table, and up):
+
+- **Reach.** Three double steps, towards the bowl as the image shows it, and the distance
+  label's numbers give the point they measure to (a least-squares fit): the nearest point of
+  the bowl's grasp ring, on its near side. The bowl's width as seen, scaled by how far a step
+  moved the label, gives the ring's size and middle. The fingers open across the image, so it
+  goes beside the wall facing them across the image, level with the ring, then at the wall,
+  refining from small steps (there the label's point follows the gripper along the wall, so
+  only across and in height do the numbers tell), and closes the gripper when the number is
+  small.
+- **Carry.** Lifted, the bowl is brought across the image over the target circle, lowered to
+  just above the table and nudged until the two are one in the image (its middle judged from
+  its edges away from the gripper), set down and let go.
+"""
+
+from __future__ import annotations
+
+import base64
+import re
+import statistics
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from operator import attrgetter
+from typing import Any
+
+import cv2
+import numpy as np
+from numpy.typing import NDArray
+from playwright.sync_api import TimeoutError as PlaywrightTimeout
+from scipy.optimize import least_squares
+
+from tests.instruments.screen_reading import (
+    DISTANCE,
+    Box,
+    Spot,
+    bowl_box,
+    find_label,
+    grip_percent,
+    target_ring,
+)
+
+STEPS_MM = {"5 cm": 50, "1 cm": 10}
+"""The step buttons' sizes, as the Step dropdown names them (mm)."""
+AXES = (("right", "left"), ("away", "nearer"), ("up", "down"))
+"""The step buttons in opposite pairs along three directions at right angles."""
+PROBE_STEPS = 2
+"""The first steps, to learn from the distance where the grasp point lies: 10 cm each way."""
+RING_SHARE = 0.95
+"""The grasp ring (the middle of the wall, below the rim) is about this share of the bowl's
+width as seen."""
+BESIDE_MM = 40
+"""Outside the wall by this, level with the grasp ring, before going at it (mm)."""
+LOCAL_PROBE_STEPS = 2
+"""Steps of 1 cm to learn, near it, where the grasp point lies."""
+CLOSE_ENOUGH_MM = 15
+"""Near enough to the grasp point to close the gripper on the rim (mm)."""
+MAX_LOOKS = 8
+"""Readings near the grasp point before closing the gripper wherever it is."""
+LIFT_STEPS = 2
+"""Steps of 5 cm up with the bowl: clear of the table and of the target circle."""
+CLICK_GAP_S = 0.25
+"""Between two presses of a button, as a person presses (s). Clicked by the script with no
+time between, one step in six was lost; at this pace none in 18."""
+ARRIVE_S = 0.5
+"""The gripper has arrived this long after a press, or is about to (s)."""
+READS = 2
+"""Looks per reading: the tracked bowl's jitter moves the label by a few millimetres."""
+STILL_MM = 10
+"""Readings within this (mm) of each other show a gripper at rest."""
+STILL_PX = 4
+"""Where the bowl is seen, within this (px), shows it at rest."""
+SETTLE_TIMEOUT_S = 20.0
+"""A reading that never settles fails the trial: the page stopped showing what it should."""
+CLEAR_STEPS = 3
+"""Steps of 1 cm over the table the bowl is lined up at."""
+OUTCOME = re.compile(r"Placed in|Not placed")
+"""The start of the outcome the page shows after a trial."""
+OUTCOME_WAIT_S = 10.0
+LINE_UP_GOES = 2
+"""Goes at lining the bowl up with the target, each from a fresh look."""
+
+
+def _decode(png: bytes) -> NDArray[np.uint8]:
+    return cv2.cvtColor(cv2.imdecode(np.frombuffer(png, np.uint8), cv2.IMREAD_COLOR),
+                        cv2.COLOR_BGR2RGB)  # fmt: skip
+
+
+@dataclass
+class ScriptedParticipant:
+    """Does a trial in ``tab`` (a playwright page on the participant's link, on the trial's
+    page); ``log`` hears what it reads and does."""
+
+    tab: Any
+    log: Callable[[str], None] = lambda _: None
+    step: str = "5 cm"
+    presses: list[str] = field(default_factory=list)
+    """Every input, in order: what the trial's outcome came from."""
+    side: float = 1.0
+    """The bowl's side the gripper holds, across the image: 1 its right, -1 its left."""
+    _bowl_size: Box | None = None
+    """The bowl as seen before it was touched."""
+    _at_mm: NDArray[np.float64] = field(default_factory=lambda: np.zeros(3))
+    """Where its steps have put the gripper's target, from where it was at Start (mm; along
+    right, away and up)."""
+
+    def __post_init__(self) -> None:
+        # The browser's own capture: playwright's element screenshot waits for the element to
+        # stand still over animation frames, 4 s a look while the cloud streams.
+        self._cdp = self.tab.context.new_cdp_session(self.tab)
+        box = self.tab.locator("canvas").first.bounding_box()
+        self._clip = {**box, "scale": 1}
+
+    def look(self) -> NDArray[np.uint8]:
+        """The scene's pixels as they are now (RGB)."""
+        shot = self._cdp.send(
+            "Page.captureScreenshot",
+            {"format": "png", "optimizeForSpeed": True, "clip": self._clip},
+        )
+        self.last_look = _decode(base64.b64decode(shot["data"]))
+        return self.last_look
+
+    def reading(self, read: Callable[[NDArray[np.uint8]], float | None], still: float) -> float:
+        """What ``read`` finds on the screen once :data:`READS` looks in a row agree to within
+        ``still``: their median."""
+        end = time.monotonic() + SETTLE_TIMEOUT_S
+        seen: list[float] = []
+        while time.monotonic() < end:
+            value = read(self.look())
+            if value is not None:
+                seen = [*seen[-(READS - 1) :], value]
+                if len(seen) == READS and max(seen) - min(seen) <= still:
+                    return statistics.median(seen)
+        raise AssertionError(f"the readout never settled: {seen}")
+
+    def click(self, element: Any) -> None:
+        """The pointer straight at ``element``, where it is now (the panel's texts above it
+        change their number of lines): a locator's click first waits for the page to stand
+        still over animation frames, a second a click while the cloud streams."""
+        box = element.bounding_box()
+        self.tab.mouse.click(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
+        time.sleep(CLICK_GAP_S)
+
+    def press(self, name: str, times: int = 1) -> None:
+        """Press the step button ``name``, ``times`` times, from the keyboard (focused, as Tab
+        would, and Space), then give the arm time to get there."""
+        if times:
+            self.tab.get_by_role("button", name=name, exact=True).focus()
+        for _ in range(times):
+            self.tab.keyboard.press("Space")
+            time.sleep(CLICK_GAP_S)
+            self.presses.append(name)
+            for k, pair in enumerate(AXES):
+                if name in pair:
+                    self._at_mm[k] += STEPS_MM[self.step] * (1 if name == pair[0] else -1)
+        if times:
+            time.sleep(ARRIVE_S)
+
+    def choose_step(self, label: str) -> None:
+        """Pick the Step dropdown's ``label``."""
+        if label != self.step:
+            self.click(self.tab.get_by_role("combobox", name="Step"))
+            self.click(self.tab.get_by_role("option", name=label, exact=True))
+            self.step = label
+
+    def go_by(self, offset_mm: NDArray[np.float64], order: tuple[int, ...] = (0, 1, 2)) -> None:
+        """Step the target by ``offset_mm`` (right, away, up) as near as 1 cm steps can, the
+        axes in ``order``."""
+        # Big steps near it, small ones the rest of the way.
+        big = np.round(np.asarray(offset_mm) / STEPS_MM["5 cm"]).astype(int)
+        small = np.round((np.asarray(offset_mm) - big * STEPS_MM["5 cm"]) / STEPS_MM["1 cm"])
+        counts = {"5 cm": big, "1 cm": small.astype(int)}
+        for label in STEPS_MM:
+            for k in order:
+                n = int(counts[label][k])
+                if n:
+                    self.choose_step(label)
+                    self.press(AXES[k][0] if n > 0 else AXES[k][1], abs(n))
+
+    def distance(self) -> float:
+        """The distance label, read once the gripper stands (mm); where it was drawn goes to
+        :attr:`label_at`."""
+        spots: list[Spot] = []
+
+        def read(rgb: NDArray[np.uint8]) -> float | None:
+            found = find_label(rgb, DISTANCE)
+            if found is not None:
+                spots.append(found[1])
+            return None if found is None else found[0]
+
+        value = self.reading(read, STILL_MM)
+        self.label_at = spots[-1]
+        return value
+
+    def reach(self, start: Spot, distance: float, bowl: Spot, bowl_wide_px: float) -> float:
+        """To the grasp point on the bowl's wall that faces the gripper across the image, from
+        ``distance`` read with the label at ``start`` and the bowl seen at ``bowl``,
+        ``bowl_wide_px`` wide; the distance left (mm)."""
+        # Towards the bowl as the image shows it (the label hangs beside the gripper), keeping
+        # both in sight, and down, still above it.
+        across = "left" if bowl.x_px < start.x_px else "right"
+        probes = (across, "away" if bowl.y_px < start.y_px else "nearer", "down")
+        seen = [(self._at_mm.copy(), distance)]
+        self.choose_step("5 cm")
+        for name in probes:
+            self.press(name, PROBE_STEPS)
+            seen.append((self._at_mm.copy(), self.distance()))
+            if name == across:
+                moved_px = abs(self.label_at.x_px - start.x_px)
+                px_per_mm = moved_px / (PROBE_STEPS * STEPS_MM["5 cm"])
+        self.log(f"probed {probes}: {[round(d) for _, d in seen]} mm")
+        # The label measures to the nearest point of a level ring round the bowl's axis: from
+        # afar, a point on its near side. The ring is about as wide as the bowl looks, measured
+        # by how far a step moved the label. The fingers open across the image, so they close
+        # on the wall facing them across it: the gripper goes level with the ring, beside it
+        # across the image and in line with its middle, and from there straight at the wall,
+        # where the label's point is the one to pinch.
+        near = self._point(seen, seen[0][0] - [0.0, 0.0, seen[0][1]])
+        radius = RING_SHARE * bowl_wide_px / 2 / px_per_mm
+        inward = (near - self._at_mm)[:2] / np.linalg.norm((near - self._at_mm)[:2])
+        centre = near + np.append(radius * inward, 0.0)
+        self.side = side = 1.0 if across == "left" else -1.0
+        beside = centre + [side * (radius + BESIDE_MM), 0.0, 0.0]
+        self.log(f"ring of {radius:.0f} mm round {np.round(centre)}: to {np.round(beside)}")
+        # Across and along first, still above the bowl, then down: never through it.
+        self.go_by(beside - self._at_mm, order=(0, 1, 2))
+        seen = [(self._at_mm.copy(), self.distance())]
+        self.choose_step("1 cm")
+        self.press(across, LOCAL_PROBE_STEPS)
+        seen.append((self._at_mm.copy(), self.distance()))
+        self.press("up", LOCAL_PROBE_STEPS)
+        seen.append((self._at_mm.copy(), self.distance()))
+        self.log(f"beside it: {[round(d) for _, d in seen]} mm")
+        goal = beside - [side * BESIDE_MM, 0.0, 0.0]
+        while seen[-1][1] > CLOSE_ENOUGH_MM and len(seen) < MAX_LOOKS:
+            # Beside the wall the label's point follows the gripper along it: only across
+            # the image and in height does the number tell where it is.
+            goal = self._point(seen, goal, free=(0, 2))
+            offset = goal - self._at_mm
+            self.log(f"grasp point at {np.round(goal)} mm: going {np.round(offset)} mm")
+            self.go_by(offset, order=(0, 1, 2) if offset[2] < 0 else (2, 0, 1))
+            seen.append((self._at_mm.copy(), self.distance()))
+            self.log(f"now {seen[-1][1]:.0f} mm")
+        return seen[-1][1]
+
+    @staticmethod
+    def _point(
+        seen: list[tuple[NDArray[np.float64], float]],
+        guess: NDArray[np.float64],
+        free: tuple[int, ...] = (0, 1, 2),
+    ) -> NDArray[np.float64]:
+        """The point nearest ``guess``, changed along the axes ``free`` only, whose distances
+        from where the gripper was best match those read (mm)."""
+        at = np.array([p for p, _ in seen])
+        read = np.array([d for _, d in seen])
+
+        def point(x: NDArray[np.float64]) -> NDArray[np.float64]:
+            g = np.array(guess, dtype=np.float64)
+            g[list(free)] = x
+            return g
+
+        fit = least_squares(
+            lambda x: np.linalg.norm(at - point(x), axis=1) - read, guess[list(free)]
+        )
+        return point(fit.x)
+
+    def grip(self, closed: bool) -> None:
+        """The Grip slider to its end, from the keyboard."""
+        self.tab.get_by_role("slider").first.focus()
+        self.tab.keyboard.press("End" if closed else "Home")
+        self.presses.append("close" if closed else "open")
+        time.sleep(ARRIVE_S)
+
+    def bowl(self) -> Spot:
+        """Where the bowl's middle is seen once it stands still: from its far edges, as the
+        gripper at its near side hides some of it, by its size at the start."""
+        boxes: list[Box] = []
+
+        def left_px(rgb: NDArray[np.uint8]) -> float | None:
+            box = bowl_box(rgb)
+            if box is not None:
+                boxes.append(box)
+            return None if box is None else box.x_px - box.width_px / 2
+
+        self.reading(left_px, STILL_PX)
+        box, size = boxes[-1], self._bowl_size
+        far = self.side * -1
+        return Spot(
+            box.x_px + far * (box.width_px - size.width_px) / 2,
+            box.y_px - (box.height_px - size.height_px) / 2,
+        )
+
+    def line_up(self, target: Spot, axis: int, step: str, per_step_px: float = 0.0) -> float:
+        """Step along ``axis`` (0 across the image, 1 into it) until the bowl's middle is as
+        near ``target``'s in the image as such steps take it, looking again after each go; how
+        far the bowl moves in the image a step (px): ``per_step_px``, or measured by a step."""
+        self.choose_step(step)
+        coordinate = attrgetter("x_px" if axis == 0 else "y_px")
+        now = coordinate(self.bowl())
+        if not per_step_px:
+            self.press(AXES[axis][0])
+            before, now = now, coordinate(self.bowl())
+            per_step_px = now - before
+        for _ in range(LINE_UP_GOES):
+            n = round((coordinate(target) - now) / per_step_px) if abs(per_step_px) >= 1 else 0
+            self.log(f"bowl {now:.0f} px, target {coordinate(target):.0f} px, "
+                     f"{per_step_px:+.0f} px a step: {n:+d}")  # fmt: skip
+            if not n:
+                break
+            self.press(AXES[axis][0] if n > 0 else AXES[axis][1], abs(n))
+            now = coordinate(self.bowl())
+        return per_step_px
+
+    def do_trial(self) -> str:
+        """Start, reach, grasp, carry, set down, let go; the outcome the page then shows."""
+        # Looked at before Start, while the timer waits.
+        rgb = self.look()
+        target, found, bowl = target_ring(rgb), find_label(rgb, DISTANCE), bowl_box(rgb)
+        assert target and found and bowl, "the target, the gripper or the bowl is not to be seen"
+        distance = self.distance()
+        self.tab.get_by_role("button", name="Start", exact=True).click()
+        # The robot follows once the page says so.
+        self.tab.get_by_text("waiting for motion onset", exact=False).wait_for()
+        self._bowl_size = bowl
+        left = self.reach(self.label_at, distance, bowl, bowl.width_px)
+        self.grip(closed=True)
+        self.log(f"closed {left:.0f} mm from the grasp point: grip {grip_percent(self.look())} %")
+        self.choose_step("5 cm")
+        self.press("up", LIFT_STEPS)
+        across_px = self.line_up(target, 0, "5 cm")
+        # Down to just above the table, where the bowl is seen about where it will stand, still
+        # clear of it: dragged on the table, it turns in the fingers.
+        self.press("down", LIFT_STEPS - 1)
+        self.choose_step("1 cm")
+        self.press("down", STEPS_MM["5 cm"] // STEPS_MM["1 cm"] - CLEAR_STEPS)
+        small = STEPS_MM["1 cm"] / STEPS_MM["5 cm"]
+        self.line_up(target, 0, "1 cm", across_px * small)
+        # A step away moves the bowl up the image by a step across, foreshortened as the round
+        # target circle is into an ellipse.
+        self.line_up(
+            target, 1, "1 cm", -abs(across_px) * small * target.height_px / target.width_px
+        )
+        self.press("down", CLEAR_STEPS)
+        self.grip(closed=False)
+        outcome = self.tab.get_by_text(OUTCOME)
+        try:
+            outcome.wait_for(timeout=1000 * OUTCOME_WAIT_S)
+        except PlaywrightTimeout:
+            # Out of the camera's way: the bowl is scored once it is seen standing.
+            self.choose_step("5 cm")
+            self.press("up", LIFT_STEPS)
+            outcome.wait_for(timeout=1000 * OUTCOME_WAIT_S)
+        return outcome.inner_text()

@@ -1,0 +1,108 @@
+"""A person has what they need: a scripted participant, deciding every move from what the page
+shows (the labels' numbers, the bowl and the target circle), places the bowl in a served trial
+within the default timeout, through the keyboard and the page's controls."""
+
+import csv
+import os
+import re
+import threading
+from pathlib import Path
+
+from arteleop.scene import HeadCameraConfig
+from arteleop.study import CohortConfig, FamiliarizationConfig, StudyConfig
+from arteleop.study.serve import StudyServer
+from arteleop.study.session import BROWSER_FILE, served_run
+
+STUDY = StudyConfig(
+    name="scripted",
+    # The distance bar and the beam; the depth aids, as for people on a flat screen.
+    modalities=("manipulation",),
+    depth_aids=True,
+    familiarization=FamiliarizationConfig(trials=0),
+    cohort=CohortConfig(size=1, avr_experts=0, games_experts=0, both_experts=0),
+)
+"""One person, one trial, the default timeout."""
+SHOTS = Path(os.environ.get("ARTELEOP_SHOTS", "/tmp"))
+
+
+def _rows(path: Path) -> list[dict[str, str]]:
+    with open(path, encoding="utf-8", newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def test_a_scripted_participant_places_the_bowl_from_what_the_page_shows(tmp_path: Path) -> None:
+    from tests.instruments.browser import (
+        choose,
+        chromium,
+        press_button,
+        require_chromium,
+        text_field,
+    )
+    from tests.instruments.screen_reading import require_tesseract
+    from tests.instruments.scripted_participant import ScriptedParticipant
+
+    require_chromium()
+    require_tesseract()
+    from arteleop.ar_features import ViewConfig
+
+    failures: list[BaseException] = []
+    seen: dict[str, object] = {}
+
+    def take_part(server: StudyServer) -> None:
+        with chromium() as browser:
+            tab = browser.open(server.url, for_pictures=False).playwright
+            tab.get_by_text("Information and consent").wait_for()
+            tab.get_by_text("I have read the information above").click()
+            press_button(tab, "Continue")
+            text_field(tab, "Age (years)").fill("31")
+            choose(tab)
+            press_button(tab, "Continue")
+            tab.get_by_text("How to drive the robot").wait_for()
+            press_button(tab, "Continue")
+            tab.get_by_text("Trial 1 of 1").wait_for()
+            person = ScriptedParticipant(tab, log=print)
+            seen["outcome"] = person.do_trial()
+            seen["presses"] = person.presses
+            tab.screenshot(path=str(SHOTS / "scripted-outcome.png"))
+            press_button(tab, "Next")
+            end = tab.get_by_text("You can close this page", exact=False)
+            for _ in range(2):  # the condition's items, then the final ones
+                tab.get_by_text("Questionnaire").first.wait_for(timeout=30_000)
+                press_button(tab, "Submit")
+            end.wait_for(timeout=30_000)
+
+    with (
+        served_run(tmp_path / "run", STUDY) as run,
+        StudyServer(run, ViewConfig(port=0), HeadCameraConfig(width_px=320, height_px=240))
+        as server,
+    ):  # fmt: skip
+        # The server on this thread (its sites' OpenGL contexts are this thread's), the
+        # participant on another.
+        def participant() -> None:
+            try:
+                take_part(server)
+            except BaseException as err:  # reported by the test's thread
+                failures.append(err)
+            finally:
+                server.stop()
+
+        thread = threading.Thread(target=participant, daemon=True)
+        thread.start()
+        server.serve()
+        thread.join(timeout=60)
+    if failures:
+        raise failures[0]
+    # What the page said is what the files hold: the bowl on the target circle, in time.
+    shown = re.fullmatch(r"Placed in ([\d.]+) s, (\d+) mm from the target\.", str(seen["outcome"]))
+    assert shown, seen["outcome"]
+    (trial,) = _rows(tmp_path / "run" / "trials.csv")
+    assert trial["outcome"] == "success"
+    assert f"{float(trial['completion_time_s']):.1f}" == shown.group(1)
+    assert round(1000 * float(trial["placement_error_m"])) == int(shown.group(2))
+    assert float(trial["placement_error_m"]) < 0.06, "off the target circle (60 mm)"
+    assert float(trial["completion_time_s"]) < STUDY.timeout_s
+    (browser,) = _rows(tmp_path / "run" / BROWSER_FILE)
+    assert browser["input_device"] == "buttons"
+    assert {"close", "open"} <= set(seen["presses"])  # type: ignore[arg-type]
+    answers = _rows(tmp_path / "run" / "questionnaire.csv")
+    assert answers and {a["participant"] for a in answers} == {"P01"}
