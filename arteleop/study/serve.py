@@ -89,8 +89,9 @@ the handle. Or step the handle with the **Move** and **Height** buttons, as the 
 button and press Space. The robot is seen through its head camera, a moment late; move, then
 watch the gripper arrive.
 
-**Grip.** Move the Grip slider to *closed* to close the gripper on the bowl (it closes past
-the first mark) and back to *open* to let go (it opens below the second mark).
+**Grip.** The fingers open sideways, across the view: take the bowl by its left or right
+wall. Move the Grip slider to *closed* to close the gripper on the bowl (it closes past the
+first mark) and back to *open* to let go (it opens below the second mark).
 
 **The timer** starts when your hand first moves towards the bowl and stops when the bowl,
 released, stands still. Be as quick and as accurate as you can: put the bowl's centre on the

@@ -65,11 +65,9 @@ def test_a_scripted_participant_places_the_bowl_from_what_the_page_shows(tmp_pat
             seen["presses"] = person.presses
             tab.screenshot(path=str(SHOTS / "scripted-outcome.png"))
             press_button(tab, "Next")
-            end = tab.get_by_text("You can close this page", exact=False)
-            for _ in range(2):  # the condition's items, then the final ones
-                tab.get_by_text("Questionnaire").first.wait_for(timeout=30_000)
-                press_button(tab, "Submit")
-            end.wait_for(timeout=30_000)
+            tab.get_by_text("Questionnaire").wait_for(timeout=30_000)
+            press_button(tab, "Submit")
+            tab.get_by_text("Every session of this study is done", exact=False).wait_for()
 
     with (
         served_run(tmp_path / "run", STUDY) as run,
