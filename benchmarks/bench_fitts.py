@@ -170,7 +170,7 @@ def main() -> None:
               for lag in lags for p in range(people)]  # fmt: skip
     t0 = time.perf_counter()
     # A fresh worker for each block: a worker's memory grew about 13 MB a trial, to 12 GB
-    # after an hour of the default run, whatever keeps it (not Python objects).
+    # after an hour of the default run (benchmarks/README.md: what is found of why).
     with ProcessPoolExecutor(args.workers, max_tasks_per_child=1) as pool:
         rows = [row for block_rows in pool.map(run, blocks) for row in block_rows]
     print(f"{len(rows)} pointing trials, {people} people x {reps} repetitions, in "
