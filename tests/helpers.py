@@ -1,11 +1,13 @@
 """Test-only helpers: PyBullet's own tools as an independent reference; skipping a test for a
-missing system package."""
+missing system package; a served study with its participant beside it."""
 
 from __future__ import annotations
 
 import os
 import signal
-from typing import NoReturn
+import threading
+from collections.abc import Callable
+from typing import Any, NoReturn
 
 import numpy as np
 import pytest
@@ -54,3 +56,25 @@ def ctrl_c_reaches_it() -> None:
     inherited (a runner started in the background by a shell without job control ignores
     SIGINT, and so would every child)."""
     signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
+def serve_to(server: Any, person: Callable[[], None]) -> None:
+    """Run ``server`` (a :class:`arteleop.study.serve.StudyServer`) on this thread (its sites'
+    OpenGL contexts are this thread's) while ``person`` takes part on another; the server stops
+    when the person is done, and the person's failure is raised here."""
+    failures: list[BaseException] = []
+
+    def take_part() -> None:
+        try:
+            person()
+        except BaseException as err:  # reported by the test's thread
+            failures.append(err)
+        finally:
+            server.stop()
+
+    thread = threading.Thread(target=take_part, daemon=True)
+    thread.start()
+    server.serve()
+    thread.join(timeout=60)
+    if failures:
+        raise failures[0]

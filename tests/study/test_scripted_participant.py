@@ -5,13 +5,13 @@ within the default timeout, through the keyboard and the page's controls."""
 import csv
 import os
 import re
-import threading
 from pathlib import Path
 
 from arteleop.scene import HeadCameraConfig
 from arteleop.study import CohortConfig, FamiliarizationConfig, StudyConfig
 from arteleop.study.serve import StudyServer
 from arteleop.study.session import BROWSER_FILE, served_run
+from tests.helpers import serve_to
 
 STUDY = StudyConfig(
     name="scripted",
@@ -45,7 +45,6 @@ def test_a_scripted_participant_places_the_bowl_from_what_the_page_shows(tmp_pat
     require_tesseract()
     from arteleop.ar_features import ViewConfig
 
-    failures: list[BaseException] = []
     seen: dict[str, object] = {}
 
     def take_part(server: StudyServer) -> None:
@@ -74,22 +73,7 @@ def test_a_scripted_participant_places_the_bowl_from_what_the_page_shows(tmp_pat
         StudyServer(run, ViewConfig(port=0), HeadCameraConfig(width_px=320, height_px=240))
         as server,
     ):  # fmt: skip
-        # The server on this thread (its sites' OpenGL contexts are this thread's), the
-        # participant on another.
-        def participant() -> None:
-            try:
-                take_part(server)
-            except BaseException as err:  # reported by the test's thread
-                failures.append(err)
-            finally:
-                server.stop()
-
-        thread = threading.Thread(target=participant, daemon=True)
-        thread.start()
-        server.serve()
-        thread.join(timeout=60)
-    if failures:
-        raise failures[0]
+        serve_to(server, lambda: take_part(server))
     # What the page said is what the files hold: the bowl on the target circle, in time.
     shown = re.fullmatch(r"Placed in ([\d.]+) s, (\d+) mm from the target\.", str(seen["outcome"]))
     assert shown, seen["outcome"]

@@ -5,7 +5,6 @@ import json
 import os
 import queue
 import re
-import threading
 from dataclasses import replace
 from pathlib import Path
 
@@ -28,6 +27,7 @@ from arteleop.study.session import (
     SessionInputError,
     served_run,
 )
+from tests.helpers import serve_to
 from tests.instruments.browser import choose, press_button, text_field
 from tests.instruments.screen_reading import of_hue
 from tests.instruments.view_probe import admitted, refused
@@ -260,7 +260,6 @@ def test_a_participant_goes_through_the_study_in_a_real_browser(tmp_path: Path) 
     from arteleop.ar_features import ViewConfig
 
     camera = HeadCameraConfig(width_px=320, height_px=240)
-    failures: list[BaseException] = []
     greens: list[int] = []
     links: queue.Queue[tuple[str, str]] = queue.Queue()
     with (
@@ -272,23 +271,12 @@ def test_a_participant_goes_through_the_study_in_a_real_browser(tmp_path: Path) 
             lambda participant, url: links.put((participant, url)),
         ) as server,  # fmt: skip
     ):
-        # The server on this thread (its sites' OpenGL contexts are this thread's), the
-        # participant on another.
-        def participant() -> None:
-            try:
-                with chromium() as browser:
-                    _take_part(browser, server, links, greens)
-            except BaseException as err:  # reported by the test's thread
-                failures.append(err)
-            finally:
-                server.stop()
 
-        person = threading.Thread(target=participant, daemon=True)
-        person.start()
-        server.serve()
-        person.join(timeout=60)
-    if failures:
-        raise failures[0]
+        def participant() -> None:
+            with chromium() as browser:
+                _take_part(browser, server, links, greens)
+
+        serve_to(server, participant)
     # Before the first trial the robot's view without layers (the gizmo's green handles
     # only); before a trial under task AR, its target mesh.
     assert greens[0] < 1000 and greens[1] > 5000, greens
