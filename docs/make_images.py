@@ -1,7 +1,7 @@
 """Make the documentation's pictures: the head camera's image and depth at rest, the operator's
 view under each modality at the same moment, and the predictive ghost ahead of a delayed view.
 
-Seed 0's synthetic operator under full AR, 5 s into the trial (13 cm over the grasp point), at the
+Seed 0's synthetic operator under full AR, 6 s into the trial (10 cm from the grasp point), at the
 Kinect's 640x480; headless Chromium takes each picture of the view (needs ``apt-get install
 chromium``). The predictive ghost: the same seed under the ghost and the predictive ghost with a
 500 ms round trip, while the arm reaches.
@@ -35,9 +35,9 @@ from arteleop.teleop import (
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the checkout's tests/instruments
 from tests.instruments.browser import browser_page
 
-MOMENT_S = 5.0
-DELAYED_MOMENT_S = 5.5
-"""Seed 0 reaches for the bowl then, in view: the predicted gripper is 15 cm ahead."""
+MOMENT_S = 6.0
+DELAYED_MOMENT_S = 6.0
+"""Seed 0 reaches for the bowl then, in view: the predicted gripper is 19 cm ahead."""
 WIDTH_PX = 800
 """The pictures are scaled down to this width for the documentation."""
 
