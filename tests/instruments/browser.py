@@ -172,3 +172,11 @@ def choose(tab: Any, choices: dict[str, str] = CHOICES) -> None:
     for label, option in choices.items():
         tab.get_by_role("combobox", name=label).click()
         tab.get_by_role("option", name=option, exact=True).click()
+
+
+def answer_questions(tab: Any, age: str = "31", choices: dict[str, str] = CHOICES) -> None:
+    """Answer the start page's questions (``age`` in years, the dropdowns' ``choices``) and go
+    on."""
+    text_field(tab, "Age (years)").fill(age)
+    choose(tab, choices)
+    press_button(tab, "Continue")

@@ -158,17 +158,12 @@ def bowl_box(rgb: NDArray[np.uint8]) -> Box | None:
     """The bowl: its largest yellow part (red and green over blue); None if not seen."""
     c = rgb.astype(np.int16)
     yellow = (np.minimum(c[..., 0], c[..., 1]) - c[..., 2] > 80).astype(np.uint8)
-    parts = [b for b in _components(yellow) if b[4] > 200]
-    if not parts:
-        return None
-    x, y, w, h, _ = max(parts, key=lambda b: b[4])
-    return Box(x + w / 2, y + h / 2, w, h)
+    return _largest([b for b in _components(yellow) if b[4] > 200], by=4)
 
 
 def bowl_spot(rgb: NDArray[np.uint8]) -> Spot | None:
     """The middle of :func:`bowl_box`."""
-    box = bowl_box(rgb)
-    return None if box is None else Spot(box.x_px, box.y_px)
+    return _middle(bowl_box(rgb))
 
 
 def target_ring(rgb: NDArray[np.uint8]) -> Box | None:
@@ -180,13 +175,21 @@ def target_ring(rgb: NDArray[np.uint8]) -> Box | None:
         for b in _components(black)
         if b[2] > 40 and 0.5 < b[2] / b[3] < 3 and b[4] < 0.4 * b[2] * b[3]
     ]
-    if not rings:
-        return None
-    x, y, w, h, _ = max(rings, key=lambda b: b[2])
-    return Box(x + w / 2, y + h / 2, w, h)
+    return _largest(rings, by=2)
 
 
 def target_spot(rgb: NDArray[np.uint8]) -> Spot | None:
     """Where :func:`target_ring` is seen."""
-    ring = target_ring(rgb)
-    return None if ring is None else Spot(ring.x_px, ring.y_px)
+    return _middle(target_ring(rgb))
+
+
+def _largest(parts: list[tuple[int, int, int, int, int]], by: int) -> Box | None:
+    """The part (x, y, width, height, area) largest in its entry ``by``; None if none."""
+    if not parts:
+        return None
+    x, y, w, h, _ = max(parts, key=lambda b: b[by])
+    return Box(x + w / 2, y + h / 2, w, h)
+
+
+def _middle(box: Box | None) -> Spot | None:
+    return None if box is None else Spot(box.x_px, box.y_px)

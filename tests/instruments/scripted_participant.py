@@ -125,8 +125,7 @@ class ScriptedParticipant:
             "Page.captureScreenshot",
             {"format": "png", "optimizeForSpeed": True, "clip": self._clip},
         )
-        self.last_look = _decode(base64.b64decode(shot["data"]))
-        return self.last_look
+        return _decode(base64.b64decode(shot["data"]))
 
     def reading(self, read: Callable[[NDArray[np.uint8]], float | None], still: float) -> float:
         """What ``read`` finds on the screen once :data:`READS` looks in a row agree to within

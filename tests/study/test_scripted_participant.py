@@ -32,11 +32,10 @@ def _rows(path: Path) -> list[dict[str, str]]:
 
 def test_a_scripted_participant_places_the_bowl_from_what_the_page_shows(tmp_path: Path) -> None:
     from tests.instruments.browser import (
-        choose,
+        answer_questions,
         chromium,
         press_button,
         require_chromium,
-        text_field,
     )
     from tests.instruments.screen_reading import require_tesseract
     from tests.instruments.scripted_participant import ScriptedParticipant
@@ -53,9 +52,7 @@ def test_a_scripted_participant_places_the_bowl_from_what_the_page_shows(tmp_pat
             tab.get_by_text("Information and consent").wait_for()
             tab.get_by_text("I have read the information above").click()
             press_button(tab, "Continue")
-            text_field(tab, "Age (years)").fill("31")
-            choose(tab)
-            press_button(tab, "Continue")
+            answer_questions(tab)
             tab.get_by_text("How to drive the robot").wait_for()
             press_button(tab, "Continue")
             tab.get_by_text("Trial 1 of 1").wait_for()

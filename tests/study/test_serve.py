@@ -28,7 +28,7 @@ from arteleop.study.session import (
     served_run,
 )
 from tests.helpers import serve_to
-from tests.instruments.browser import choose, press_button, text_field
+from tests.instruments.browser import answer_questions, press_button, text_field
 from tests.instruments.screen_reading import of_hue
 from tests.instruments.view_probe import admitted, refused
 
@@ -204,9 +204,7 @@ def _take_part(browser, server: StudyServer, links: queue.Queue, greens: list[in
     text_field(first, "Age (years)").fill("17")
     press_button(first, "Continue")
     first.get_by_text("age 17: expected a whole number 18-99 (years).").wait_for()
-    text_field(first, "Age (years)").fill("31")
-    choose(first)
-    press_button(first, "Continue")
+    answer_questions(first)
     first.get_by_text("How to drive the robot").wait_for()
     press_button(first, "Continue")
     first.get_by_text("Trial 1 of 2").wait_for()
