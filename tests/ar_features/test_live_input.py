@@ -1,13 +1,15 @@
 """The live input: its reset reaches the robot's target, not only the page; its steps go the
-way the camera sees them."""
+way the camera sees them; a person's presses each count."""
 
 import socket
+import time
 
 import numpy as np
 import viser
 
-from arteleop.ar_features.live_input import LiveInput, step_directions
+from arteleop.ar_features.live_input import STEPS_M, LiveInput, step_directions
 from arteleop.operator import HandTarget
+from tests.instruments.browser import chromium, require_chromium
 
 
 def _free_port() -> int:
@@ -80,3 +82,39 @@ def test_each_step_button_moves_the_target_that_way_in_the_cameras_image() -> No
     for past_rad in (-0.2, -0.01, 0.01, 0.2, 0.6):
         near = step_directions(_looking_down_x(np.pi / 2 + past_rad, yaw_rad=0.3))
         np.testing.assert_allclose(near["away"], down["away"], atol=1e-12)
+
+
+PERSON_GAP_S = 0.1
+"""Between two presses: a person's fastest repeated taps are further apart (s)."""
+
+
+def test_presses_at_a_persons_pace_each_move_the_target_once() -> None:
+    """Ten presses in a real browser, alternating two buttons, a person's fastest pace apart:
+    ten steps. (viser's panel sends at most one update per 50 ms, the latest: presses closer
+    than that, as a script's are, merge into one.)"""
+    require_chromium()
+    rest = np.array([0.6, -0.5, 0.1])
+    T = _looking_down_x(0.6)
+    moves: list[np.ndarray] = []
+    server = viser.ViserServer(host="127.0.0.1", port=_free_port(), verbose=False)
+    try:
+        LiveInput(server, rest, lambda gripper_m, grip: moves.append(gripper_m), T_base_camera=T)
+        with chromium() as browser, browser.tab(f"http://127.0.0.1:{server.get_port()}") as tab:
+            page = tab.playwright
+            # Playwright's click waits for the button to take the pointer: the panel's folder
+            # is still opening for a moment after the page shows it.
+            buttons = [page.get_by_role("button", name=n, exact=True) for n in ("right", "up")]
+            for k in range(10):
+                buttons[k % 2].click()
+                time.sleep(PERSON_GAP_S)
+            end = time.monotonic() + 10.0
+            while len(moves) < 10 and time.monotonic() < end:
+                time.sleep(0.1)
+    finally:
+        server.stop()
+    step_m = STEPS_M[next(iter(STEPS_M))]
+    directions = step_directions(T)
+    assert len(moves) == 10
+    np.testing.assert_allclose(
+        moves[-1], rest + 5 * step_m * (directions["right"] + directions["up"]), atol=1e-9
+    )
