@@ -30,6 +30,7 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from operator import attrgetter
+from pathlib import Path
 from typing import Any
 
 import cv2
@@ -38,6 +39,7 @@ from numpy.typing import NDArray
 from playwright.sync_api import TimeoutError as PlaywrightTimeout
 from scipy.optimize import least_squares
 
+from tests.instruments.browser import answer_questions, press_button
 from tests.instruments.screen_reading import (
     DISTANCE,
     Box,
@@ -88,6 +90,8 @@ OUTCOME = re.compile(r"Placed in|Not placed")
 OUTCOME_WAIT_S = 10.0
 LINE_UP_GOES = 2
 """Goes at lining the bowl up with the target, each from a fresh look."""
+PAGE_WAIT_S = 60.0
+"""The next page shows within this (s): a trial's site is built meanwhile."""
 
 
 def _decode(png: bytes) -> NDArray[np.uint8]:
@@ -359,3 +363,66 @@ class ScriptedParticipant:
             self.press("up", LIFT_STEPS)
             outcome.wait_for(timeout=1000 * OUTCOME_WAIT_S)
         return outcome.inner_text()
+
+
+@dataclass(frozen=True)
+class TrialDone:
+    """A trial as the scripted participant did it."""
+
+    heading: str
+    """The page's heading: ``Trial k of n``."""
+    outcome: str
+    """What the page said after it."""
+    presses: tuple[str, ...]
+    """Every input, in order."""
+
+
+def take_part(
+    tab: Any, log: Callable[[str], None] = lambda _: None, shots: Path | None = None
+) -> list[TrialDone]:
+    """A participant's whole session in ``tab``, from the consent page to the study's last
+    page: consent, the start page's questions, the tutorial, every trial (practice ones too),
+    the questionnaire as it comes. ``shots``: a folder for a screenshot of every page, named in
+    order."""
+    taken: list[str] = []
+
+    def shot(name: str) -> None:
+        taken.append(name)
+        if shots is not None:
+            tab.screenshot(path=str(shots / f"{len(taken):02d}-{name}.png"))
+
+    def wait(text: str | re.Pattern[str]) -> Any:
+        shown = tab.get_by_text(text).first
+        shown.wait_for(timeout=1000 * PAGE_WAIT_S)
+        return shown
+
+    wait("Information and consent")
+    shot("consent")
+    tab.get_by_text("I have read the information above").click()
+    press_button(tab, "Continue")
+    wait("Age (years)")
+    shot("questions")
+    answer_questions(tab)
+    wait("How to drive the robot")
+    shot("tutorial")
+    press_button(tab, "Continue")
+    done: list[TrialDone] = []
+    step, k, n = "5 cm", 1, 1
+    while k <= n:
+        heading = wait(re.compile(rf"^Trial {k} of \d+$")).inner_text()
+        n = int(heading.split()[-1])
+        shot(f"trial-{k}")
+        person = ScriptedParticipant(tab, log=log, step=step)
+        outcome = person.do_trial()
+        log(f"{heading}: {outcome}")
+        shot(f"outcome-{k}")
+        done.append(TrialDone(heading, outcome, tuple(person.presses)))
+        step = person.step  # the Step dropdown keeps its choice from trial to trial
+        press_button(tab, "Next")
+        k += 1
+    wait("Questionnaire")
+    shot("questionnaire")
+    press_button(tab, "Submit")
+    wait("Every session of this study is done")
+    shot("end")
+    return done

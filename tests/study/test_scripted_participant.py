@@ -22,7 +22,8 @@ STUDY = StudyConfig(
     cohort=CohortConfig(size=1, avr_experts=0, games_experts=0, both_experts=0),
 )
 """One person, one trial, the default timeout."""
-SHOTS = Path(os.environ.get("ARTELEOP_SHOTS", "/tmp"))
+SHOTS = os.environ.get("ARTELEOP_SHOTS")
+"""A folder for a screenshot of every page the participant sees, if set."""
 
 
 def _rows(path: Path) -> list[dict[str, str]]:
@@ -31,49 +32,31 @@ def _rows(path: Path) -> list[dict[str, str]]:
 
 
 def test_a_scripted_participant_places_the_bowl_from_what_the_page_shows(tmp_path: Path) -> None:
-    from tests.instruments.browser import (
-        answer_questions,
-        chromium,
-        press_button,
-        require_chromium,
-    )
+    from tests.instruments.browser import chromium, require_chromium
     from tests.instruments.screen_reading import require_tesseract
-    from tests.instruments.scripted_participant import ScriptedParticipant
+    from tests.instruments.scripted_participant import TrialDone, take_part
 
     require_chromium()
     require_tesseract()
     from arteleop.ar_features import ViewConfig
 
-    seen: dict[str, object] = {}
+    done: list[TrialDone] = []
 
-    def take_part(server: StudyServer) -> None:
+    def walk(server: StudyServer) -> None:
         with chromium() as browser:
             tab = browser.open(server.url, for_pictures=False).playwright
-            tab.get_by_text("Information and consent").wait_for()
-            tab.get_by_text("I have read the information above").click()
-            press_button(tab, "Continue")
-            answer_questions(tab)
-            tab.get_by_text("How to drive the robot").wait_for()
-            press_button(tab, "Continue")
-            tab.get_by_text("Trial 1 of 1").wait_for()
-            person = ScriptedParticipant(tab, log=print)
-            seen["outcome"] = person.do_trial()
-            seen["presses"] = person.presses
-            tab.screenshot(path=str(SHOTS / "scripted-outcome.png"))
-            press_button(tab, "Next")
-            tab.get_by_text("Questionnaire").wait_for(timeout=30_000)
-            press_button(tab, "Submit")
-            tab.get_by_text("Every session of this study is done", exact=False).wait_for()
+            done.extend(take_part(tab, print, None if SHOTS is None else Path(SHOTS)))
 
     with (
         served_run(tmp_path / "run", STUDY) as run,
         StudyServer(run, ViewConfig(port=0), HeadCameraConfig(width_px=320, height_px=240))
         as server,
     ):  # fmt: skip
-        serve_to(server, lambda: take_part(server))
+        serve_to(server, lambda: walk(server))
     # What the page said is what the files hold: the bowl on the target circle, in time.
-    shown = re.fullmatch(r"Placed in ([\d.]+) s, (\d+) mm from the target\.", str(seen["outcome"]))
-    assert shown, seen["outcome"]
+    (trial_done,) = done
+    shown = re.fullmatch(r"Placed in ([\d.]+) s, (\d+) mm from the target\.", trial_done.outcome)
+    assert shown, trial_done.outcome
     (trial,) = _rows(tmp_path / "run" / "trials.csv")
     assert trial["outcome"] == "success"
     assert f"{float(trial['completion_time_s']):.1f}" == shown.group(1)
@@ -82,6 +65,6 @@ def test_a_scripted_participant_places_the_bowl_from_what_the_page_shows(tmp_pat
     assert float(trial["completion_time_s"]) < STUDY.timeout_s
     (browser,) = _rows(tmp_path / "run" / BROWSER_FILE)
     assert browser["input_device"] == "buttons"
-    assert {"close", "open"} <= set(seen["presses"])  # type: ignore[arg-type]
+    assert {"close", "open"} <= set(trial_done.presses)
     answers = _rows(tmp_path / "run" / "questionnaire.csv")
     assert answers and {a["participant"] for a in answers} == {"P01"}
