@@ -271,6 +271,8 @@ class StudyServer(Closeable):
             # The scene as the trial will begin, its layers on, while the person gets ready.
             cues = modality_cues(spec.modality)
             self.view.show(site_frame(site, cues, True, config.depth_aids))
+            if (live := self._live) is not None:  # the gizmo where the last trial left it
+                live.reset()
             self._show(lambda p: p.trial(heading, text, lambda: self._act("start")), driving=True)
             self._wait("start")
             if (live := self._live) is not None:  # a tab may go meanwhile

@@ -183,7 +183,18 @@ def _green_pixels(shot: np.ndarray) -> int:
     return int(of_hue(shot, (0, 255, 0)).sum())
 
 
-def _take_part(browser, server: StudyServer, links: queue.Queue, greens: list[int]) -> None:
+def _gizmo_px(shot: np.ndarray) -> np.ndarray:
+    """Where the gizmo's red handle is in an RGB screenshot (px): a pink no cloud reaches (the
+    software-WebGL notice's orange has less blue than green)."""
+    r, g, b = (shot[..., k].astype(int) for k in range(3))
+    rows, cols = np.nonzero((r - np.maximum(g, b) > 120) & (b > g))
+    assert len(rows) > 50, "the gizmo is not to be seen"
+    return np.array([cols.mean(), rows.mean()])
+
+
+def _take_part(
+    browser, server: StudyServer, links: queue.Queue, greens: list[int], gizmos: list[np.ndarray]
+) -> None:
     gate = server.view.gate
     assert refused(server.url, gate)  # the server's bare address: a socket sent nothing
     participant, link = links.get(timeout=60)
@@ -215,15 +226,17 @@ def _take_part(browser, server: StudyServer, links: queue.Queue, greens: list[in
     for k in (1, 2):
         watcher.get_by_text(f"Trial {k} of 2").wait_for(timeout=30_000)
         watcher.get_by_text("Drive the robot").wait_for()
+        before = watching_tab.screenshot(SHOTS / f"before-start-{k}.png")
+        gizmos.append(_gizmo_px(before))
         if k == 1:  # the trial cut short, again, its scene shown as it will start
-            greens.append(_green_pixels(watching_tab.screenshot(SHOTS / "before-start.png")))
+            greens.append(_green_pixels(before))
         press_button(watcher, "Start")
-        if k == 2:  # driven by a step button: the device is recorded
-            # Once the trial's status has replaced the prompt, Start's reset is behind.
-            watcher.get_by_text("press Start when ready", exact=False).wait_for(state="hidden")
-            # From the keyboard: focused (as Tab would), pressed with Space.
-            watcher.get_by_role("button", name="down", exact=True).focus()
-            watcher.keyboard.press("Space")
+        # Driven by a step button: the device is recorded. Once the trial's status has
+        # replaced the prompt, Start's reset is behind.
+        watcher.get_by_text("press Start when ready", exact=False).wait_for(state="hidden")
+        # From the keyboard: focused (as Tab would), pressed with Space.
+        watcher.get_by_role("button", name="down", exact=True).focus()
+        watcher.keyboard.press("Space")
         watcher.get_by_text("Not placed: timeout.").wait_for(timeout=60_000)
         press_button(watcher, "Next")
     watcher.get_by_text("Questionnaire").wait_for(timeout=30_000)
@@ -250,7 +263,8 @@ def test_a_participant_goes_through_the_study_in_a_real_browser(tmp_path: Path) 
     link is let in throughout): consent,
     questions (a wrong answer told), a trial cut short by closing the tab (a second tab, which
     had seen "in progress", takes over and the trial runs again, its scene and layers shown
-    before Start), both trials, the questionnaire, the end; then the next participant's link
+    before Start), both trials each stepped once (the next trial's page shows the gizmo at
+    rest again), the questionnaire, the end; then the next participant's link
     admits them, and the first link no one. The files hold what the person gave."""
     from tests.instruments.browser import VIEWPORT, chromium, require_chromium
 
@@ -259,6 +273,7 @@ def test_a_participant_goes_through_the_study_in_a_real_browser(tmp_path: Path) 
 
     camera = HeadCameraConfig(width_px=320, height_px=240)
     greens: list[int] = []
+    gizmos: list[np.ndarray] = []
     links: queue.Queue[tuple[str, str]] = queue.Queue()
     with (
         served_run(tmp_path / "run", STUDY) as run,
@@ -272,12 +287,14 @@ def test_a_participant_goes_through_the_study_in_a_real_browser(tmp_path: Path) 
 
         def participant() -> None:
             with chromium() as browser:
-                _take_part(browser, server, links, greens)
+                _take_part(browser, server, links, greens, gizmos)
 
         serve_to(server, participant)
     # Before the first trial the robot's view without layers (the gizmo's green handles
     # only); before a trial under task AR, its target mesh.
     assert greens[0] < 1000 and greens[1] > 5000, greens
+    # Each trial's page shows the gizmo at rest, not where the last trial's steps left it.
+    assert np.linalg.norm(gizmos[1] - gizmos[0]) < 6.0, gizmos
     folder = tmp_path / "run"
     (person,) = _rows(folder / "participants.csv")
     assert person == {"participant": "P01", "age": "31", "gender": "female",
@@ -295,7 +312,7 @@ def test_a_participant_goes_through_the_study_in_a_real_browser(tmp_path: Path) 
     assert len(answers) == 9 and {a["participant"] for a in answers} == {"P01"}
     shown = _rows(folder / BROWSER_FILE)
     assert [(b["participant"], b["trial_index"], b["input_device"]) for b in shown] == [
-        ("P01", "1", ""), ("P01", "2", "buttons")
+        ("P01", "1", "buttons"), ("P01", "2", "buttons")
     ]  # fmt: skip
     for b in shown:  # the tab's scene beside the docked panel; a frame there and back
         assert 0 < float(b["display_round_trip_s"]) < ROUND_TRIP_TIMEOUT_S, b

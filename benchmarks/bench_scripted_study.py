@@ -1,0 +1,166 @@
+"""A short study served to the scripted participant in a real browser, its run folder analysed,
+beside the simulated participant on the same trials.
+
+The study: one participant, one practice trial and two conditions (manipulation and full, the
+two presets that draw the distance bar the script reads), the depth aids on, the default
+timeouts; ``--out`` gets its ``study.toml``. Then, each as a researcher types it:
+
+1. ``arteleop study serve study.toml --out served --port 0 --width-px 320 --height-px 240``,
+   and the scripted participant (``tests/instruments/scripted_participant.py``) takes part in
+   headless Chromium from the consent page to the last, deciding every move from what the page
+   shows; a screenshot of every page goes to ``--out``'s ``shots/``;
+2. ``arteleop analyze served``: the served run folder, as any lab's;
+3. ``arteleop study run study.toml --out simulated``: the simulated participant on the same
+   plan (the same trials, seeds, starts and targets): the baseline;
+4. ``arteleop analyze served simulated``: the two cohorts of the design pooled.
+
+It prints, per trial, the time and error in the browser against the simulated participant's,
+and their ratio; it exits non-zero if a step fails or a page's outcome is not the file's.
+
+    python benchmarks/bench_scripted_study.py [--out DIR]
+
+Needs Chromium and Tesseract (the tests' system packages). About 8 min on two cores.
+"""
+
+from __future__ import annotations
+
+from arteleop import blas_kernel  # noqa: F401  (first: it picks numpy's BLAS kernel)
+
+# isort: split
+import argparse
+import queue
+import re
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+from pathlib import Path
+
+import pandas as pd
+
+from tests.instruments.browser import chromium
+from tests.instruments.scripted_participant import TrialDone, take_part
+
+STUDY_TOML = """\
+name = "scripted-short"
+modalities = ["manipulation", "full"]
+depth_aids = true
+
+[familiarization]
+trials = 1
+modality = "manipulation"
+
+[cohort]
+size = 1
+avr_experts = 0
+games_experts = 0
+both_experts = 0
+"""
+SERVING = re.compile(r"at (http://\S+): participant")
+OUTCOME = re.compile(r"Placed in ([\d.]+) s, (\d+) mm from the target\.")
+SERVE_START_S = 120.0
+"""The server says where it serves within this (s)."""
+SERVE_END_S = 60.0
+"""...and ends within this once the last page is shown (s)."""
+
+
+class BenchmarkFailed(RuntimeError):
+    """A step of the benchmark did not do what it should."""
+
+
+def arteleop(*args: str) -> list[str]:
+    """Run ``arteleop ARGS`` to its end; its output's lines. Raises if it fails."""
+    done = subprocess.run([sys.executable, "-m", "arteleop.cli", *args], capture_output=True,
+                          text=True)  # fmt: skip
+    if done.returncode != 0:
+        raise BenchmarkFailed(f"arteleop {' '.join(args)} exited {done.returncode}:\n"
+                              f"{done.stdout}{done.stderr}")  # fmt: skip
+    return done.stdout.splitlines()
+
+
+def serve_to_script(study: Path, served: Path, shots: Path) -> tuple[list[TrialDone], float]:
+    """``arteleop study serve`` to the scripted participant; its trials and the session's wall
+    time (s, from the consent page to the last)."""
+    server = subprocess.Popen(
+        [sys.executable, "-m", "arteleop.cli", "study", "serve", str(study), "--out",
+         str(served), "--port", "0", "--width-px", "320", "--height-px", "240"],
+        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+    )  # fmt: skip
+    lines: queue.Queue[str] = queue.Queue()
+    said: list[str] = []
+    threading.Thread(target=lambda: [lines.put(line) for line in server.stdout], daemon=True).start()  # type: ignore[union-attr]
+    try:
+        end = time.monotonic() + SERVE_START_S
+        url = None
+        while url is None:
+            try:
+                said.append(lines.get(timeout=max(end - time.monotonic(), 0.01)))
+            except queue.Empty:
+                raise BenchmarkFailed(f"the server said no address: {said}") from None
+            if found := SERVING.search(said[-1]):
+                url = found.group(1)
+        start = time.perf_counter()
+        with chromium() as browser:
+            tab = browser.open(url, for_pictures=False).playwright
+            done = take_part(tab, lambda line: print("  " + line, flush=True), shots)
+        session_s = time.perf_counter() - start
+        if server.wait(timeout=SERVE_END_S) != 0:
+            raise BenchmarkFailed(f"the server exited {server.returncode}")
+        return done, session_s
+    finally:
+        if server.poll() is None:
+            server.terminate()
+            server.wait(timeout=30)
+
+
+def _trials(folder: Path) -> pd.DataFrame:
+    trials = pd.read_csv(folder / "trials.csv")
+    return trials.sort_values(["participant", "trial_index"]).reset_index(drop=True)
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--out", type=Path, default=None, help="a new folder for the files")
+    args = parser.parse_args()
+    out = args.out or Path(tempfile.mkdtemp(prefix="bench-scripted-"))
+    out.mkdir(parents=True, exist_ok=True)
+    study, served, simulated = out / "study.toml", out / "served", out / "simulated"
+    study.write_text(STUDY_TOML, encoding="utf-8")
+    (shots := out / "shots").mkdir(exist_ok=True)
+
+    print(f"serving {study} to the scripted participant into {served}", flush=True)
+    done, session_s = serve_to_script(study, served, shots)
+    people = _trials(served)
+    if len(done) != len(people):
+        raise BenchmarkFailed(f"{len(done)} trials done on the page, {len(people)} in trials.csv")
+    for page, row in zip(done, people.itertuples(), strict=True):
+        shown = OUTCOME.fullmatch(page.outcome)
+        filed = (f"{row.completion_time_s:.1f}", round(1000 * row.placement_error_m))
+        if row.outcome != "success" or shown is None or (shown.group(1), int(shown.group(2))) != filed:
+            raise BenchmarkFailed(f"{page.heading}: the page said {page.outcome!r}, "
+                                  f"trials.csv holds {row.outcome} {filed}")  # fmt: skip
+    arteleop("analyze", str(served), "--out", str(served / "report"))
+    print(f"analysed {served}", flush=True)
+    arteleop("study", "run", str(study), "--out", str(simulated), "--quiet")
+    arteleop("analyze", str(served), str(simulated), "--out", str(out / "both"))
+    print(f"ran the simulated participant into {simulated}; both analysed in {out / 'both'}")
+
+    model = _trials(simulated)
+    print(f"\nscripted session: {session_s:.0f} s of wall time, consent to the last page\n")
+    print(f"{'trial':<7}{'phase':<16}{'modality':<14}{'browser time (s)':>17}"
+          f"{'simulated (s)':>15}{'ratio':>7}{'browser error (mm)':>20}{'simulated (mm)':>16}")  # fmt: skip
+    for a, b in zip(people.itertuples(), model.itertuples(), strict=True):
+        if (a.trial_index, a.modality, a.seed) != (b.trial_index, b.modality, b.seed):
+            raise BenchmarkFailed(f"trial {a.trial_index}: the cohorts' plans differ")
+        print(f"{a.trial_index:<7}{a.phase:<16}{a.modality:<14}{a.completion_time_s:>17.1f}"
+              f"{b.completion_time_s:>15.1f}{a.completion_time_s / b.completion_time_s:>7.2f}"
+              f"{1000 * a.placement_error_m:>20.0f}{1000 * b.placement_error_m:>16.0f}")  # fmt: skip
+    return 0
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(main())
+    except BenchmarkFailed as err:
+        sys.exit(f"bench_scripted_study: {err}")
