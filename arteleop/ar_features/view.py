@@ -37,6 +37,9 @@ from arteleop.errors import ConfigurationError
 from arteleop.lifetime import Closeable
 from arteleop.transforms import sight_is_vertical
 
+DELIVERY_TIMEOUT_S = 5.0
+"""Longest wait for a tab to confirm it has what was shown (s): a tab in the background draws
+nothing."""
 
 @dataclass(frozen=True)
 class ViewConfig:
@@ -230,6 +233,18 @@ class OperatorView(Closeable):
         # Only a change: setting it sends the browser a camera update, which calls this again.
         if not math.isclose(camera.fov, fov, rel_tol=1e-9):
             camera.fov = fov
+
+    def deliver(self, timeout_s: float = DELIVERY_TIMEOUT_S) -> None:
+        """Return once every connected tab has received what was shown so far, as a page the
+        server stops after must: viser sends in order, so a frame asked for now comes back
+        after it (a stopped server had cut off a last page still in its buffer). A tab that
+        draws nothing, in the background, or goes is waited for at most ``timeout_s`` (s)."""
+        self.server.flush()
+        for client in list(self.server.get_clients().values()):
+            try:
+                client.get_render(8, 8, timeout=timeout_s)
+            except (RuntimeError, TimeoutError):  # gone, or not drawing
+                pass
 
     def close(self) -> None:
         """Stop the server."""

@@ -208,6 +208,7 @@ class StudyServer(Closeable):
 
     def close(self) -> None:
         self.stop()
+        self.view.deliver()  # the last page, "every session is done", stays on the tabs
         self.view.close()
 
     # The session, on the serving thread: each step shows a page, then waits for its answer.

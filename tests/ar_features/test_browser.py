@@ -203,6 +203,26 @@ def test_the_page_opens_on_the_head_cameras_view(
     assert background.mean() < 0.5
 
 
+def test_a_page_shown_last_stays_on_the_tab_when_the_server_stops(browser: Browser) -> None:
+    """``deliver`` before ``close``: the tab keeps the last page (a served study's "every
+    session is done"). Stopped at once, the server had cut it off in its buffer, and the tab
+    showed the page before it."""
+    last = "Every session of this study is done."
+    view = OperatorView(ViewConfig(port=0))
+    try:
+        tab = browser.open(view.url, for_pictures=False)
+        tab.playwright.get_by_text("Connected").wait_for()
+        view.server.gui.add_markdown(last)
+        view.deliver()
+    finally:
+        view.close()
+    shown = tab.playwright.get_by_text(last)
+    try:
+        shown.wait_for(timeout=3000)
+    finally:
+        tab.close()
+
+
 def test_live_input_shows_beside_the_docked_panel(
     moment: tuple[DisplayFrame, ViewAssets, NDArray[np.float64]], tmp_path: Path, browser: Browser
 ) -> None:
