@@ -178,6 +178,22 @@ def target_ring(rgb: NDArray[np.uint8]) -> Box | None:
     return _largest(rings, by=2)
 
 
+def target_mesh_box(rgb: NDArray[np.uint8]) -> Box | None:
+    """The task layer's bowl at the target: its largest green part about as wide as tall (the
+    distance bar is long and thin, the gizmo's handles small); None where it is not drawn."""
+    green = of_hue(rgb, (0, 255, 0)).astype(np.uint8)
+    return _largest(
+        [b for b in _components(green) if b[2] > 40 and 0.5 < b[2] / b[3] < 2 and b[4] > 500],
+        by=4,
+    )
+
+
+def target_box(rgb: NDArray[np.uint8]) -> Box | None:
+    """Where the bowl must go, as the page shows it: the task layer's bowl where it is drawn
+    (over the target circle, which it hides), else the target circle."""
+    return target_mesh_box(rgb) or target_ring(rgb)
+
+
 def target_spot(rgb: NDArray[np.uint8]) -> Spot | None:
     """Where :func:`target_ring` is seen."""
     return _middle(target_ring(rgb))
