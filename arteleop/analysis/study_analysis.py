@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import itertools
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, fields
 
 import numpy as np
 import pandas as pd
@@ -144,8 +144,10 @@ def analyse(study: StudyData, options: AnalysisOptions | None = None) -> Analysi
             tests += t
             norms += n
     return AnalysisResult(
-        tests=pd.DataFrame([asdict(r) for r in tests]),
-        normality=pd.DataFrame([asdict(r) for r in norms]),
+        # Columns named: with no test at all (one modality, no questionnaire) the tables still
+        # have them.
+        tests=pd.DataFrame([asdict(r) for r in tests], columns=_names(TestResult)),
+        normality=pd.DataFrame([asdict(r) for r in norms], columns=_names(NormalityResult)),
         order_effect=pd.DataFrame(order_rows),
         descriptives=_descriptives(trials, measures, options),
         trials=trials,
@@ -154,6 +156,10 @@ def analyse(study: StudyData, options: AnalysisOptions | None = None) -> Analysi
         counts=counts,
         cells=cells,
     )
+
+
+def _names(kind: type) -> list[str]:
+    return [f.name for f in fields(kind)]
 
 
 def _subset(network: str | None) -> str:

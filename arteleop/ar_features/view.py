@@ -41,6 +41,7 @@ DELIVERY_TIMEOUT_S = 5.0
 """Longest wait for a tab to confirm it has what was shown (s): a tab in the background draws
 nothing."""
 
+
 @dataclass(frozen=True)
 class ViewConfig:
     """Where the web scene is served and how the cloud is drawn.

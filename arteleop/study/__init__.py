@@ -22,7 +22,7 @@ from arteleop.study.definition import (
 )
 from arteleop.study.plan import PracticePoints, TrialSpec, plan_study, trial_seed
 from arteleop.study.protocol import TrialRecord, operator_traits, run_planned_trial
-from arteleop.study.questionnaire import simulated_answers
+from arteleop.study.questionnaire import classes_shown, simulated_answers
 from arteleop.study.run_folder import FORMAT_VERSION, TRIAL_COLUMNS, RunFolder
 from arteleop.study.run_lock import run_lock
 from arteleop.study.runner import RunComplete, StudyRun, resume_study, run_study
@@ -65,6 +65,7 @@ __all__ = [
     "StudySite",
     "TrialRecord",
     "TrialSpec",
+    "classes_shown",
     "cyclic_sequences",
     "first_difference",
     "load_study_file",

@@ -20,8 +20,9 @@ and each item (presence, embodiment, ease), on the 1-7 Likert scale:
 The gains are Likert points, chosen so that a class that halves the time moves ease by about
 1.5 points: in the original study the ratings spread over most of the scale (docs/study.md §4).
 In a study that crosses delay with cues, a participant's answers come from their trials under
-the least delay (the questionnaire asks about the cues, not the network). Real answers replace
-these with ``arteleop study answer``.
+the least delay (the questionnaire asks about the cues, not the network). Only the classes the
+study's conditions draw are asked about (:func:`classes_shown`), of a simulated participant as
+of a person. Real answers replace these with ``arteleop study answer``.
 """
 
 from __future__ import annotations
@@ -34,7 +35,8 @@ import pandas as pd
 
 from arteleop.analysis.data import AR_CLASSES, NETWORK_COLUMNS
 from arteleop.analysis.data import QUESTIONNAIRE_ITEMS as ITEMS
-from arteleop.ar_features import modality_cues
+from arteleop.ar_features import LAYER_NAMES, modality_cues
+from arteleop.study.definition import StudyConfig
 
 LENIENCY_SD = 0.7
 ANSWER_SD = 0.8
@@ -45,11 +47,32 @@ FAILED_ERROR_M = 0.10
 """Placement error a failed trial counts as (m): the largest the original study saw."""
 
 
+def classes_shown(study: StudyConfig) -> tuple[str, ...]:
+    """The AR classes (:data:`AR_CLASSES`) of which some layer is drawn in a condition of
+    ``study``: what its questionnaire asks about. Practice is left out: its aids are not
+    compared."""
+    drawn = [modality_cues(c.modality) for c in study.planned_conditions]
+    return tuple(
+        ar_class
+        for ar_class in AR_CLASSES
+        if any(
+            getattr(modality_cues(ar_class), layer) and getattr(cues, layer)
+            for cues in drawn
+            for layer in LAYER_NAMES
+        )
+    )
+
+
 def simulated_answers(
-    participant: str, seed: Sequence[int], experimental: pd.DataFrame, timeout_s: float
+    participant: str,
+    seed: Sequence[int],
+    experimental: pd.DataFrame,
+    timeout_s: float,
+    classes: Sequence[str] = AR_CLASSES,
 ) -> list[tuple[str, str, str, int]]:
     """(participant, ar_class, item, score) rows for one participant, from their experimental
-    trials (``modality``, ``outcome``, ``completion_time_s``, ``placement_error_m``)."""
+    trials (``modality``, ``outcome``, ``completion_time_s``, ``placement_error_m``), for the
+    AR classes in ``classes`` (each class's answers the same whichever others are asked)."""
     rng = np.random.default_rng(seed)
     network = [c for c in NETWORK_COLUMNS if c in experimental]
     least_delay = experimental.sort_values(network, kind="stable").drop_duplicates("modality")
@@ -65,7 +88,8 @@ def simulated_answers(
         }  # fmt: skip
         for item in ITEMS:
             raw = 4.0 + leniency + effects[item] + rng.normal(0.0, ANSWER_SD)
-            rows.append((participant, ar_class, item, int(np.clip(round(raw), 1, 7))))
+            if ar_class in classes:
+                rows.append((participant, ar_class, item, int(np.clip(round(raw), 1, 7))))
     return rows
 
 

@@ -37,7 +37,7 @@ from arteleop.study.cohort import participants
 from arteleop.study.definition import ParticipantSpec, StudyConfig
 from arteleop.study.plan import EXPERIMENTAL, TrialSpec, plan_study
 from arteleop.study.protocol import TrialRecord, run_planned_trial
-from arteleop.study.questionnaire import simulated_answers
+from arteleop.study.questionnaire import classes_shown, simulated_answers
 from arteleop.study.run_folder import FORMAT_VERSION, STUDY_FILE, RunFolder, table_text
 from arteleop.study.run_lock import LOCK_FILE, after_fork_in_child, run_lock
 from arteleop.study.sites import StudySite
@@ -462,9 +462,10 @@ def _questionnaire_text(
     trials = folder.trials()
     experimental = trials[trials["phase"] == EXPERIMENTAL]
     rows = []
+    classes = classes_shown(study)
     for k, person in enumerate(people):
         own = experimental[experimental["participant"] == person.id]
-        rows += simulated_answers(person.id, (study.seed, 4, k), own, study.timeout_s)
+        rows += simulated_answers(person.id, (study.seed, 4, k), own, study.timeout_s, classes)
     return table_text(QUESTIONNAIRE_COLUMNS, rows)
 
 

@@ -37,7 +37,7 @@ import numpy as np
 import viser
 from numpy.typing import NDArray
 
-from arteleop.analysis.data import AR_CLASSES, QUESTIONNAIRE_ITEMS
+from arteleop.analysis.data import QUESTIONNAIRE_ITEMS
 from arteleop.ar_features import OperatorView, ViewConfig, modality_cues
 from arteleop.ar_features.live_input import LiveInput
 from arteleop.ar_features.session_pages import SessionPages
@@ -47,6 +47,7 @@ from arteleop.operator import HandTarget, live_source
 from arteleop.scene import HeadCameraConfig, RemoteSite
 from arteleop.study.plan import FAMILIARIZATION, TrialSpec
 from arteleop.study.protocol import trial_config, trial_record
+from arteleop.study.questionnaire import classes_shown
 from arteleop.study.session import (
     GENDERS,
     HANDEDNESS,
@@ -232,7 +233,7 @@ class StudyServer(Closeable):
         while pending := run.pending(participant):
             self._trial(pending[0])
         if not run.answered(participant):
-            classes = [(c, AR_CLASS_TEXT[c]) for c in AR_CLASSES]
+            classes = [(c, AR_CLASS_TEXT[c]) for c in classes_shown(run.study)]
             items = [(i, ITEM_TEXT[i]) for i in QUESTIONNAIRE_ITEMS]
             self._show(lambda p: p.questionnaire(classes, items, lambda r: self._act("rate", r)))
             run.answer(participant, self._wait("rate"))

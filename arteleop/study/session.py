@@ -35,7 +35,6 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from arteleop.analysis.data import (
-    AR_CLASSES,
     PARTICIPANT_COLUMNS,
     QUESTIONNAIRE_COLUMNS,
     QUESTIONNAIRE_ITEMS,
@@ -46,6 +45,7 @@ from arteleop.errors import ArteleopError, RunFolderError
 from arteleop.study.definition import ParticipantSpec, StudyConfig
 from arteleop.study.plan import TrialSpec
 from arteleop.study.protocol import TrialRecord, trial_row
+from arteleop.study.questionnaire import classes_shown
 from arteleop.study.run_folder import (
     PARTICIPANTS_FILE,
     QUESTIONNAIRE_FILE,
@@ -317,9 +317,10 @@ class ServedRun:
         return participant in self._answered()
 
     def answer(self, participant: str, ratings: Ratings) -> None:
-        """The participant's questionnaire, every AR class and item rated 1-7."""
+        """The participant's questionnaire, every item of every AR class the study's conditions
+        draw (:func:`classes_shown`) rated 1-7."""
         rows = []
-        for ar_class in AR_CLASSES:
+        for ar_class in classes_shown(self.study):
             for item in QUESTIONNAIRE_ITEMS:
                 score = ratings.get((ar_class, item))
                 _whole(f"{item} of {ar_class}", score, 1, 7, "on the 1-7 scale")
@@ -352,6 +353,8 @@ class ServedRun:
         return read_table(path, columns)[1:] if path.exists() else []
 
     def _answered(self) -> set[str]:
+        if not classes_shown(self.study):  # no AR drawn: nothing to ask
+            return {person.id for person in self.people}
         path = self.folder.path / QUESTIONNAIRE_FILE
         return {row[0] for row in self._rows(path, QUESTIONNAIRE_COLUMNS)}
 

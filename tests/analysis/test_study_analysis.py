@@ -127,6 +127,22 @@ def test_missing_parts_are_skipped_with_a_note(run: Path, tmp_path: Path) -> Non
     assert set(result.tests["measure"]) == {"completion_time_s", "placement_error_m"}
 
 
+def test_a_study_with_nothing_to_compare_has_a_report_without_tests(
+    run: Path, tmp_path: Path
+) -> None:
+    """No trial placed and no questionnaire (a pilot whose trials all ran out of time): the
+    report is written, its tests table with its columns and no row."""
+    study = load_study(run / "trials.csv")
+    trials = study.trials.assign(outcome="timeout", completion_time_s=np.nan,
+                                 placement_error_m=np.nan)  # fmt: skip
+    none = type(study)(trials, None, None, study.base_dir, study.trials_path)
+    result = analyse(none)
+    assert result.tests.empty and "p_value" in result.tests.columns
+    write_report(none, result, AnalysisOptions(), tmp_path / "report")
+    tests = pd.read_csv(tmp_path / "report" / "tests.csv")
+    assert tests.empty and "p_value" in tests.columns
+
+
 def test_options_paired_and_holm(run: Path) -> None:
     study = load_study(run)
     paired = analyse(study, AnalysisOptions(trim=False, paired=True, holm=True))
