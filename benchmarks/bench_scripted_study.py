@@ -43,7 +43,10 @@ from pathlib import Path
 from typing import Any
 
 import pandas as pd
+from playwright.sync_api import Error as PlaywrightError
 
+from arteleop.ar_features import modality_cues
+from arteleop.errors import ConfigurationError
 from tests.instruments.browser import chromium
 from tests.instruments.scripted_participant import TrialDone, take_part
 
@@ -118,7 +121,11 @@ def serve_to_script(study: Path, served: Path, shots: Path) -> tuple[list[TrialD
 
         with chromium() as browser:
             tab = browser.open(url, for_pictures=False).playwright
-            done = take_part(tab, log, shots)
+            try:
+                done = take_part(tab, log, shots)
+            except (PlaywrightError, AssertionError) as err:
+                raise BenchmarkFailed(f"the scripted participant stopped: {err}\n"
+                                      f"the pages it saw are in {shots}") from None  # fmt: skip
         session_s = time.perf_counter() - start
         if server.wait(timeout=SERVE_END_S) != 0:
             raise BenchmarkFailed(f"the server exited {server.returncode}")
@@ -152,6 +159,15 @@ def main() -> int:
         "script reads",
     )
     args = parser.parse_args()
+    for cues in [*args.conditions.split(","), "manipulation"]:  # and the practice's
+        try:
+            drawn = modality_cues(cues).distance_bar
+        except ConfigurationError as err:
+            parser.error(f"--conditions: {err}")
+        if not drawn:
+            parser.error(f"--conditions {cues!r}: the scripted participant reads the distance "
+                         "bar; give cue sets that draw it (manipulation, full, or with "
+                         "distance_bar)")  # fmt: skip
     out = args.out or Path(tempfile.mkdtemp(prefix="bench-scripted-"))
     out.mkdir(parents=True, exist_ok=True)
     study, served, simulated = out / "study.toml", out / "served", out / "simulated"
@@ -184,7 +200,7 @@ def main() -> int:
 
     model = _trials(simulated)
     print(f"\nscripted session: {session_s:.0f} s of wall time, consent to the last page\n")
-    print(f"{'trial':<7}{'phase':<16}{'modality':<14}{'browser: time (s) / error (mm)':>32}"
+    print(f"{'trial':<7}{'phase':<16}{'cues':<40}{'browser: time (s) / error (mm)':>32}"
           f"{'simulated: time / error':>26}{'time ratio':>12}")  # fmt: skip
     ratios = []
     for a, b in zip(people.itertuples(), model.itertuples(), strict=True):
@@ -193,7 +209,7 @@ def main() -> int:
         if a.outcome == b.outcome == "success":
             ratios.append(a.completion_time_s / b.completion_time_s)
         ratio = f"{ratios[-1]:.2f}" if a.outcome == b.outcome == "success" else "-"
-        print(f"{a.trial_index:<7}{a.phase:<16}{a.modality:<14}{_outcome(a):>32}"
+        print(f"{a.trial_index:<7}{a.phase:<16}{a.modality:<40}{_outcome(a):>32}"
               f"{_outcome(b):>26}{ratio:>12}")  # fmt: skip
     placed = [(t.outcome == "success").sum() for t in (people, model)]
     print(

@@ -144,8 +144,7 @@ def analyse(study: StudyData, options: AnalysisOptions | None = None) -> Analysi
             tests += t
             norms += n
     return AnalysisResult(
-        # Columns named: with no test at all (one modality, no questionnaire) the tables still
-        # have them.
+        # With no test to make (no trial placed, no questionnaire) the tables keep their columns.
         tests=pd.DataFrame([asdict(r) for r in tests], columns=_names(TestResult)),
         normality=pd.DataFrame([asdict(r) for r in norms], columns=_names(NormalityResult)),
         order_effect=pd.DataFrame(order_rows),

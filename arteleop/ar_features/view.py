@@ -236,10 +236,10 @@ class OperatorView(Closeable):
             camera.fov = fov
 
     def deliver(self, timeout_s: float = DELIVERY_TIMEOUT_S) -> None:
-        """Return once every connected tab has received what was shown so far, as a page the
-        server stops after must: viser sends in order, so a frame asked for now comes back
-        after it (a stopped server had cut off a last page still in its buffer). A tab that
-        draws nothing, in the background, or goes is waited for at most ``timeout_s`` (s)."""
+        """Return once every connected tab has received what was shown so far: a server about
+        to stop had cut off the last page still in its buffer. viser sends in order, so a frame
+        asked for now comes back after it. A tab that draws nothing (in the background) or
+        goes is waited for at most ``timeout_s`` (s)."""
         self.server.flush()
         for client in list(self.server.get_clients().values()):
             try:
