@@ -54,6 +54,7 @@ STEPS_MM = {"5 cm": 50, "1 cm": 10}
 """The step buttons' sizes, as the Step dropdown names them (mm)."""
 AXES = (("right", "left"), ("away", "nearer"), ("up", "down"))
 """The step buttons in opposite pairs along three directions at right angles."""
+_OPPOSITE = {a: b for pair in AXES for a, b in (pair, pair[::-1])}
 PROBE_STEPS = 2
 """The first steps, to learn from the distance where the grasp point lies: 10 cm each way."""
 RING_SHARE = 0.95
@@ -65,8 +66,10 @@ LOCAL_PROBE_STEPS = 2
 """Steps of 1 cm to learn, near it, where the grasp point lies."""
 CLOSE_ENOUGH_MM = 15
 """Near enough to the grasp point to close the gripper on the rim (mm)."""
-MAX_LOOKS = 8
-"""Readings near the grasp point before closing the gripper wherever it is."""
+MAX_FEELS = 10
+"""Steps tried near the grasp point before closing the gripper wherever it is."""
+FELT_MM = 3
+"""A step that brings the number down by more than this is kept (mm): the readout jitters."""
 LIFT_STEPS = 2
 """Steps of 5 cm up with the bowl: clear of the table and of the target circle."""
 CLICK_GAP_S = 0.25
@@ -246,17 +249,33 @@ class ScriptedParticipant:
         self.press("up", LOCAL_PROBE_STEPS)
         seen.append((self._at_mm.copy(), self.distance()))
         self.log(f"beside it: {[round(d) for _, d in seen]} mm")
-        goal = beside - [side * BESIDE_MM, 0.0, 0.0]
-        while seen[-1][1] > CLOSE_ENOUGH_MM and len(seen) < MAX_LOOKS:
-            # Beside the wall the label's point follows the gripper along it: only across
-            # the image and in height does the number tell where it is.
-            goal = self._point(seen, goal, free=(0, 2))
-            offset = goal - self._at_mm
-            self.log(f"grasp point at {np.round(goal)} mm: going {np.round(offset)} mm")
-            self.go_by(offset, order=(0, 1, 2) if offset[2] < 0 else (2, 0, 1))
-            seen.append((self._at_mm.copy(), self.distance()))
-            self.log(f"now {seen[-1][1]:.0f} mm")
-        return seen[-1][1]
+        # Beside the wall the label's point follows the gripper along it: only across the image
+        # and in height does the number tell where it is. One go at the fitted point...
+        goal = self._point(seen, beside - [side * BESIDE_MM, 0.0, 0.0], free=(0, 2))
+        offset = goal - self._at_mm
+        self.log(f"grasp point at {np.round(goal)} mm: going {np.round(offset)} mm")
+        self.go_by(offset, order=(0, 1, 2) if offset[2] < 0 else (2, 0, 1))
+        distance = self.distance()
+        self.log(f"now {distance:.0f} mm")
+        # ...then as a person feels their way with the number: a step, kept if the number
+        # falls, taken back if not, at the wall and in height, until it is small.
+        self.choose_step("1 cm")
+        tries = [("left" if side > 0 else "right"), "down", "up"]
+        steps = 0
+        while distance > CLOSE_ENOUGH_MM and steps < MAX_FEELS:
+            for name in tries:
+                self.press(name)
+                steps += 1
+                now = self.distance()
+                if now < distance - FELT_MM:
+                    distance = now
+                    tries = [name, *(t for t in tries if t != name)]  # that way again first
+                    break
+                self.press(_OPPOSITE[name])
+            else:
+                break  # no step helps: as near as it gets
+            self.log(f"felt {tries[0]}: {distance:.0f} mm")
+        return distance
 
     @staticmethod
     def _point(
