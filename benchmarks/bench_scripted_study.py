@@ -47,6 +47,7 @@ from playwright.sync_api import Error as PlaywrightError
 
 from arteleop.ar_features import modality_cues
 from arteleop.errors import ConfigurationError
+from arteleop.study.serve import outcome_text
 from tests.instruments.browser import chromium
 from tests.instruments.scripted_participant import TrialDone, take_part
 
@@ -184,11 +185,7 @@ def main() -> int:
     if len(done) != len(people):
         raise BenchmarkFailed(f"{len(done)} trials done on the page, {len(people)} in trials.csv")
     for page, row in zip(done, people.itertuples(), strict=True):
-        if row.outcome == "success":
-            filed = f"Placed in {row.completion_time_s:.1f} s, "
-            filed += f"{round(1000 * row.placement_error_m)} mm from the target."
-        else:
-            filed = f"Not placed: {row.outcome.replace('_', ' ')}."
+        filed = outcome_text(row.outcome, row.completion_time_s, row.placement_error_m)
         if page.outcome != filed:
             raise BenchmarkFailed(f"{page.heading}: the page said {page.outcome!r}, "
                                   f"trials.csv holds {filed!r}")  # fmt: skip

@@ -134,6 +134,15 @@ class SessionInterrupted(ArteleopError):
     """The controlling tab went during a trial: the attempt is recorded, the trial repeated."""
 
 
+def outcome_text(outcome: str, completion_time_s: float, placement_error_m: float) -> str:
+    """What the page tells a participant after a trial, from its ``trials.csv`` row's
+    outcome, time (s) and error (m)."""
+    if outcome == "success":
+        error_mm = 1000 * placement_error_m
+        return f"Placed in {completion_time_s:.1f} s, {error_mm:.0f} mm from the target."
+    return f"Not placed: {outcome.replace('_', ' ')}."
+
+
 class StudyServer(Closeable):
     """Serves a :class:`ServedRun` to people until every session is over or :meth:`stop`.
 
@@ -292,12 +301,8 @@ class StudyServer(Closeable):
                 self._trial_running.clear()
         record = trial_record(spec, result, time.perf_counter() - start)
         row = record.row
-        if row["outcome"] == "success":
-            error_mm = float(row["placement_error_m"]) * 1000  # type: ignore[arg-type]
-            time_s = row["completion_time_s"]
-            result_text = f"Placed in {time_s:.1f} s, {error_mm:.0f} mm from the target."
-        else:
-            result_text = f"Not placed: {str(row['outcome']).replace('_', ' ')}."
+        time_s, error_m = row["completion_time_s"], row["placement_error_m"]
+        result_text = outcome_text(str(row["outcome"]), time_s, error_m)  # type: ignore[arg-type]
         self.run.keep(record)
         devices = live.take_devices() if (live := self._live) is not None else ""
         self._show(lambda p: p.message(heading, result_text, "Next", lambda: self._act("next")))
