@@ -10,6 +10,7 @@ from __future__ import annotations
 import contextlib
 import io
 import math
+import time
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -38,8 +39,8 @@ from arteleop.lifetime import Closeable
 from arteleop.transforms import sight_is_vertical
 
 DELIVERY_TIMEOUT_S = 5.0
-"""Longest wait for a tab to confirm it has what was shown (s): a tab in the background draws
-nothing."""
+"""Longest wait for the tabs to confirm they have what was shown (s): a tab in the background
+draws nothing."""
 
 
 @dataclass(frozen=True)
@@ -238,12 +239,16 @@ class OperatorView(Closeable):
     def deliver(self, timeout_s: float = DELIVERY_TIMEOUT_S) -> None:
         """Return once every connected tab has received what was shown so far: a server about
         to stop had cut off the last page still in its buffer. viser sends in order, so a frame
-        asked for now comes back after it. A tab that draws nothing (in the background) or
-        goes is waited for at most ``timeout_s`` (s)."""
+        asked for now comes back after it. Tabs that draw nothing (in the background) or go
+        are waited for at most ``timeout_s`` in all (s)."""
         self.server.flush()
+        deadline = time.monotonic() + timeout_s
         for client in list(self.server.get_clients().values()):
+            left_s = deadline - time.monotonic()
+            if left_s <= 0:
+                return
             try:
-                client.get_render(8, 8, timeout=timeout_s)
+                client.get_render(8, 8, timeout=left_s)
             except (RuntimeError, TimeoutError):  # gone, or not drawing
                 pass
 

@@ -28,7 +28,7 @@ from arteleop.ar_features.live_input import LiveInput
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig, Workspace
 from arteleop.teleop import TrialConfig, display_frames_at, trial_operator, view_assets
 from tests.instruments.browser import Browser, chromium, require_chromium
-from tests.instruments.screen_reading import of_hue
+from tests.instruments.screen_reading import gizmo_red, of_hue
 
 GREEN, BLUE = (0, 255, 0), (0, 0, 255)
 """Hues, for :func:`of_hue`: the distance bar's and target's green, the grip bar's blue."""
@@ -248,12 +248,11 @@ def test_live_input_shows_beside_the_docked_panel(
     half = np.tan(np.radians(config.horizontal_fov_deg) / 2)
     image_edge_u = pixel(frame.viewpoint_m + frame.T_base_camera[:3, :3] @ [half, 0.0, 1.0])[0]
     assert 0 < v < scene_px[1] and image_edge_u < u < width - 40, "premise: past the image"
-    # The gizmo's handles within the scene beside the panel: its red (a pink the cloud's
-    # shaded red never reaches), green and blue, none of which the frame under no AR draws.
+    # The gizmo's handles within the scene beside the panel: its red, green and blue, none of
+    # which the frame under no AR draws.
     near = shot[max(v - 120, 0) : v + 120, u - 120 : width]
-    r, g, b = (near[..., k].astype(int) for k in range(3))
     handles = {
-        "red": int((r - np.maximum(g, b) > 120).sum()),
+        "red": int(gizmo_red(near).sum()),
         "green": int(of_hue(near, GREEN).sum()),
         "blue": int(of_hue(near, BLUE).sum()),
     }

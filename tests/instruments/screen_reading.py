@@ -62,6 +62,13 @@ def of_hue(rgb: NDArray[np.uint8], hue_rgb: tuple[int, int, int]) -> NDArray[np.
     return c[..., k] - np.max(np.delete(c, k, axis=-1), axis=-1) > DOMINANCE
 
 
+def gizmo_red(rgb: NDArray[np.uint8]) -> NDArray[np.bool_]:
+    """Mask of the gizmo's red handle: a pink the cloud's shaded red never reaches (the
+    software-WebGL notice's orange has less blue than green)."""
+    c = rgb.astype(np.int16)
+    return (c[..., 0] - np.max(c[..., 1:], axis=-1) > 120) & (c[..., 2] > c[..., 1])
+
+
 @dataclass(frozen=True)
 class Spot:
     """Where something is seen in the scene (CSS px from its top-left corner)."""

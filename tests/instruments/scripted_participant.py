@@ -11,11 +11,12 @@ into it on the table, and up):
 - **Reach.** Three double steps, towards the bowl as the image shows it, and the distance
   label's numbers give the point they measure to (a least-squares fit): the nearest point of
   the bowl's grasp ring, on its near side. The bowl's width as seen, scaled by how far a step
-  moved the label, gives the ring's size and middle. The fingers open across the image, so it
-  goes beside the wall facing them across the image, level with the ring, then at the wall,
-  refining from small steps (there the label's point follows the gripper along the wall, so
-  only across and in height do the numbers tell), and closes the gripper when the number is
-  small.
+  moved the label, gives the ring's size and middle. The fingers open across the image, so they
+  close on the wall facing them across it. From afar that estimate can be a few centimetres
+  off: the gripper goes outside that wall and above the ring, out of its way, and a few 1 cm
+  steps there say where the wall is (the ring's distances from near by). Over the wall, down
+  onto it, the open fingers straddling it; then a step at a time, kept when the number falls,
+  and the gripper closes when the number is small.
 - **Carry.** Lifted, the bowl is brought across the image over the target circle, lowered to
   just above the table and nudged until the two are one in the image (its middle judged from
   its edges away from the gripper), set down and let go.
@@ -60,22 +61,29 @@ PROBE_STEPS = 2
 RING_SHARE = 0.95
 """The grasp ring (the middle of the wall, below the rim) is about this share of the bowl's
 width as seen."""
-BESIDE_MM = 40
-"""Outside the wall by this, level with the grasp ring, before going at it (mm)."""
-LOCAL_PROBE_STEPS = 2
-"""Steps of 1 cm to learn, near it, where the grasp point lies."""
+OUT_MM = 50
+"""Outside the wall by this, to learn from near by where it is (mm): clear of it when the first
+estimate is a few centimetres off."""
+UP_MM = 40
+"""Above the grasp ring by this, to learn where the wall is and to cross over it (mm): the rim
+is 15 mm above the ring, the fingers' ends a little below the point the label measures from."""
+LOCAL_PROBE_STEPS = 3
+"""Steps of 1 cm each way to learn, near it, where the wall is."""
 CLOSE_ENOUGH_MM = 15
 """Near enough to the grasp point to close the gripper on the rim (mm)."""
 MAX_FEELS = 10
 """Steps tried near the grasp point before closing the gripper wherever it is."""
 FELT_MM = 3
 """A step that brings the number down by more than this is kept (mm): the readout jitters."""
+SHORT_WAY_MM = 100
+"""Further than this along an axis, the Step is changed to 5 cm for the way there (mm)."""
 LIFT_STEPS = 2
 """Steps of 5 cm up with the bowl: clear of the table and of the target circle."""
-CLICK_GAP_S = 0.25
-"""Between two presses of a button, as a person presses (s). viser's panel sends at most one
-update per 50 ms, the latest (one throttled sender for the whole panel): twenty clicks by the
-script with no time between moved the target twice."""
+CLICK_GAP_S = 0.1
+"""After a press, before the next (s). viser's panel sends at most one update per 50 ms, the
+latest (one throttled sender for the whole panel): twenty clicks by the script with no time
+between moved the target twice. With the page's own time to take a key (about 0.4 s in a
+browser drawing in software), presses come about two a second; a person taps up to five."""
 ARRIVE_S = 0.5
 """The gripper has arrived this long after a press, or is about to (s)."""
 READS = 2
@@ -184,8 +192,12 @@ class ScriptedParticipant:
     def go_by(self, offset_mm: NDArray[np.float64], order: tuple[int, ...] = (0, 1, 2)) -> None:
         """Step the target by ``offset_mm`` (right, away, up) as near as 1 cm steps can, the
         axes in ``order``."""
-        # Big steps near it, small ones the rest of the way.
-        big = np.round(np.asarray(offset_mm) / STEPS_MM["5 cm"]).astype(int)
+        # Big steps short of it, small ones the rest of the way: never past it and back, which
+        # near the bowl could knock it. Changing the Step takes two clicks, the time of a few
+        # presses: a short way is all small steps when they are chosen.
+        short = self.step == "1 cm" and np.all(np.abs(offset_mm) < SHORT_WAY_MM)
+        big = 0 * np.asarray(offset_mm) if short else np.asarray(offset_mm) / STEPS_MM["5 cm"]
+        big = np.fix(big).astype(int)
         small = np.round((np.asarray(offset_mm) - big * STEPS_MM["5 cm"]) / STEPS_MM["1 cm"])
         counts = {"5 cm": big, "1 cm": small.astype(int)}
         for label in STEPS_MM:
@@ -230,31 +242,34 @@ class ScriptedParticipant:
         # The label measures to the nearest point of a level ring round the bowl's axis: from
         # afar, a point on its near side. The ring is about as wide as the bowl looks, measured
         # by how far a step moved the label. The fingers open across the image, so they close
-        # on the wall facing them across it: the gripper goes level with the ring, beside it
-        # across the image and in line with its middle, and from there straight at the wall,
-        # where the label's point is the one to pinch.
+        # on the wall facing them across it, beside the ring across the image and in line with
+        # its middle.
         near = self._point(seen, seen[0][0] - [0.0, 0.0, seen[0][1]])
         radius = RING_SHARE * bowl_wide_px / 2 / px_per_mm
         inward = (near - self._at_mm)[:2] / np.linalg.norm((near - self._at_mm)[:2])
         centre = near + np.append(radius * inward, 0.0)
         self.side = side = 1.0 if across == "left" else -1.0
-        beside = centre + [side * (radius + BESIDE_MM), 0.0, 0.0]
-        self.log(f"ring of {radius:.0f} mm round {np.round(centre)}: to {np.round(beside)}")
+        # From afar the point the numbers give is a few centimetres off (it slides along the
+        # ring as the gripper moves, and far readings pin it down poorly). Out of the wall's
+        # way, beside it and above it, a few small steps say where the wall is from near by.
+        out = [side * (radius + OUT_MM), 0.0, UP_MM]
+        self.log(f"ring of {radius:.0f} mm round {np.round(centre)}: to {np.round(centre + out)}")
         # Across and along first, still above the bowl, then down: never through it.
-        self.go_by(beside - self._at_mm, order=(0, 1, 2))
+        self.go_by(centre + out - self._at_mm, order=(0, 1, 2))
         seen = [(self._at_mm.copy(), self.distance())]
         self.choose_step("1 cm")
-        self.press(across, LOCAL_PROBE_STEPS)
-        seen.append((self._at_mm.copy(), self.distance()))
-        self.press("up", LOCAL_PROBE_STEPS)
-        seen.append((self._at_mm.copy(), self.distance()))
+        for name in ("right" if side > 0 else "left", "away", "down", "nearer"):
+            self.press(name, LOCAL_PROBE_STEPS * (2 if name == "nearer" else 1))
+            seen.append((self._at_mm.copy(), self.distance()))
         self.log(f"beside it: {[round(d) for _, d in seen]} mm")
-        # Beside the wall the label's point follows the gripper along it: only across the image
-        # and in height does the number tell where it is. One go at the fitted point...
-        goal = self._point(seen, beside - [side * BESIDE_MM, 0.0, 0.0], free=(0, 2))
-        offset = goal - self._at_mm
-        self.log(f"grasp point at {np.round(goal)} mm: going {np.round(offset)} mm")
-        self.go_by(offset, order=(0, 1, 2) if offset[2] < 0 else (2, 0, 1))
+        centre = self._ring_centre(seen, centre, radius)
+        wall = centre + [side * radius, 0.0, 0.0]
+        # Over the wall, then down onto it: the open fingers straddle it (from the side, the
+        # leading one pushes the bowl away).
+        self.log(f"wall at {np.round(wall)} mm")
+        over = wall + [0.0, 0.0, UP_MM]
+        self.go_by(over - self._at_mm, order=(2, 0, 1))
+        self.go_by(wall - self._at_mm)
         distance = self.distance()
         self.log(f"now {distance:.0f} mm")
         # ...then as a person feels their way with the number: a step, kept if the number
@@ -279,24 +294,33 @@ class ScriptedParticipant:
 
     @staticmethod
     def _point(
+        seen: list[tuple[NDArray[np.float64], float]], guess: NDArray[np.float64]
+    ) -> NDArray[np.float64]:
+        """The point nearest ``guess`` whose distances from where the gripper was best match
+        those read (mm)."""
+        at = np.array([p for p, _ in seen])
+        read = np.array([d for _, d in seen])
+        fit = least_squares(lambda x: np.linalg.norm(at - x, axis=1) - read, guess)
+        return np.asarray(fit.x)
+
+    @staticmethod
+    def _ring_centre(
         seen: list[tuple[NDArray[np.float64], float]],
         guess: NDArray[np.float64],
-        free: tuple[int, ...] = (0, 1, 2),
+        radius: float,
     ) -> NDArray[np.float64]:
-        """The point nearest ``guess``, changed along the axes ``free`` only, whose distances
-        from where the gripper was best match those read (mm)."""
+        """The middle, nearest ``guess``, of the level ring of ``radius`` whose distances from
+        where the gripper was best match those read (mm): what the label measures to is the
+        ring's nearest point. From one side the readings tell where the ring's near wall is,
+        not its size, so the size is taken as seen."""
         at = np.array([p for p, _ in seen])
         read = np.array([d for _, d in seen])
 
-        def point(x: NDArray[np.float64]) -> NDArray[np.float64]:
-            g = np.array(guess, dtype=np.float64)
-            g[list(free)] = x
-            return g
+        def residuals(c: NDArray[np.float64]) -> NDArray[np.float64]:
+            out = np.linalg.norm(at[:, :2] - c[:2], axis=1) - radius
+            return np.asarray(np.hypot(out, at[:, 2] - c[2]) - read)
 
-        fit = least_squares(
-            lambda x: np.linalg.norm(at - point(x), axis=1) - read, guess[list(free)]
-        )
-        return point(fit.x)
+        return np.asarray(least_squares(residuals, guess).x)
 
     def grip(self, closed: bool) -> None:
         """The Grip slider to its end, from the keyboard."""

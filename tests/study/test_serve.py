@@ -29,7 +29,7 @@ from arteleop.study.session import (
 )
 from tests.helpers import serve_to
 from tests.instruments.browser import answer_questions, press_button, text_field
-from tests.instruments.screen_reading import of_hue
+from tests.instruments.screen_reading import gizmo_red, of_hue
 from tests.instruments.view_probe import admitted, refused
 
 STUDY = StudyConfig(
@@ -186,10 +186,8 @@ def _green_pixels(shot: np.ndarray) -> int:
 
 
 def _gizmo_px(shot: np.ndarray) -> np.ndarray:
-    """Where the gizmo's red handle is in an RGB screenshot (px): a pink no cloud reaches (the
-    software-WebGL notice's orange has less blue than green)."""
-    r, g, b = (shot[..., k].astype(int) for k in range(3))
-    rows, cols = np.nonzero((r - np.maximum(g, b) > 120) & (b > g))
+    """Where the gizmo's red handle is in an RGB screenshot (px)."""
+    rows, cols = np.nonzero(gizmo_red(shot))
     assert len(rows) > 50, "the gizmo is not to be seen"
     return np.array([cols.mean(), rows.mean()])
 
