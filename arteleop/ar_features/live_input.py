@@ -4,7 +4,8 @@ Each only sets a target; the loop drives the robot towards it through the same m
 trajectory as a wearable's samples. The gizmo starts at the gripper's rest position. The step
 buttons move the target as the head camera sees it (left and right in its image, away and
 nearer on the table, up and down), for a person who cannot or would rather not drag; they work
-from the keyboard too (Tab to a button, Space or Enter to press it).
+from the keyboard too (:mod:`arteleop.ar_features.keys`: the view's own keys, W A S D, the
+arrows, E and Q, and G for the grip; or Tab to a button and Space).
 """
 
 from __future__ import annotations
@@ -15,6 +16,8 @@ from collections.abc import Callable
 import numpy as np
 import viser
 from numpy.typing import ArrayLike, NDArray
+
+from arteleop.ar_features.keys import keys_html
 
 GIZMO_SIZE_PX = 90
 """The gizmo's size on the screen (CSS px), the same near the camera and far from it."""
@@ -103,6 +106,7 @@ class LiveInput:
                     self._moved(BUTTONS, position)
 
             group.on_click(step)
+        gui.add_html(keys_html())
 
     def _dragged(self) -> None:
         with self._stepping:

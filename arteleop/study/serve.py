@@ -86,13 +86,14 @@ AGREE = "I have read the information above and agree to take part."
 TUTORIAL = """\
 **Drive the robot.** Drag the arrows of the handle at the gripper: the robot's gripper follows
 the handle. Or step the handle with the **Move** and **Height** buttons, as the camera sees it
-(left, away, nearer, right; up, down), by the **Step** chosen; from the keyboard, Tab to a
-button and press Space. The robot is seen through its head camera, a moment late; move, then
-watch the gripper arrive.
+(left, away, nearer, right; up, down), by the **Step** chosen, or with the keys: W A S D or
+the arrows to move, E up, Q down. The robot is seen through its head camera, a moment late;
+move, then watch the gripper arrive.
 
 **Grip.** The fingers open sideways, across the view: take the bowl by its left or right
 wall. Move the Grip slider to *closed* to close the gripper on the bowl (it closes past the
-first mark) and back to *open* to let go (it opens below the second mark).
+first mark) and back to *open* to let go (it opens below the second mark); or press G, once
+to close, again to open.
 
 **The timer** starts when your hand first moves towards the bowl and stops when the bowl,
 released, stands still. Be as quick and as accurate as you can: put the bowl's centre on the

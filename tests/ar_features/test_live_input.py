@@ -118,3 +118,63 @@ def test_presses_at_a_persons_pace_each_move_the_target_once() -> None:
     np.testing.assert_allclose(
         moves[-1], rest + 5 * step_m * (directions["right"] + directions["up"]), atol=1e-9
     )
+
+
+def test_the_views_keys_drive_the_gripper_and_leave_the_camera_where_it_is() -> None:
+    """In a real browser, D, E and the left arrow step the target right, up and left as the
+    buttons do, G closes the grip, then opens it, and W steps away by the Step chosen; the
+    view's camera, which those keys fly on any other page, stays put. A key held down steps
+    once; in the Grip slider's number field a key is the field's."""
+    require_chromium()
+    rest = np.array([0.6, -0.5, 0.1])
+    T = _looking_down_x(0.6)
+    moves: list[np.ndarray] = []
+    grips: list[float] = []
+
+    def heard(gripper_m: np.ndarray | None, grip: float | None) -> None:
+        if gripper_m is not None:
+            moves.append(gripper_m)
+        if grip is not None:
+            grips.append(grip)
+
+    server = viser.ViserServer(host="127.0.0.1", port=_free_port(), verbose=False)
+    try:
+        LiveInput(server, rest, heard, T_base_camera=T)
+        with chromium() as browser, browser.tab(f"http://127.0.0.1:{server.get_port()}") as tab:
+            page = tab.playwright
+            page.get_by_role("button", name="nearer", exact=True).wait_for()
+            (client,) = server.get_clients().values()
+            camera_m = np.array(client.camera.position)
+            for key in ("KeyD", "KeyE", "ArrowLeft"):
+                page.keyboard.press(key)
+                time.sleep(PERSON_GAP_S)
+            page.keyboard.down("KeyA")  # held: the browser repeats it
+            time.sleep(1.0)
+            page.keyboard.up("KeyA")
+            page.get_by_role("textbox").first.focus()  # the Grip slider's number field
+            page.keyboard.press("KeyD")
+            page.evaluate("document.activeElement.blur()")
+            page.keyboard.press("KeyG")
+            time.sleep(PERSON_GAP_S)
+            page.keyboard.press("KeyG")
+            # The Step chosen, its closed dropdown keeps the focus: keys still step, by it.
+            page.get_by_role("combobox", name="Step").click()
+            page.get_by_role("option", name="1 cm", exact=True).click()
+            page.keyboard.press("KeyW")
+            end = time.monotonic() + 10.0
+            while (len(moves) < 5 or len(grips) < 2) and time.monotonic() < end:
+                time.sleep(0.1)
+            time.sleep(0.5)  # a sixth move, or the camera's flight, would show by now
+            camera_after_m = np.array(client.camera.position)
+    finally:
+        server.stop()
+    step_m, small_m = STEPS_M.values()
+    directions = step_directions(T)
+    assert len(moves) == 5, moves
+    np.testing.assert_allclose(moves[1] - moves[0], step_m * directions["up"], atol=1e-9)
+    np.testing.assert_allclose(
+        moves[3], rest + step_m * (directions["up"] + directions["left"]), atol=1e-9
+    )
+    np.testing.assert_allclose(moves[4] - moves[3], small_m * directions["away"], atol=1e-9)
+    assert grips == [1.0, 0.0]
+    np.testing.assert_allclose(camera_after_m, camera_m, atol=1e-6)

@@ -2,8 +2,8 @@
 shows a person, through the keyboard and the page's controls.
 
 It reads the distance bar's and the grip bar's labels and sees the bowl and the target circle
-(:mod:`tests.instruments.screen_reading`), and drives with the step buttons (focused, and
-Space), the Step dropdown and the Grip slider. No server-side shortcut, no page messages: what
+(:mod:`tests.instruments.screen_reading`), and drives with the keys (W A S D, E and Q step the
+gripper, G grips) and the Step dropdown. No server-side shortcut, no page messages: what
 it decides, a person at the screen could decide. Its way is a person's who cannot judge depth
 and counts their steps (the step buttons' directions are at right angles: across the image,
 into it on the table, and up):
@@ -40,6 +40,7 @@ from numpy.typing import NDArray
 from playwright.sync_api import TimeoutError as PlaywrightTimeout
 from scipy.optimize import least_squares
 
+from arteleop.ar_features.keys import GRIP_KEY, KEYS
 from tests.instruments.browser import answer_questions, press_button
 from tests.instruments.screen_reading import (
     DISTANCE,
@@ -56,6 +57,8 @@ STEPS_MM = {"5 cm": 50, "1 cm": 10}
 AXES = (("right", "left"), ("away", "nearer"), ("up", "down"))
 """The step buttons in opposite pairs along three directions at right angles."""
 _OPPOSITE = {a: b for pair in AXES for a, b in (pair, pair[::-1])}
+KEY = {name: code for code, name in KEYS.items() if code.startswith("Key")}
+"""The letter key of each step button (:data:`arteleop.ar_features.keys.KEYS`)."""
 PROBE_STEPS = 2
 """The first steps, to learn from the distance where the grasp point lies: 10 cm each way."""
 RING_SHARE = 0.95
@@ -168,12 +171,10 @@ class ScriptedParticipant:
         time.sleep(CLICK_GAP_S)
 
     def press(self, name: str, times: int = 1) -> None:
-        """Press the step button ``name``, ``times`` times, from the keyboard (focused, as Tab
-        would, and Space), then give the arm time to get there."""
-        if times:
-            self.tab.get_by_role("button", name=name, exact=True).focus()
+        """Step ``name`` (a step button's), ``times`` times, with its key, then give the arm
+        time to get there."""
         for _ in range(times):
-            self.tab.keyboard.press("Space")
+            self.tab.keyboard.press(KEY[name])
             time.sleep(CLICK_GAP_S)
             self.presses.append(name)
             for k, pair in enumerate(AXES):
@@ -323,9 +324,9 @@ class ScriptedParticipant:
         return np.asarray(least_squares(residuals, guess).x)
 
     def grip(self, closed: bool) -> None:
-        """The Grip slider to its end, from the keyboard."""
-        self.tab.get_by_role("slider").first.focus()
-        self.tab.keyboard.press("End" if closed else "Home")
+        """Close the gripper, or open it, with the grip's key (it closes an open gripper and
+        opens a closed one)."""
+        self.tab.keyboard.press(GRIP_KEY)
         self.presses.append("close" if closed else "open")
         time.sleep(ARRIVE_S)
 
