@@ -15,7 +15,9 @@ CHOOSE = "(choose)"
 """A dropdown's first entry: no answer yet."""
 HOURS = ("under 1 h", "2-5 h", "over 5 h")
 """The weekly-hours buckets 1, 2 and 3, as the original questionnaire asked them."""
-LIKERT_MARKS = ((1, "1"), (4, "4"), (7, "7"))
+RATINGS = tuple(str(k) for k in range(1, 8))
+"""A 1-7 rating's answers. A dropdown, not a slider: a slider starts at an answer (its middle),
+which a participant can send without reading the question."""
 
 Form = Mapping[str, object]
 """A page's answers by question key, as the browser gave them."""
@@ -61,14 +63,14 @@ class SessionPages:
     def demographics(self, on_submit: Callable[[Form], None], genders: Sequence[str],
                      handedness: Sequence[str]) -> None:  # fmt: skip
         """The questions before the trials; ``on_submit`` gets the answers by key
-        (``age`` as typed; experience 1-7; hours as 1-3, 0 unanswered)."""
+        (``age`` as typed; experience 1-7; hours as 1-3; 0 unanswered)."""
         with self._new("About you"):
             age = self._gui.add_text("Age (years)", "")
             gender = self._gui.add_dropdown("Gender", (CHOOSE, *genders))
             hand = self._gui.add_dropdown("Handedness", (CHOOSE, *handedness))
-            avr = self._likert("AR/VR experience", "1: none, 7: a great deal")
+            avr = self._rating("AR/VR experience", "1: none, 7: a great deal")
             avr_hours = self._gui.add_dropdown("AR/VR per week", (CHOOSE, *HOURS))
-            games = self._likert("Video-game experience", "1: none, 7: a great deal")
+            games = self._rating("Video-game experience", "1: none, 7: a great deal")
             games_hours = self._gui.add_dropdown("Video games per week", (CHOOSE, *HOURS))
             self._error = self._gui.add_markdown("")
 
@@ -77,9 +79,9 @@ class SessionPages:
                     "age": age.value.strip(),
                     "gender": "" if gender.value == CHOOSE else gender.value,
                     "handedness": "" if hand.value == CHOOSE else hand.value,
-                    "avr_experience": int(avr.value),
+                    "avr_experience": _rated(avr.value),
                     "avr_hours": _bucket(avr_hours.value),
-                    "games_experience": int(games.value),
+                    "games_experience": _rated(games.value),
                     "games_hours": _bucket(games_hours.value),
                 })  # fmt: skip
 
@@ -106,17 +108,20 @@ class SessionPages:
         on_submit: Callable[[Mapping[tuple[str, str], int]], None],
     ) -> None:
         """A 1-7 rating of each item for each class: ``classes`` and ``items`` are (key, what
-        the participant reads)."""
+        the participant reads); ``on_submit`` gets the ratings, 0 where none was chosen."""
         with self._new("Questionnaire"):
             self._gui.add_markdown(
                 "Rate each kind of display aid you saw, from 1 (not at all) to 7 (very much)."
             )
-            sliders = {}
+            ratings = {}
             for class_key, class_text in classes:
                 self._gui.add_markdown(f"**{class_text}**")
                 for item_key, item_text in items:
-                    sliders[class_key, item_key] = self._likert(item_text)
-            self._button("Submit", lambda: on_submit({k: int(s.value) for k, s in sliders.items()}))
+                    ratings[class_key, item_key] = self._rating(item_text)
+            self._error = self._gui.add_markdown("")
+            self._button(
+                "Submit", lambda: on_submit({k: _rated(r.value) for k, r in ratings.items()})
+            )
 
     def error(self, text: str) -> None:
         """What is wrong with the page's answers, shown on it."""
@@ -130,9 +135,9 @@ class SessionPages:
         self._page = self._gui.add_folder(title, order=-1.0)
         return self._page
 
-    def _likert(self, label: str, hint: str | None = None) -> viser.GuiSliderHandle[int]:
-        """A 1-7 rating, at the scale's middle until moved."""
-        return self._gui.add_slider(label, 1, 7, 1, 4, marks=LIKERT_MARKS, hint=hint)
+    def _rating(self, label: str, hint: str | None = None) -> viser.GuiDropdownHandle[str]:
+        """A 1-7 rating, unanswered until chosen."""
+        return self._gui.add_dropdown(label, (CHOOSE, *RATINGS), hint=hint)
 
     def _button(self, label: str, on_click: Callable[[], None]) -> None:
         self._gui.add_button(label).on_click(lambda _: on_click())
@@ -140,6 +145,10 @@ class SessionPages:
 
 def _status(elapsed_s: float, state: str) -> str:
     return f"**Timer** {elapsed_s:.1f} s: {state}"
+
+
+def _rated(value: str) -> int:
+    return int(value) if value in RATINGS else 0
 
 
 def _bucket(value: str) -> int:

@@ -29,7 +29,7 @@ import queue
 import statistics
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import replace
 from typing import Any
 
@@ -246,7 +246,7 @@ class StudyServer(Closeable):
             classes = [(c, AR_CLASS_TEXT[c]) for c in classes_shown(run.study)]
             items = [(i, ITEM_TEXT[i]) for i in QUESTIONNAIRE_ITEMS]
             self._show(lambda p: p.questionnaire(classes, items, lambda r: self._act("rate", r)))
-            run.answer(participant, self._wait("rate"))
+            run.answer(participant, self._wait_for_ratings(classes, items))
         if self.view.gate is not None:  # the next participant comes by their own link
             self._show(lambda p: p.message("Thank you", f"{SESSION_OVER} You can close this "
                                            "page."))  # fmt: skip
@@ -258,6 +258,20 @@ class StudyServer(Closeable):
                                            "Next participant (researcher)",
                                            lambda: self._act("next")))  # fmt: skip
             self._wait("next")
+
+    def _wait_for_ratings(
+        self, classes: list[tuple[str, str]], items: list[tuple[str, str]]
+    ) -> Mapping[tuple[str, str], int]:
+        """The questionnaire's ratings once every item has one; until then the page names the
+        first without."""
+        while True:
+            ratings = self._wait("rate")
+            missing = [(c, i) for c in classes for i in items if not ratings.get((c[0], i[0]))]
+            if not missing:
+                return ratings
+            (_, class_text), (_, item_text) = missing[0]
+            message = f'"{item_text}", under "{class_text}": choose a rating, 1 to 7.'
+            self._on_pages(lambda p, message=message: p.error(message))
 
     def _ask_demographics(self, participant: str) -> None:
         self._show(lambda p: p.demographics(lambda f: self._act("about", f), GENDERS, HANDEDNESS))

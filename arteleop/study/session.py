@@ -122,7 +122,9 @@ class Demographics:
         age = str(form.get("age", "")).strip()
         _whole("age", int(age) if age.isdigit() else age, *AGE_RANGE, "years")
         for key, label in (("gender", "gender"), ("handedness", "handedness"),
+                           ("avr_experience", "AR/VR experience"),
                            ("avr_hours", "AR/VR per week"),
+                           ("games_experience", "video-game experience"),
                            ("games_hours", "video games per week")):  # fmt: skip
             if form.get(key) in ("", 0, None):
                 raise SessionInputError(f"{label}: choose one of the answers.")

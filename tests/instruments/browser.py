@@ -162,7 +162,8 @@ def press_button(tab: Any, name: str, timeout_s: float = 60.0) -> None:
     tab.get_by_role("button", name=name, exact=True).click(timeout=timeout_s * 1000)
 
 
-CHOICES = {"Gender": "female", "Handedness": "right", "AR/VR per week": "2-5 h",
+CHOICES = {"Gender": "female", "Handedness": "right", "AR/VR experience": "4",
+           "AR/VR per week": "2-5 h", "Video-game experience": "4",
            "Video games per week": "under 1 h"}  # fmt: skip
 """A participant's answers to the start page's dropdowns."""
 
@@ -180,3 +181,11 @@ def answer_questions(tab: Any, age: str = "31", choices: dict[str, str] = CHOICE
     text_field(tab, "Age (years)").fill(age)
     choose(tab, choices)
     press_button(tab, "Continue")
+
+
+def rate_every_item(tab: Any, rating: str) -> None:
+    """Choose ``rating`` (1-7) in every dropdown the questionnaire shows, by clicks."""
+    boxes = tab.get_by_role("combobox")
+    for k in range(boxes.count()):
+        boxes.nth(k).click()
+        tab.get_by_role("option", name=rating, exact=True).click()

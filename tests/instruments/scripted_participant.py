@@ -41,7 +41,7 @@ from playwright.sync_api import TimeoutError as PlaywrightTimeout
 from scipy.optimize import least_squares
 
 from arteleop.ar_features.keys import GRIP_KEY, KEYS
-from tests.instruments.browser import answer_questions, press_button
+from tests.instruments.browser import answer_questions, press_button, rate_every_item
 from tests.instruments.screen_reading import (
     DISTANCE,
     Box,
@@ -107,6 +107,8 @@ TRIAL_END_WAIT_S = 130.0
 """Out of the way, the outcome shows within this (s): the trial's timeout, and then some."""
 LINE_UP_GOES = 2
 """Goes at lining the bowl up with the target, each from a fresh look."""
+QUESTIONNAIRE_RATING = "5"
+"""Its answer to every item of the questionnaire (1-7)."""
 PAGE_WAIT_S = 60.0
 """The next page shows within this (s): a trial's site is built meanwhile."""
 
@@ -479,6 +481,7 @@ def take_part(
         press_button(tab, "Next")
         k += 1
     wait("Questionnaire")
+    rate_every_item(tab, QUESTIONNAIRE_RATING)
     shot("questionnaire")
     press_button(tab, "Submit")
     wait("Every session of this study is done")

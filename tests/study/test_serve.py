@@ -11,12 +11,26 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from arteleop.analysis.data import QUESTIONNAIRE_ITEMS
 from arteleop.errors import RunFolderError
 from arteleop.scene import HeadCameraConfig
-from arteleop.study import CohortConfig, FamiliarizationConfig, StudyConfig, plan_study
+from arteleop.study import (
+    CohortConfig,
+    FamiliarizationConfig,
+    StudyConfig,
+    classes_shown,
+    plan_study,
+)
 from arteleop.study.plan import EXPERIMENTAL
 from arteleop.study.runner import resume_study
-from arteleop.study.serve import IN_PROGRESS, OBSERVING, ROUND_TRIP_TIMEOUT_S, StudyServer
+from arteleop.study.serve import (
+    AR_CLASS_TEXT,
+    IN_PROGRESS,
+    ITEM_TEXT,
+    OBSERVING,
+    ROUND_TRIP_TIMEOUT_S,
+    StudyServer,
+)
 from arteleop.study.session import (
     BROWSER_FILE,
     INTERRUPTED_FILE,
@@ -28,7 +42,12 @@ from arteleop.study.session import (
     served_run,
 )
 from tests.helpers import serve_to
-from tests.instruments.browser import answer_questions, press_button, text_field
+from tests.instruments.browser import (
+    answer_questions,
+    press_button,
+    rate_every_item,
+    text_field,
+)
 from tests.instruments.screen_reading import gizmo_red, of_hue
 from tests.instruments.view_probe import admitted, refused
 
@@ -59,6 +78,7 @@ def test_answers_out_of_range_are_refused_naming_the_question() -> None:
         "age": ("17", "age 17: expected a whole number 18-99 (years)."),
         "gender": ("", "gender: choose one of the answers."),
         "games_hours": (0, "video games per week: choose one of the answers."),
+        "avr_experience": (0, "AR/VR experience: choose one of the answers."),
     }
     for key, (value, message) in cases.items():
         with pytest.raises(SessionInputError) as err:
@@ -240,6 +260,12 @@ def _take_part(
         watcher.get_by_text("Not placed: timeout.").wait_for(timeout=60_000)
         press_button(watcher, "Next")
     watcher.get_by_text("Questionnaire").wait_for(timeout=30_000)
+    press_button(watcher, "Submit")  # nothing rated: refused, naming the first item
+    watcher.get_by_text(
+        f'"{ITEM_TEXT[QUESTIONNAIRE_ITEMS[0]]}", under "{AR_CLASS_TEXT[classes_shown(STUDY)[0]]}": '
+        "choose a rating, 1 to 7."
+    ).wait_for()
+    rate_every_item(watcher, "6")
     press_button(watcher, "Submit")
     watcher.get_by_text("You can close this page", exact=False).wait_for(timeout=30_000)
     participant, next_link = links.get(timeout=30)
@@ -310,6 +336,7 @@ def test_a_participant_goes_through_the_study_in_a_real_browser(tmp_path: Path) 
     assert (cut["participant"], cut["trial_index"], cut["outcome"]) == ("P01", "1", "interrupted")
     answers = _rows(folder / "questionnaire.csv")
     assert len(answers) == 3 and {a["participant"] for a in answers} == {"P01"}
+    assert {a["score"] for a in answers} == {"6"}  # as chosen on the page
     shown = _rows(folder / BROWSER_FILE)
     assert [(b["participant"], b["trial_index"], b["input_device"]) for b in shown] == [
         ("P01", "1", "buttons"), ("P01", "2", "buttons")
