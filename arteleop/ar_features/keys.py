@@ -28,8 +28,9 @@ KEYS: dict[str, str] = {
     "KeyE": "up",
     "KeyQ": "down",
 }
-"""Each key (a ``KeyboardEvent.code``) and the step button it presses: the view's own keys
-for moving its camera (W A S D, the arrows, E up and Q down), given to the gripper."""
+"""Each key (a ``KeyboardEvent.code``: its place on the keyboard, named as on a QWERTY one) and
+the step button it presses: the view's own keys for moving its camera (W A S D, the arrows, E
+up and Q down), given to the gripper."""
 GRIP_KEY = "KeyG"
 """Closes the gripper (the Grip slider to its end) when it is open, opens it when closed."""
 KEYS_TEXT = "Keys: W A S D or the arrows move, E up, Q down; G closes or opens the grip."
