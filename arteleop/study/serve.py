@@ -266,10 +266,11 @@ class StudyServer(Closeable):
         first without."""
         while True:
             ratings = self._wait("rate")
-            missing = [(c, i) for c in classes for i in items if not ratings.get((c[0], i[0]))]
-            if not missing:
+            unrated = ((c, i) for c in classes for i in items if not ratings.get((c[0], i[0])))
+            first = next(unrated, None)
+            if first is None:
                 return ratings
-            (_, class_text), (_, item_text) = missing[0]
+            (_, class_text), (_, item_text) = first
             message = f'"{item_text}", under "{class_text}": choose a rating, 1 to 7.'
             self._on_pages(lambda p, message=message: p.error(message))
 

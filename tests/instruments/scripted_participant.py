@@ -118,6 +118,13 @@ def _decode(png: bytes) -> NDArray[np.uint8]:
                         cv2.COLOR_BGR2RGB)  # fmt: skip
 
 
+def _readings(
+    seen: list[tuple[NDArray[np.float64], float]],
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Where the gripper was (N, 3) and what was read there (N,), in mm."""
+    return np.array([at for at, _ in seen]), np.array([read for _, read in seen])
+
+
 @dataclass
 class ScriptedParticipant:
     """Does a trial in ``tab`` (a playwright page on the participant's link, on the trial's
@@ -198,10 +205,10 @@ class ScriptedParticipant:
         # Big steps short of it, small ones the rest of the way: never past it and back, which
         # near the bowl could knock it. Changing the Step takes two clicks, the time of a few
         # presses: a short way is all small steps when they are chosen.
+        offset_mm = np.asarray(offset_mm)
         short = self.step == "1 cm" and np.all(np.abs(offset_mm) < SHORT_WAY_MM)
-        big = 0 * np.asarray(offset_mm) if short else np.asarray(offset_mm) / STEPS_MM["5 cm"]
-        big = np.fix(big).astype(int)
-        small = np.round((np.asarray(offset_mm) - big * STEPS_MM["5 cm"]) / STEPS_MM["1 cm"])
+        big = np.zeros(3, int) if short else np.fix(offset_mm / STEPS_MM["5 cm"]).astype(int)
+        small = np.round((offset_mm - big * STEPS_MM["5 cm"]) / STEPS_MM["1 cm"])
         counts = {"5 cm": big, "1 cm": small.astype(int)}
         for label in STEPS_MM:
             for k in order:
@@ -301,8 +308,7 @@ class ScriptedParticipant:
     ) -> NDArray[np.float64]:
         """The point nearest ``guess`` whose distances from where the gripper was best match
         those read (mm)."""
-        at = np.array([p for p, _ in seen])
-        read = np.array([d for _, d in seen])
+        at, read = _readings(seen)
         fit = least_squares(lambda x: np.linalg.norm(at - x, axis=1) - read, guess)
         return np.asarray(fit.x)
 
@@ -316,8 +322,7 @@ class ScriptedParticipant:
         where the gripper was best match those read (mm): what the label measures to is the
         ring's nearest point. From one side the readings tell where the ring's near wall is,
         not its size, so the size is taken as seen."""
-        at = np.array([p for p, _ in seen])
-        read = np.array([d for _, d in seen])
+        at, read = _readings(seen)
 
         def residuals(c: NDArray[np.float64]) -> NDArray[np.float64]:
             out = np.linalg.norm(at[:, :2] - c[:2], axis=1) - radius
