@@ -5,6 +5,7 @@ frames at two moments are shown under ``none``, ``full`` and ``full`` without th
 headless Chromium's screenshots are compared pixel by pixel.
 """
 
+import time
 from collections.abc import Iterator
 from dataclasses import replace
 from pathlib import Path
@@ -212,6 +213,12 @@ def test_a_page_shown_last_stays_on_the_tab_when_the_server_stops(browser: Brows
     try:
         tab = browser.open(view.url, for_pictures=False)
         tab.playwright.get_by_text("Connected").wait_for()
+        # The page says so a moment before the server lists the tab: a tab it does not list
+        # yet, deliver() cannot wait for (the study's last page goes to a tab long connected).
+        end = time.monotonic() + 10.0
+        while not view.server.get_clients() and time.monotonic() < end:
+            time.sleep(0.05)
+        assert view.server.get_clients(), "premise: the server lists the tab"
         view.server.gui.add_markdown(last)
         view.deliver()
     finally:
