@@ -4,9 +4,10 @@ A pool of participants (the experimental trials of one or more run folders, real
 is resampled with replacement, each participant's trials kept together, to studies of ``n``
 participants; on each resampled study the tests ``arteleop analyze`` runs are run
 (:mod:`arteleop.analysis.statistics`): each condition against the reference condition, per
-measure, with the same trimming, the same choice between a t-test and its rank counterpart by
-Lilliefors' test, paired or not, Holm-corrected within each family of pairwise tests where the
-analysis does; and the cue x delay ANOVA for crossed designs. The share of resamples that reject
+measure, by the same method (untrimmed, with Lilliefors' choice between a t-test and its rank
+counterpart; Yuen's trimmed means; or the thesis's dropped extremes), paired or not,
+Holm-corrected within each family of pairwise tests where the analysis does; and the cue x
+delay ANOVA for crossed designs. The share of resamples that reject
 is the power for an effect *like the pool's*, with its binomial (Wilson) interval.
 
 The tests are vectorised over resamples: resamples with the same number of values are tested
@@ -16,7 +17,7 @@ together by scipy's own functions (``axis=1``), so 1,000 resamples cost little m
 from __future__ import annotations
 
 import itertools
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -33,8 +34,10 @@ from arteleop.analysis.resampled_tests import (
     paired_p,
     rm_anova_p,
     trim,
+    trimmed_paired_p,
+    yuen_p,
 )
-from arteleop.analysis.statistics import MIN_TEST_N
+from arteleop.analysis.statistics import MIN_TEST_N, check_method
 
 Array = NDArray[np.float64]
 MAX_RESAMPLES = 100_000
@@ -51,8 +54,8 @@ class PowerOptions:
         resamples: Resampled studies per size.
         alpha: Significance level of every test (0-1, exclusive).
         paired: Within-subject tests, as ``arteleop analyze --paired``.
-        trim: Drop each group's largest and smallest value first, as the thesis (and
-            ``arteleop analyze``) does.
+        method: How two conditions are compared, as ``arteleop analyze --method``:
+            ``untrimmed``, ``yuen`` or ``thesis``.
         holm: Holm-correct each family of pairwise tests, as ``arteleop analyze --holm``.
         compare: The conditions to compare with the reference; empty: every other one.
         reference: The condition the others are compared with.
@@ -63,7 +66,7 @@ class PowerOptions:
     resamples: int = 1000
     alpha: float = 0.05
     paired: bool = False
-    trim: bool = True
+    method: str = "untrimmed"
     holm: bool = False
     compare: tuple[str, ...] = ()
     reference: str = "none"
@@ -79,6 +82,7 @@ class PowerOptions:
             raise AnalysisInputError(f"resamples = {self.resamples}: expected 1 to {MAX_RESAMPLES}")
         if not (np.isfinite(self.alpha) and 0 < self.alpha < 1):
             raise AnalysisInputError(f"alpha = {self.alpha}: expected a level between 0 and 1")
+        check_method(self.method, self.paired)
 
 
 @dataclass(frozen=True)
@@ -194,14 +198,14 @@ def power(pool: Pool, options: PowerOptions) -> Iterator[pd.DataFrame]:
 def _one_size(
     pool: Pool, options: PowerOptions, pairs: list[tuple[str, str]], picks: NDArray[np.intp]
 ) -> list[dict]:
-    test = paired_p if options.paired else independent_p
+    test = _test(options)
     index = {c: i for i, c in enumerate(pool.conditions)}
     n = picks.shape[1]
     rows = []
     for measure, values in pool.values.items():
         sample = values[picks]  # (resamples, n, conditions)
         columns = {c: sample[:, :, index[c]] for c in pool.conditions}
-        if options.trim:
+        if options.method == "thesis":
             columns = {c: trim(v) for c, v in columns.items()}
         if options.holm:  # the family: every pair of conditions of a network profile
             for network in dict.fromkeys(pool.networks):
@@ -221,6 +225,14 @@ def _one_size(
                 rows.append(_row(f"{c} vs {ref}", measure, n, p <= options.alpha))
     rows += _anova_rows(pool, options, picks)
     return rows
+
+
+def _test(options: PowerOptions) -> Callable[[Array, Array, float], Array]:
+    """The vectorised test ``arteleop analyze`` runs with these options: (a, b, alpha) -> p."""
+    if options.method == "yuen":
+        robust = trimmed_paired_p if options.paired else yuen_p
+        return lambda a, b, alpha: robust(a, b)
+    return paired_p if options.paired else independent_p
 
 
 def _anova_rows(pool: Pool, options: PowerOptions, picks: NDArray[np.intp]) -> list[dict]:

@@ -65,22 +65,34 @@ def _figure(table: pd.DataFrame, options: PowerOptions, path: Path) -> None:
     plt.close(fig)
 
 
-def _markdown(
-    pool: Pool, options: PowerOptions, table: pd.DataFrame, simulated: bool, interrupted: bool
-) -> str:
-    kind = "simulated" if simulated else "real, or of unknown kind"
+def _tests(options: PowerOptions) -> str:
+    """The tests run on each resampled study, in words."""
+    if options.method == "yuen":
+        return ("the paired differences' 20 % trimmed mean against zero" if options.paired
+                else "Yuen's test of 20 % trimmed means")  # fmt: skip
     tests = ("paired tests (paired t-test, or Wilcoxon's signed-rank test where Lilliefors "
              "rejects the differences' normality)" if options.paired else
              "tests between independent groups (Student's t-test, or Mann-Whitney's U where "
              "Lilliefors rejects a group's normality)")  # fmt: skip
+    if options.method == "thesis":
+        tests += (", each group first trimmed of its largest and smallest value as the "
+                  "thesis did (a procedure that rejects a true null about twice as often as "
+                  "alpha)")  # fmt: skip
+    return tests
+
+
+def _markdown(
+    pool: Pool, options: PowerOptions, table: pd.DataFrame, simulated: bool, interrupted: bool
+) -> str:
+    kind = "simulated" if simulated else "real, or of unknown kind"
+    tests = _tests(options)
     lines = [
         "# Power by resampling participants", "",
         f"**The pool**: {len(pool.participants)} participants ({kind}), from:", "",
         *(f"- {line}" for line in pool.sources), "",
         f"Conditions: {', '.join(pool.conditions)}. Each resampled study draws n participants "
         "from the pool with replacement, each one's trials together, and runs the tests "
-        f"`arteleop analyze` runs: {tests}"
-        f"{', each group first trimmed of its largest and smallest value' if options.trim else ''}"
+        f"`arteleop analyze --method {options.method}` runs: {tests}"
         f"{', Holm-corrected within each family of pairwise tests' if options.holm else ''}, "
         f"at alpha = {options.alpha:g}; {options.resamples} resampled studies per n "
         f"(seed {options.seed}). Power is the share that reject, with its 95 % Wilson interval.",

@@ -5,11 +5,13 @@ are tested together by scipy's own functions (``axis=1``)."""
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 from numpy.typing import NDArray
 from scipy import stats
 
-from arteleop.analysis.statistics import MIN_NORMALITY_N, MIN_TEST_N
+from arteleop.analysis.statistics import MIN_NORMALITY_N, MIN_TEST_N, YUEN_TRIM
 
 Array = NDArray[np.float64]
 
@@ -107,6 +109,38 @@ def independent_p(a: Array, b: Array, alpha: float) -> Array:
         res = stats.mannwhitneyu(va, vb, axis=1, alternative="two-sided",
                                  method="asymptotic", use_continuity=True)  # fmt: skip
         p[group] = res.pvalue
+    return p
+
+
+def yuen_p(a: Array, b: Array) -> Array:
+    """Per row, the p of :func:`~arteleop.analysis.statistics.compare_yuen` (scipy's trimmed
+    ``ttest_ind``); NaN with fewer than 3 values in a group."""
+    ka, kb = np.sum(~np.isnan(a), axis=1), np.sum(~np.isnan(b), axis=1)
+    p = np.full(len(a), np.nan)
+    tested = np.flatnonzero((ka >= MIN_TEST_N) & (kb >= MIN_TEST_N))
+    for (na, nb), group in _by_counts(tested, ka[tested], kb[tested]).items():
+        va, vb = np.sort(a[group], axis=1)[:, :na], np.sort(b[group], axis=1)[:, :nb]
+        with warnings.catch_warnings():  # no spread left after trimming: p is NaN
+            warnings.simplefilter("ignore", RuntimeWarning)
+            p[group] = stats.ttest_ind(va, vb, axis=1, equal_var=False, trim=YUEN_TRIM).pvalue
+    return p
+
+
+def trimmed_paired_p(a: Array, b: Array) -> Array:
+    """Per row, the p of :func:`~arteleop.analysis.statistics.compare_trimmed_differences`:
+    the paired differences' 20 % trimmed mean against 0; NaN with fewer than 3 pairs."""
+    p = np.full(len(a), np.nan)
+    for k, (rows, d) in _compact(a - b).items():
+        if k < MIN_TEST_N:
+            continue
+        g = int(k * YUEN_TRIM)
+        h = k - 2 * g
+        mean = d[:, g : k - g].mean(axis=1)
+        w = np.clip(d, d[:, [g]], d[:, [k - g - 1]])
+        var_w = w.var(axis=1, ddof=1)
+        with np.errstate(invalid="ignore", divide="ignore"):  # no spread: p is NaN
+            t = mean / np.sqrt((k - 1) * var_w / (h * (h - 1)))
+        p[rows] = np.where(var_w > 0, 2 * stats.t.sf(np.abs(t), h - 1), np.nan)
     return p
 
 

@@ -2,8 +2,7 @@
 
 from __future__ import annotations
 
-import itertools
-from dataclasses import asdict, dataclass, field, fields
+from dataclasses import asdict, dataclass, field, fields, replace
 
 import numpy as np
 import pandas as pd
@@ -37,8 +36,7 @@ from arteleop.analysis.statistics import (
     AnalysisOptions,
     NormalityResult,
     TestResult,
-    compare_independent,
-    normality,
+    compare,
     order_effect,
     pairwise,
     stars,
@@ -72,7 +70,8 @@ class AnalysisResult:
 
 
 def analyse(study: StudyData, options: AnalysisOptions | None = None) -> AnalysisResult:
-    """The thesis's analysis (docs/study.md §5) with the given options."""
+    """The comparisons of docs/study.md §5 (modalities, order, expertise, questionnaire), each
+    by ``options``' method."""
     options = options or AnalysisOptions()
     notes: list[str] = []
     trials = study.analysed_trials()
@@ -103,7 +102,7 @@ def analyse(study: StudyData, options: AnalysisOptions | None = None) -> Analysi
         # Crossed with delay, the thesis's comparisons run within each network profile.
         for network in networks if crossed else [None]:
             part = trials if network is None else trials[trials["network"] == network]
-            sub = trim_extremes(part, m, ["modality"]) if options.trim else part
+            sub = trim_extremes(part, m, ["modality"]) if options.drops_extremes else part
             groups = cue_sets(study.trials)
             if network is not None:
                 groups = [g for g in groups if g in set(part["modality"])]
@@ -134,12 +133,15 @@ def analyse(study: StudyData, options: AnalysisOptions | None = None) -> Analysi
     if study.questionnaire is None:
         notes.append("Questionnaire comparison skipped: no questionnaire.csv.")
     else:
+        # Ratings 1-7 are compared untrimmed under every method: the thesis did not trim
+        # them, and trimmed means of a few tied levels say little.
+        ratings = replace(options, method="untrimmed")
         for item in QUESTIONNAIRE_ITEMS:
             q = study.questionnaire[study.questionnaire["item"] == item]
             if q.empty:
                 continue
             t, n = pairwise(
-                q, "score", "ar_class", AR_CLASSES, "all", options, f"questionnaire:{item}"
+                q, "score", "ar_class", AR_CLASSES, "all", ratings, f"questionnaire:{item}"
             )
             tests += t
             norms += n
@@ -175,6 +177,7 @@ def _expertise(
 ) -> tuple[list[TestResult], list[NormalityResult]]:
     tests: list[TestResult] = []
     norms: list[NormalityResult] = []
+    between_groups = replace(options, paired=False)  # experts and novices are other people
     for kind, column in EXPERTISE_KINDS.items():
         known = participants.dropna(subset=[column])
         if known.empty:
@@ -187,7 +190,7 @@ def _expertise(
             groups = {}
             for label, is_expert in (("expert", True), ("novice", False)):
                 g = df[df["expert"] == is_expert]
-                groups[label] = trim_extremes(g, m, ["modality"]) if options.trim else g
+                groups[label] = trim_extremes(g, m, ["modality"]) if options.drops_extremes else g
                 t, n = pairwise(
                     groups[label], m, "modality", MODALITIES, f"{kind}_{label}", options
                 )
@@ -219,8 +222,7 @@ def _expertise(
                         )
                     )
                     continue
-                normal = bool(normality(a, options.alpha)[2] and normality(b, options.alpha)[2])
-                name, stat, p, effect, kind_e = compare_independent(a, b, normal)
+                name, stat, p, effect, kind_e = compare(a, b, between_groups)
                 tests.append(
                     TestResult(
                         subset,
@@ -293,13 +295,29 @@ def _descriptives(
     trials: pd.DataFrame, measures: list[str], options: AnalysisOptions
 ) -> pd.DataFrame:
     rows = []
-    for m, modality in itertools.product(measures, MODALITIES):
-        raw = trials[trials["modality"] == modality][m].dropna()
-        sub = trim_extremes(trials, m, ["modality"]) if options.trim else trials
-        v = sub[sub["modality"] == modality][m].dropna()
-        rows.append({
-            "measure": m, "modality": modality, "n_total": len(raw), "n": len(v),
-            "mean": v.mean(), "sd": v.std(ddof=1), "median": v.median(),
-            "q1": v.quantile(0.25), "q3": v.quantile(0.75), "min": v.min(), "max": v.max(),
-        })  # fmt: skip
+    for m in measures:
+        raw = _by_modality(trials, m)
+        sub = trim_extremes(trials, m, ["modality"]) if options.drops_extremes else trials
+        kept = _by_modality(sub, m)
+        for modality in MODALITIES:
+            v = kept.get(modality, np.empty(0))
+            n_total = len(raw.get(modality, ()))
+            rows.append({"measure": m, "modality": modality, "n_total": n_total, "n": len(v),
+                         **_summary(v)})  # fmt: skip
     return pd.DataFrame(rows)
+
+
+def _by_modality(trials: pd.DataFrame, measure: str) -> dict[str, np.ndarray]:
+    """Each modality's values of ``measure`` (NaN dropped)."""
+    values = trials[["modality", measure]].dropna()
+    return {k: g[measure].to_numpy() for k, g in values.groupby("modality", sort=False)}
+
+
+def _summary(v: np.ndarray) -> dict[str, float]:
+    """Mean, SD (ddof 1), median, quartiles and range; NaN where there are too few values."""
+    if not len(v):
+        return dict.fromkeys(("mean", "sd", "median", "q1", "q3", "min", "max"), np.nan)
+    q1, median, q3 = np.quantile(v, [0.25, 0.5, 0.75])
+    sd = float(np.std(v, ddof=1)) if len(v) > 1 else np.nan
+    return {"mean": float(np.mean(v)), "sd": sd, "median": median, "q1": q1, "q3": q3,
+            "min": float(v.min()), "max": float(v.max())}  # fmt: skip

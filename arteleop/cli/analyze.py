@@ -6,11 +6,14 @@ from __future__ import annotations
 import sys
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated, Literal
 
 import tyro
 
 from arteleop.errors import ConfigurationError, ReportWriteError
+
+if TYPE_CHECKING:
+    from arteleop.analysis import AnalysisOptions
 
 
 @dataclass(frozen=True)
@@ -27,8 +30,8 @@ class AnalyzeCommand:
     """report folder"""
     participants: Path | None = None
     """participants.csv for a bare trials CSV (one source)"""
-    trim: bool = True
-    """drop each group's maximum and minimum participant (the thesis; one source)"""
+    method: Literal["untrimmed", "yuen", "thesis"] = "untrimmed"
+    """how two modalities are compared (one source): untrimmed (everyone; t-test or rank test by Lilliefors), yuen (20 % trimmed means, robust to outliers), thesis (the original's dropped extremes, to reproduce it: rejects a true null about twice as often as it says)"""
     paired: bool = False
     """within-subject tests (paired t-test / Wilcoxon) between modalities (one source)"""
     holm: bool = False
@@ -38,16 +41,22 @@ class AnalyzeCommand:
 
 
 def analyze(cmd: AnalyzeCommand) -> int:
-    from arteleop.analysis import AnalysisInputError
+    from arteleop.analysis import AnalysisInputError, AnalysisOptions
 
     if not cmd.sources:
         raise ConfigurationError(
             "arteleop analyze needs a run folder or a trials CSV: 'arteleop analyze my-run "
             "--out my-report'; several run folders of one design are pooled."
         )
+    try:
+        options = AnalysisOptions(method=cmd.method, paired=cmd.paired, holm=cmd.holm)
+    except AnalysisInputError as err:
+        raise ConfigurationError(f"{err}.") from None
     check_report_folder(cmd.out, cmd.sources, cmd.force)
     try:
-        return (_analyse_one if len(cmd.sources) == 1 else _pool)(cmd)
+        if len(cmd.sources) == 1:
+            return _analyse_one(cmd, options)
+        return _pool(cmd)
     except AnalysisInputError as err:
         print(f"arteleop: error: {err}", file=sys.stderr)
         return 2
@@ -84,11 +93,10 @@ def check_report_folder(out: Path, sources: tuple[Path, ...], force: bool) -> No
             )
 
 
-def _analyse_one(cmd: AnalyzeCommand) -> int:
-    from arteleop.analysis import AnalysisOptions, analyse, load_study, write_report
+def _analyse_one(cmd: AnalyzeCommand, options: AnalysisOptions) -> int:
+    from arteleop.analysis import analyse, load_study, write_report
 
     study = load_study(cmd.sources[0], cmd.participants)
-    options = AnalysisOptions(trim=cmd.trim, paired=cmd.paired, holm=cmd.holm)
     result = analyse(study, options)
     files = write_report(study, result, options, cmd.out)
     n_people = result.trials["participant"].nunique()

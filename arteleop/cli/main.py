@@ -68,6 +68,17 @@ GROUPS: dict[str, dict[str, Command]] = {
 }
 
 
+MOVED_OPTIONS = {
+    ("analyze", "study power"): {
+        "--trim": "--method thesis is the thesis's trimming (it rejects a true null about twice "
+        "as often as p <= 0.05 says); the default, --method untrimmed, keeps everyone",
+        "--no-trim": "the default, --method untrimmed, keeps everyone; --method yuen compares "
+        "20 % trimmed means at their stated error rate",
+    },
+}
+"""Options that are gone, per command: what to give instead (0.3 -> 0.4)."""
+
+
 OVERVIEW = """\
 arteleop: study Augmented Reality in robot teleoperation, in simulation (docs/study.md).
 
@@ -109,6 +120,9 @@ def main(argv: list[str] | None = None) -> int:
         commands, prog, args = GROUPS[argv[0]], f"arteleop {argv[0]}", argv[1:]
     else:
         commands, prog, args = COMMANDS, "arteleop", argv
+    if moved := _moved_option(argv):
+        print(f"arteleop: error: {moved}", file=sys.stderr)
+        return 2
     try:
         cmd = tyro.extras.subcommand_cli_from_dict(
             {name: cfg for name, (cfg, _) in commands.items()},
@@ -138,3 +152,13 @@ def main(argv: list[str] | None = None) -> int:
             file=sys.stderr,
         )
         return 2
+
+
+def _moved_option(argv: list[str]) -> str:
+    """What to give instead of an option that is gone, or ''."""
+    for names, options in MOVED_OPTIONS.items():
+        if any(argv[: len(name.split())] == name.split() for name in names):
+            for option, instead in options.items():
+                if option in argv:
+                    return f"{option} is gone: {instead}."
+    return ""

@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Literal
 
 import tyro
 
@@ -36,8 +36,8 @@ class StudyPowerCommand:
     """the condition the others are compared with"""
     paired: bool = False
     """within-subject tests, as 'arteleop analyze --paired'"""
-    trim: bool = True
-    """drop each group's largest and smallest value, as 'arteleop analyze' does (the thesis)"""
+    method: Literal["untrimmed", "yuen", "thesis"] = "untrimmed"
+    """how two conditions are compared, as 'arteleop analyze --method'"""
     holm: bool = False
     """Holm-correct each family of pairwise tests, as 'arteleop analyze --holm'"""
     simulate: int = 0
@@ -83,8 +83,8 @@ def study_power(cmd: StudyPowerCommand) -> int:
     sizes = parse_sizes(cmd.n)
     compare = tuple(c.strip() for c in cmd.compare.split(",") if c.strip())
     try:
-        options = PowerOptions(sizes, cmd.resamples, cmd.alpha, cmd.paired, cmd.trim, cmd.holm,
-                               compare, cmd.reference, cmd.seed)  # fmt: skip
+        options = PowerOptions(sizes, cmd.resamples, cmd.alpha, cmd.paired, cmd.method,
+                               cmd.holm, compare, cmd.reference, cmd.seed)  # fmt: skip
     except AnalysisInputError as err:
         raise ConfigurationError(f"{err}.") from None
     if cmd.simulate < 0:

@@ -20,7 +20,13 @@ from arteleop.analysis import (
     stars,
     trim_extremes,
 )
-from arteleop.analysis.statistics import TestResult
+from arteleop.analysis.errors import AnalysisInputError
+from arteleop.analysis.statistics import (
+    TestResult,
+    compare_trimmed_differences,
+    compare_yuen,
+    winsorized_scale,
+)
 
 
 def test_trimming_drops_the_max_and_min_participant_per_group() -> None:
@@ -128,3 +134,58 @@ def test_too_few_values_give_an_empty_p_and_a_reason() -> None:
 )
 def test_stars(p: float, expected: str) -> None:
     assert stars(p) == expected
+
+
+def test_the_trimmed_differences_test_by_hand() -> None:
+    """d = 1..9, 30: 20 % of 10 is 2 from each end; trimmed mean of 3..8 = 5.5; winsorized
+    3,3,3,4,5,6,7,8,8,8: sum of squares 42.5, so s_w^2 = 42.5 / 9; h = 6:
+    SE^2 = 9 s_w^2 / (6 x 5) = 42.5 / 30, t = 5.5 / sqrt(42.5 / 30) on 5 degrees of freedom."""
+    d = np.array([1.0, 2, 3, 4, 5, 6, 7, 8, 9, 30])
+    name, t, p, dz, kind = compare_trimmed_differences(d + 2.0, np.full(10, 2.0))
+    assert (name, kind) == ("trimmed_paired", "robust_dz")
+    assert t == pytest.approx(5.5 / math.sqrt(42.5 / 30))
+    assert p == pytest.approx(2 * stats.t.sf(5.5 / math.sqrt(42.5 / 30), 5))
+    assert dz == pytest.approx(0.6419398 * 5.5 / math.sqrt(42.5 / 9), rel=1e-6)
+    # The outlier 30 weighs as an 8: the plain paired t-test is much weaker here.
+    assert p < stats.ttest_1samp(d, 0.0).pvalue / 2
+
+
+def test_yuens_test_is_scipys_with_the_robust_d() -> None:
+    a = np.array([1.0, 2, 3, 4, 5, 6, 7, 8, 9, 30])
+    b = np.array([4.0, 5, 6, 7, 8, 9, 10, 11, 12, 13])
+    name, t, p, d, kind = compare_yuen(a, b)
+    ref = stats.ttest_ind(a, b, equal_var=False, trim=0.2)
+    assert (name, kind) == ("yuen", "robust_d")
+    assert (t, p) == pytest.approx((ref.statistic, ref.pvalue))
+    # Trimmed means 5.5 and 8.5; winsorized variances both 42.5 / 9 (b: 6,6,6,7,...,11,11,11).
+    assert d == pytest.approx(0.6419398 * -3.0 / math.sqrt((42.5 + 42.5) / 18), rel=1e-6)
+
+
+def test_the_robust_d_scale_is_algina_keselman_penfields() -> None:
+    assert winsorized_scale(0.2) == pytest.approx(0.642, abs=5e-4)  # their published constant
+    x = stats.norm.ppf((np.arange(200_000) + 0.5) / 200_000)  # a unit normal, by its quantiles
+    w = np.clip(x, *np.quantile(x, [0.1, 0.9]))
+    assert winsorized_scale(0.1) == pytest.approx(w.std(), rel=1e-3)
+
+
+@pytest.mark.parametrize(
+    ("method", "paired", "message"),
+    [
+        ("trimmed", False, "method 'trimmed': expected one of untrimmed, yuen, thesis"),
+        ("thesis", True, "method 'thesis' compares modalities as independent groups, as the "
+                         "thesis did; paired tests go with method 'untrimmed' or 'yuen'"),
+    ],
+)  # fmt: skip
+def test_a_method_that_does_not_exist_is_refused(method: str, paired: bool, message: str) -> None:
+    with pytest.raises(AnalysisInputError) as err:
+        AnalysisOptions(method=method, paired=paired)
+    assert str(err.value) == message
+
+
+def test_values_that_do_not_vary_after_trimming_get_no_p_and_say_why() -> None:
+    df = pd.DataFrame({"participant": list("abcdeabcde"), "modality": ["none"] * 5 + ["full"] * 5,
+                       "v": [1.0, 1, 1, 1, 9, 1, 1, 1, 1, 2]})  # fmt: skip
+    (row,), _ = pairwise(df, "v", "modality", ("none", "full"), "all",
+                         AnalysisOptions(method="yuen"))  # fmt: skip
+    assert (row.test, row.stars) == ("yuen", "") and math.isnan(row.p_value)
+    assert row.note == "no p: the values compared do not vary (after trimming)"

@@ -5,6 +5,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
+from scipy import stats
 
 from arteleop.analysis import AnalysisOptions, analyse, load_study, write_report
 from arteleop.cli import main
@@ -57,7 +58,7 @@ def test_known_effects_are_found(report: Path) -> None:
         & (tests.group_b == "full")
     ].iloc[0]
     assert row["stars"] == "**"
-    assert (row["n_a"], row["n_b"]) == (20, 19)  # 22 - max - min; full lost a timed-out trial
+    assert (row["n_a"], row["n_b"]) == (22, 21)  # everyone; full lost a timed-out trial
     err = tests[
         (tests.subset == "all")
         & (tests.measure == "placement_error_m")
@@ -108,14 +109,56 @@ def test_report_and_figures(report: Path) -> None:
 def test_descriptives(report: Path, run: Path) -> None:
     desc = pd.read_csv(report / "descriptives.csv")
     full = desc[(desc.measure == "completion_time_s") & (desc.modality == "full")].iloc[0]
-    assert full["n_total"] == 21 and full["n"] == 19  # one full-AR trial timed out
+    assert full["n_total"] == 21 and full["n"] == 21  # one full-AR trial timed out
     trials = pd.read_csv(run / "trials.csv")
     v = trials[
         (trials.phase == "experimental")
         & (trials.outcome == "success")
         & (trials.modality == "full")
     ]["completion_time_s"].sort_values()
-    assert full["mean"] == pytest.approx(v.iloc[1:-1].mean())
+    assert full["mean"] == pytest.approx(v.mean())
+
+
+def test_the_thesis_method_drops_each_groups_extremes_first(run: Path) -> None:
+    """--method thesis: per modality the largest and smallest values go (22 -> 20; 21 -> 19
+    for full, which lost a timed-out trial), per modality and expertise group too, and the
+    rest is tested by Lilliefors' choice; the report says what its error rate is."""
+    study = load_study(run / "trials.csv")
+    study = type(study)(study.trials.assign(trajectory_file=""), load_study(run).participants,
+                        None, study.base_dir, study.trials_path)  # fmt: skip
+    options = AnalysisOptions(method="thesis")
+    result = analyse(study, options)
+    tests = result.tests.set_index(["subset", "measure", "group_a", "group_b"])
+    row = tests.loc[("all", "completion_time_s", "none", "full")]
+    assert (row["n_a"], row["n_b"], row["test"]) == (20, 19, "ttest")
+    trials = result.trials[result.trials.modality.isin(["none", "full"])]
+    kept = {m: np.sort(g["completion_time_s"].to_numpy())[1:-1]
+            for m, g in trials.groupby("modality")}  # fmt: skip
+    assert row["p_value"] == pytest.approx(stats.ttest_ind(kept["none"], kept["full"]).pvalue)
+    experts = tests.loc["avr_expert"].query("measure == 'completion_time_s'")
+    assert experts["n_a"].max() == 5  # 7 experts, less the extremes
+    desc = result.descriptives.set_index(["measure", "modality"])
+    assert desc.loc[("completion_time_s", "full"), ["n_total", "n"]].tolist() == [21, 19]
+
+
+def test_the_yuen_method_tests_trimmed_means(run: Path) -> None:
+    """--method yuen: Yuen's test on everyone (scipy's trimmed ttest_ind), paired: the trimmed
+    differences; ratings stay on Lilliefors' choice."""
+    study = load_study(run)
+    study = type(study)(study.trials.assign(trajectory_file=""), study.participants,
+                        study.questionnaire, study.base_dir, study.trials_path)  # fmt: skip
+    for paired, name in ((False, "yuen"), (True, "trimmed_paired")):
+        tests = analyse(study, AnalysisOptions(method="yuen", paired=paired)).tests
+        main_tests = tests[(tests.subset == "all") & (tests.test != "anova")
+                           & ~tests.measure.str.startswith("questionnaire")]  # fmt: skip
+        assert set(main_tests["test"]) == {name}
+        between = tests[tests.subset.str.startswith("experts_vs_novices")]
+        assert set(between["test"]) == {"yuen"}  # other people: never paired
+        ratings = tests[tests.measure.str.startswith("questionnaire")]
+        assert set(ratings["test"]) <= {"ttest", "mannwhitneyu", "paired_ttest", "wilcoxon"}
+    row = main_tests.set_index(["measure", "group_a", "group_b"]).loc[
+        ("completion_time_s", "none", "full")]  # fmt: skip
+    assert row["n_a"] == 21 and row["stars"] == "**"  # the pairs full's timeout left
 
 
 def test_missing_parts_are_skipped_with_a_note(run: Path, tmp_path: Path) -> None:
@@ -145,7 +188,7 @@ def test_a_study_with_nothing_to_compare_has_a_report_without_tests(
 
 def test_options_paired_and_holm(run: Path) -> None:
     study = load_study(run)
-    paired = analyse(study, AnalysisOptions(trim=False, paired=True, holm=True))
+    paired = analyse(study, AnalysisOptions(paired=True, holm=True))
     within = paired.tests[paired.tests.subset.isin(["all", "avr_expert", "games_novice"])]
     assert set(within["test"]) <= {"paired_ttest", "wilcoxon", "anova", ""}
     # Experts and novices are different people: that comparison stays unpaired.
@@ -170,3 +213,26 @@ def test_cli_reports_bad_input(tmp_path: Path, capsys: pytest.CaptureFixture[str
     )
     assert main(["analyze", str(tmp_path / "trials.csv"), "--out", str(tmp_path / "r")]) == 2
     assert "line 2, column modality: unknown value 'vr'" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["--no-trim"], "--no-trim is gone: the default, --method untrimmed, keeps everyone; "
+                        "--method yuen compares 20 % trimmed means at their stated error rate."),
+        (["--trim"], "--trim is gone: --method thesis is the thesis's trimming (it rejects a true "
+                     "null about twice as often as p <= 0.05 says); the default, --method "
+                     "untrimmed, keeps everyone."),
+        (["--method", "thesis", "--paired"], "method 'thesis' compares modalities as "
+         "independent groups, as the thesis did; paired tests go with method 'untrimmed' or "
+         "'yuen'."),
+    ],
+)  # fmt: skip
+def test_a_method_the_analysis_cannot_run_is_refused_and_nothing_written(
+    run: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str], argv: list[str], message: str
+) -> None:
+    out = tmp_path / "r"
+    for command in (["analyze"], ["study", "power"]):
+        assert main([*command, str(run), "--out", str(out), *argv]) == 2
+        assert capsys.readouterr().err == f"arteleop: error: {message}\n"
+        assert not out.exists()
