@@ -37,12 +37,16 @@ if TYPE_CHECKING:
     from arteleop.analysis.power_report import write_power_report
     from arteleop.analysis.report import write_report
     from arteleop.analysis.statistics import (
+        METHODS,
         AnalysisOptions,
         NormalityResult,
         TestResult,
         cohens_d,
+        compare,
         compare_independent,
         compare_paired,
+        compare_trimmed_differences,
+        compare_yuen,
         holm,
         holm_test,
         normality,
@@ -59,8 +63,9 @@ if TYPE_CHECKING:
 _LAZY = {
     **dict.fromkeys(
         (
-            "AnalysisOptions", "NormalityResult", "TestResult", "cohens_d",
-            "compare_independent", "compare_paired", "holm", "holm_test", "normality",
+            "METHODS", "AnalysisOptions", "NormalityResult", "TestResult", "cohens_d", "compare",
+            "compare_independent", "compare_paired", "compare_trimmed_differences", "compare_yuen",
+            "holm", "holm_test", "normality",
             "order_effect",
             "pairwise", "rank_biserial", "stars", "trim_extremes",
         ),
@@ -87,6 +92,7 @@ def __getattr__(name: str) -> Any:
 
 __all__ = [
     "MEASURES",
+    "METHODS",
     "MODALITIES",
     "SMOOTHNESS",
     "AnalysisInputError",
@@ -100,8 +106,11 @@ __all__ = [
     "analyse",
     "cohens_d",
     "cohort_medians",
+    "compare",
     "compare_independent",
     "compare_paired",
+    "compare_trimmed_differences",
+    "compare_yuen",
     "expert_gaps",
     "holm",
     "holm_test",
