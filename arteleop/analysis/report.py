@@ -120,6 +120,8 @@ def _markdown(
         "",
         "## Method",
         "",
+        "Only experimental trials that succeeded are analysed.",
+        "",
         *_method(options),
     ]
     lines += [

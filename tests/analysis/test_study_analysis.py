@@ -94,6 +94,7 @@ def test_test_choice_follows_normality(report: Path) -> None:
 def test_report_and_figures(report: Path) -> None:
     text = (report / "report.md").read_text()
     assert "Mann-Whitney U test" in text and "Lilliefors" in text
+    assert "Method `untrimmed` (the default): every participant." in text
     assert "timeout: 1" in text  # the failed trial is counted, not analysed
     assert "computed from trajectory files for 109 trial(s)" in text
     for name in (
