@@ -120,7 +120,8 @@ class Demographics:
         """The answers as the page gave them (``age`` as typed, an unanswered choice empty or
         0); :class:`SessionInputError` names the first question to answer again."""
         age = str(form.get("age", "")).strip()
-        _whole("age", int(age) if age.isdigit() else age, *AGE_RANGE, "years")
+        # isdecimal, not isdigit: '²' and '③' are digits that int() refuses.
+        _whole("age", int(age) if age.isdecimal() else age, *AGE_RANGE, "years")
         for key, label in (("gender", "gender"), ("handedness", "handedness"),
                            ("avr_experience", "AR/VR experience"),
                            ("avr_hours", "AR/VR per week"),

@@ -84,8 +84,10 @@ def test_answers_out_of_range_are_refused_naming_the_question() -> None:
         with pytest.raises(SessionInputError) as err:
             Demographics.from_form({**form, key: value})
         assert str(err.value) == message
-    with pytest.raises(SessionInputError, match=r"^age 'thirty': expected a whole number"):
-        Demographics.from_form({**form, "age": "thirty"})
+    for age in ("thirty", "²", "3①", "2_5"):  # '²' is a key of AZERTY keyboards
+        with pytest.raises(SessionInputError, match=rf"^age '{age}': expected a whole number"):
+            Demographics.from_form({**form, "age": age})
+    assert Demographics.from_form({**form, "age": "３１"}).age == 31  # full-width digits
     with pytest.raises(SessionInputError, match=r"^avr_experience 8: expected a whole number 1-7"):
         Demographics(31, "male", "left", 8, 1, 4, 3)
 
