@@ -104,7 +104,8 @@ OUTCOME = re.compile(r"Placed in|Not placed")
 OUTCOME_WAIT_S = 10.0
 """The bowl let go, the outcome shows within this (s), unless the gripper hides the bowl."""
 TRIAL_END_WAIT_S = 130.0
-"""Out of the way, the outcome shows within this (s): the trial's timeout, and then some."""
+"""Out of the way, the outcome shows within this (s): the camera sees the bowl standing (or the
+trial runs out of time, if its timeout is shorter)."""
 LINE_UP_GOES = 2
 """Goes at lining the bowl up with the target, each from a fresh look."""
 QUESTIONNAIRE_RATING = "5"
