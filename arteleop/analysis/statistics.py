@@ -44,7 +44,7 @@ METHODS = ("untrimmed", "yuen", "thesis")
 """How two conditions are compared (the module's docstring says what each does)."""
 YUEN_TRIM = 0.2
 """The share trimmed from each end by the ``yuen`` method: Wilcox's (2012, *Introduction to
-Robust Estimation and Hypothesis Testing*, 3rd ed., §4.3) recommended 20 %, efficient under
+Robust Estimation and Hypothesis Testing*, 3rd ed.) recommended 20 %, efficient under
 normality and resistant to heavy tails."""
 
 
@@ -221,7 +221,7 @@ def compare_yuen(
     """Yuen's test of trimmed means (scipy's ``ttest_ind(..., trim=, equal_var=False)``), with
     the robust d of Algina, Keselman & Penfield (2005): the trimmed means' difference over
     the pooled winsorized SD, rescaled by :func:`winsorized_scale`."""
-    with warnings.catch_warnings():  # all values alike after trimming: p is NaN, said below
+    with warnings.catch_warnings():  # all values alike after trimming: p is NaN (see NO_SPREAD)
         warnings.simplefilter("ignore", RuntimeWarning)
         res = stats.ttest_ind(a, b, equal_var=False, trim=trim)
     (ma, va, _), (mb, vb, _) = _winsorized(a, trim), _winsorized(b, trim)
