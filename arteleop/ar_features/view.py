@@ -247,12 +247,23 @@ class OperatorView(Closeable):
             left_s = deadline - time.monotonic()
             if left_s <= 0:
                 return
-            try:
-                client.get_render(8, 8, timeout=left_s)
-            except (RuntimeError, TimeoutError):  # gone, or not drawing
-                pass
+            drew_a_frame(client, left_s)
 
     def close(self) -> None:
         """Stop the server."""
         with contextlib.redirect_stdout(io.StringIO()):  # its "Server stopped"
             self.server.stop()
+
+
+def drew_a_frame(client: viser.ClientHandle, timeout_s: float) -> bool:
+    """Whether ``client`` drew a small frame asked of it now within ``timeout_s`` (s): viser
+    sends in order, so the frame also shows that everything sent before has arrived. False if
+    the tab went, draws nothing (in the background) or answered with something other than an
+    image: a client's reply is its own input and never stops the server."""
+    try:
+        client.get_render(8, 8, timeout=timeout_s)
+    # Gone, not drawing, or a reply that is not an image (one that is not even bytes fails
+    # viser's own check with a TypeError).
+    except (RuntimeError, TimeoutError, TypeError):
+        return False
+    return True

@@ -41,6 +41,7 @@ from arteleop.analysis.data import QUESTIONNAIRE_ITEMS
 from arteleop.ar_features import OperatorView, ViewConfig, modality_cues
 from arteleop.ar_features.live_input import LiveInput
 from arteleop.ar_features.session_pages import SessionPages
+from arteleop.ar_features.view import drew_a_frame
 from arteleop.errors import ArteleopError
 from arteleop.lifetime import Closeable
 from arteleop.operator import HandTarget, live_source
@@ -338,9 +339,7 @@ class StudyServer(Closeable):
             if self._stopped.is_set():
                 break
             begun = time.perf_counter()
-            try:
-                client.get_render(8, 8, timeout=ROUND_TRIP_TIMEOUT_S)
-            except (RuntimeError, TimeoutError):  # the tab went, or draws nothing
+            if not drew_a_frame(client, ROUND_TRIP_TIMEOUT_S):
                 break
             times.append(time.perf_counter() - begun)
         round_trip_s = round(statistics.median(times), 4) if len(times) == ROUND_TRIPS else math.nan

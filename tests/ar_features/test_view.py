@@ -14,7 +14,7 @@ from arteleop.errors import ConfigurationError, DisplayFrameError
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
 from arteleop.teleop import Outcome, TrialConfig, run_trial, trial_operator
 from tests.ar_features.frames import CAMERA_M, display_frame
-from tests.instruments.view_probe import ViewProbe
+from tests.instruments.view_probe import ViewProbe, until
 
 
 def test_view_serves_this_machine_only_by_default() -> None:
@@ -47,6 +47,18 @@ def test_a_connected_browser_receives_the_exact_points() -> None:
         assert browser.wait_for(colors.tobytes()) is not None
         assert browser.wait_for(np.float32(7.5).tobytes() * 3, timeout_s=0.2) is None
         assert view.updates == 1
+
+
+@pytest.mark.filterwarnings("ignore::DeprecationWarning")  # imageio's plugins, tried on junk
+def test_a_client_answering_a_frame_request_with_anything_does_not_stop_the_view() -> None:
+    # An integer for the image's bytes ended `study serve` with a TypeError.
+    with OperatorView(ViewConfig(port=0)) as view:
+        for reply in (5, 2.5, True, "not an image", [1, 2], {"png": 1}, b"not an image"):
+            with ViewProbe(view.url, render_reply=reply) as client:
+                assert until(lambda: len(view.server.get_clients()) == 1)
+                view.deliver(timeout_s=5.0)
+                assert client.render_replies == 1, reply
+            assert until(lambda: not view.server.get_clients())
 
 
 def test_bad_frames_are_refused_with_the_shapes() -> None:

@@ -13,7 +13,9 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass
 
+import msgspec
 import viser
+import zstandard
 from websockets.exceptions import ConnectionClosed
 from websockets.sync import client as websocket_client
 from websockets.typing import Subprotocol
@@ -30,10 +32,28 @@ class Received:
     data: bytes
 
 
-class ViewProbe(Closeable):
-    """Receives everything the view sends, on a thread of its own; a context manager."""
+CAMERA = {"type": "ViewerCameraMessage", "wxyz": (1.0, 0.0, 0.0, 0.0), "position": (0.0, 0.0, 1.0),
+          "fov": 1.0, "near": 0.01, "far": 100.0, "image_height": 480, "image_width": 640,
+          "look_at": (0.0, 0.0, 0.0), "up_direction": (0.0, 0.0, 1.0)}  # fmt: skip
+"""A browser's first message: where its camera looks; viser lists a client from then on."""
 
-    def __init__(self, url: str, timeout_s: float = 5.0) -> None:
+
+def _messages(packet: bytes) -> list[dict[str, object]]:
+    """The messages in one of viser's packets: the sizes of the msgpack before and after zstd
+    (8 bytes each, little-endian), the compressed msgpack, then binary buffers."""
+    size, compressed = (int.from_bytes(packet[k : k + 8], "little") for k in (0, 8))
+    inner = zstandard.ZstdDecompressor().decompress(packet[16 : 16 + compressed], size)
+    return list(msgspec.msgpack.decode(inner)["messages"])
+
+
+class ViewProbe(Closeable):
+    """Receives everything the view sends, on a thread of its own; a context manager.
+
+    ``render_reply``, if given, makes it a client the server lists (it sends a camera, as a
+    browser does on connecting) that answers each frame the server asks it to draw with
+    ``render_reply``, as a hostile client would (a browser answers an image's bytes)."""
+
+    def __init__(self, url: str, timeout_s: float = 5.0, render_reply: object = None) -> None:
         ws_url = url.replace("http://", "ws://", 1)
         self._ws = websocket_client.connect(
             ws_url,
@@ -42,9 +62,14 @@ class ViewProbe(Closeable):
             open_timeout=timeout_s,
         )
         self.received: list[Received] = []
+        self.render_replies = 0
+        """Frame requests answered with ``render_reply``."""
+        self._render_reply = render_reply
         self._lock = threading.Lock()
         self._thread = threading.Thread(target=self._read, daemon=True)
         self._thread.start()
+        if render_reply is not None:
+            self._ws.send(msgspec.msgpack.encode(CAMERA))
 
     def _read(self) -> None:
         while True:
@@ -55,6 +80,16 @@ class ViewProbe(Closeable):
             if isinstance(message, bytes):
                 with self._lock:
                     self.received.append(Received(time.perf_counter(), message))
+                if self._render_reply is not None:
+                    self._answer_renders(message)
+
+    def _answer_renders(self, packet: bytes) -> None:
+        for m in _messages(packet):
+            if m.get("type") == "GetRenderRequestMessage":
+                reply = {"type": "GetRenderResponseMessage", "payload": self._render_reply,
+                         "render_uuid": m["render_uuid"]}  # fmt: skip
+                self._ws.send(msgspec.msgpack.encode(reply))
+                self.render_replies += 1
 
     def messages(self, min_bytes: int = 0) -> list[Received]:
         """Messages received so far, those of at least ``min_bytes`` only."""
