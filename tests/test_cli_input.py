@@ -6,6 +6,7 @@ traceback or a hang.
 
 from __future__ import annotations
 
+import ipaddress
 import os
 import re
 import select
@@ -14,10 +15,12 @@ import socket
 import subprocess
 import sys
 import time
+import urllib.request
 from pathlib import Path
 from typing import get_args
 
 import pandas as pd
+import psutil
 import pytest
 
 from arteleop import cli
@@ -171,7 +174,22 @@ def test_other_hosts_warn_and_a_taken_port_moves_on() -> None:
     with OperatorView(ViewConfig(host="0.0.0.0", port=0)) as view:
         (notice,) = view.notices()
         assert "anyone on that network can see it and drive the robot" in notice
-        assert "0.0.0.0" not in view.url
+
+
+@pytest.mark.parametrize("host", ["0.0.0.0", "::"])
+def test_served_on_every_interface_the_link_names_an_address_others_reach(host: str) -> None:
+    # The machine's name resolves to 127.0.1.1 on Debian: links named it, or 127.0.0.1.
+    family = socket.AF_INET6 if ":" in host else socket.AF_INET
+    interfaces = {ipaddress.ip_address(a.address.split("%")[0]) for nic in
+                  psutil.net_if_addrs().values() for a in nic if a.family == family}  # fmt: skip
+    if not any(not (a.is_loopback or a.is_link_local) for a in interfaces):
+        pytest.skip(f"this machine has no {family.name} address beyond itself")
+    with OperatorView(ViewConfig(host=host, port=0)) as view:
+        (address,) = re.fullmatch(r"http://\[?([^\]]+?)\]?:\d+", view.url).groups()
+        ip = ipaddress.ip_address(address)
+        assert ip in interfaces and not (ip.is_loopback or ip.is_link_local), view.url
+        with urllib.request.urlopen(view.url, timeout=10) as page:  # it opens
+            assert page.status == 200
 
 
 def test_a_missing_libusb_is_named(

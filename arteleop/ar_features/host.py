@@ -8,6 +8,8 @@ import ipaddress
 import socket
 from dataclasses import dataclass
 
+import psutil
+
 from arteleop.errors import ArteleopError
 
 
@@ -21,7 +23,8 @@ class HostCheck:
 
     Attributes:
         loopback: Only this machine can connect.
-        addresses: Addresses to open the view at, for the user.
+        addresses: Addresses to open the view at, for the user: for every interface (0.0.0.0,
+            ::) those other machines can reach, loopback only if there are none.
     """
 
     loopback: bool
@@ -60,10 +63,35 @@ def check_host(host: str, port: int = 0) -> HostCheck:
     unspecified = ipaddress.ip_address(ip).is_unspecified
     loopback = ipaddress.ip_address(ip).is_loopback
     addresses: tuple[str, ...] = (ip,)
-    if unspecified:  # every interface: name the ones a user can open
-        names = {i[4][0] for i in socket.getaddrinfo(socket.gethostname(), None, family)}
-        addresses = tuple(sorted(names - {ip})) or ("127.0.0.1",)
+    if unspecified:  # every interface: name those other machines can reach
+        loopback_ip = "::1" if family == socket.AF_INET6 else "127.0.0.1"
+        addresses = _reachable(family) or (loopback_ip,)
     return HostCheck(loopback, addresses)
+
+
+ROUTE_PROBES = {socket.AF_INET: "198.51.100.1", socket.AF_INET6: "2001:db8::1"}
+"""Documentation addresses (RFC 5737, RFC 3849): a UDP socket connected to one sends nothing,
+but takes the address of the interface this machine would reach other networks from."""
+
+
+def _reachable(family: socket.AddressFamily) -> tuple[str, ...]:
+    """This machine's interfaces' addresses in ``family`` that other machines can reach, the
+    one it reaches other networks from first; loopback and link-local ones left out. Not its
+    name's: Debian and Ubuntu give it 127.0.1.1, which no other machine reaches."""
+    found = {
+        ipaddress.ip_address(a.address.split("%")[0])  # an IPv6 address's zone
+        for nic in psutil.net_if_addrs().values()
+        for a in nic
+        if a.family == family
+    }
+    ips = sorted(str(a) for a in found if not (a.is_loopback or a.is_link_local))
+    with socket.socket(family, socket.SOCK_DGRAM) as probe:
+        try:
+            probe.connect((ROUTE_PROBES[family], 9))
+            route = probe.getsockname()[0]
+        except OSError:  # no route out: a lab network without a gateway, say
+            route = None
+    return tuple(sorted(ips, key=lambda a: a != route))
 
 
 def _bind(family: socket.AddressFamily, ip: str, port: int) -> OSError | None:

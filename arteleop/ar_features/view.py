@@ -160,7 +160,9 @@ class OperatorView(Closeable):
     @property
     def url(self) -> str:
         """Address to open in a browser (a real address of this machine for 0.0.0.0)."""
-        return f"http://{self.host.addresses[0]}:{self.server.get_port()}"
+        address = self.host.addresses[0]
+        host = f"[{address}]" if ":" in address else address  # an IPv6 address, as URLs write it
+        return f"http://{host}:{self.server.get_port()}"
 
     def link(self, token: str) -> str:
         """The address that admits a browser with ``token`` (see :attr:`ViewConfig.links`)."""
