@@ -99,7 +99,10 @@ class LiveInput:
             group = gui.add_button_group(label, names)
 
             def step(event: viser.GuiEvent[viser.GuiButtonGroupHandle]) -> None:
-                delta = STEPS_M[size.value] * directions[event.target.value]
+                step_m, direction = STEPS_M.get(size.value), directions.get(event.target.value)
+                if step_m is None or direction is None:  # not the page's: a client's own
+                    return
+                delta = step_m * direction
                 with self._stepping:  # clicks and drags come on a pool's threads
                     position = np.asarray(self._gizmo.position) + delta
                     self._gizmo.position = position  # set from here: on_update is not called

@@ -5,11 +5,13 @@ import socket
 import time
 
 import numpy as np
+import pytest
 import viser
 
 from arteleop.ar_features.live_input import STEPS_M, LiveInput, step_directions
 from arteleop.operator import HandTarget
 from tests.instruments.browser import chromium, require_chromium
+from tests.instruments.view_probe import CAMERA, ViewProbe, until
 
 
 def _free_port() -> int:
@@ -86,6 +88,38 @@ def test_each_step_button_moves_the_target_that_way_in_the_cameras_image() -> No
 
 PERSON_GAP_S = 0.1
 """Between two presses: a person's fastest repeated taps are further apart (s)."""
+
+
+def test_a_step_the_page_does_not_offer_moves_nothing_and_prints_nothing(
+    capfd: pytest.CaptureFixture[str],
+) -> None:
+    # A client sends what it likes: a Step of "10 m" printed a KeyError's traceback.
+    rest = np.array([0.6, -0.5, 0.1])
+    T = _looking_down_x(0.6)
+    moves: list[np.ndarray] = []
+    server = viser.ViserServer(host="127.0.0.1", port=_free_port(), verbose=False)
+    try:
+        LiveInput(server, rest, lambda gripper_m, grip: moves.append(gripper_m), T_base_camera=T)
+        with ViewProbe(f"http://127.0.0.1:{server.get_port()}") as client:
+
+            def control(label: str) -> object:
+                ids = [m["uuid"] for m in client.sent() if m.get("props", {}).get("label") == label]
+                return ids[0] if ids else None
+
+            client.send(CAMERA)  # as a browser, first
+            assert until(lambda: control("Step") and control("Move"))
+            step, move = control("Step"), control("Move")
+            for uuid, value in ((step, "10 m"), (move, "left"), (step, "1 cm"),
+                                (move, "sideways"), (move, "right")):  # fmt: skip
+                client.send({"type": "GuiUpdateMessage", "uuid": uuid, "updates": {"value": value}})
+                time.sleep(0.2)  # each handled before the next: the callbacks run on a pool
+            assert until(lambda: len(moves) == 1)
+            time.sleep(0.3)
+    finally:
+        server.stop()
+    (moved,) = moves
+    np.testing.assert_allclose(moved, rest + STEPS_M["1 cm"] * step_directions(T)["right"])
+    assert "Traceback" not in capfd.readouterr().err
 
 
 def test_presses_at_a_persons_pace_each_move_the_target_once() -> None:

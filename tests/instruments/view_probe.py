@@ -69,7 +69,7 @@ class ViewProbe(Closeable):
         self._thread = threading.Thread(target=self._read, daemon=True)
         self._thread.start()
         if render_reply is not None:
-            self._ws.send(msgspec.msgpack.encode(CAMERA))
+            self.send(CAMERA)
 
     def _read(self) -> None:
         while True:
@@ -88,8 +88,16 @@ class ViewProbe(Closeable):
             if m.get("type") == "GetRenderRequestMessage":
                 reply = {"type": "GetRenderResponseMessage", "payload": self._render_reply,
                          "render_uuid": m["render_uuid"]}  # fmt: skip
-                self._ws.send(msgspec.msgpack.encode(reply))
+                self.send(reply)
                 self.render_replies += 1
+
+    def sent(self) -> list[dict[str, object]]:
+        """Every message the server sent so far, decoded."""
+        return [m for r in self.messages() for m in _messages(r.data)]
+
+    def send(self, message: dict[str, object]) -> None:
+        """Send the server one message (its ``type`` and fields), as a browser would."""
+        self._ws.send(msgspec.msgpack.encode(message))
 
     def messages(self, min_bytes: int = 0) -> list[Received]:
         """Messages received so far, those of at least ``min_bytes`` only."""
