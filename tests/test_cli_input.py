@@ -364,3 +364,12 @@ def test_study_serve_refuses_what_it_cannot_serve_into(
         f"{simulated} holds a simulated run: 'arteleop study resume {simulated}' continues it; "
         "give 'study serve' a new folder."
     )
+
+
+def test_a_public_url_with_a_path_is_refused_before_the_run_begins(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    out = tmp_path / "people"
+    argv = ["study", "serve", "--out", str(out), "--public-url", "https://proxy/study"]
+    assert _error(capsys, argv).startswith("--public-url https://proxy/study: expected http")
+    assert not out.exists()

@@ -12,6 +12,9 @@ from __future__ import annotations
 import threading
 from collections.abc import Collection, Iterable
 from typing import TYPE_CHECKING
+from urllib.parse import urlsplit
+
+from arteleop.errors import ConfigurationError
 
 if TYPE_CHECKING:
     import viser
@@ -22,8 +25,28 @@ TOKEN_BYTES = 16
 
 def link_url(url: str, token: str) -> str:
     """The address that admits a browser with ``token`` to the view served at ``url``
-    (``http://HOST:PORT``)."""
-    return f"{url}/?websocket={url.replace('http://', 'ws://', 1)}/{token}"
+    (``http://HOST:PORT``, or ``https://HOST`` behind a proxy that adds TLS: its socket is then
+    ``wss://``, as a secure page may open no other)."""
+    socket_url = "ws" + url.removeprefix("http")
+    return f"{url}/?websocket={socket_url}/{token}"
+
+
+def check_public_url(url: str) -> str:
+    """``url`` if browsers can be sent to it (``http(s)://HOST[:PORT]``, nothing after; a
+    trailing slash is dropped), else :class:`ConfigurationError` saying what is expected."""
+    parts = urlsplit(url)
+    try:
+        port_ok = parts.port != 0  # urlsplit refuses ports out of range or not numbers
+    except ValueError:
+        port_ok = False
+    extra = parts.path not in ("", "/") or parts.query or parts.fragment or parts.username
+    if parts.scheme not in ("http", "https") or not parts.hostname or not port_ok or extra:
+        raise ConfigurationError(
+            f"--public-url {url}: expected http://HOST[:PORT] or https://HOST[:PORT], the "
+            "address participants open (a reverse proxy's or a tunnel's), with nothing after "
+            "it: the proxy forwards every path, the page's and its socket's, to the server."
+        )
+    return url.rstrip("/")
 
 
 class LinkGate:

@@ -31,7 +31,7 @@ from arteleop.ar_features.layers import (
     PredictiveGhostLayer,
     TargetLayer,
 )
-from arteleop.ar_features.links import LinkGate, link_url
+from arteleop.ar_features.links import LinkGate, check_public_url, link_url
 from arteleop.ar_features.modalities import ArCues
 from arteleop.ar_features.panel import ModalityPanel
 from arteleop.errors import ConfigurationError
@@ -68,6 +68,9 @@ class ViewConfig:
             study's condition, not the viewer's choice (``arteleop study serve``).
         links: Admit only browsers that open a link with an allowed token
             (:attr:`OperatorView.gate`); none until tokens are allowed.
+        public_url: The address browsers reach the view at through a reverse proxy or a
+            tunnel (``https://study.example.org``), which links and :attr:`OperatorView.url`
+            name instead of this machine's; None: this machine's address.
     """
 
     host: str = "127.0.0.1"
@@ -78,6 +81,7 @@ class ViewConfig:
     image_margin: float = 0.1
     layer_panel: bool = True
     links: bool = False
+    public_url: str | None = None
 
     def fitting_fov_rad(self, aspect: float) -> float:
         """The vertical field of view (rad) that shows the whole camera image and its margin in
@@ -96,6 +100,8 @@ class ViewConfig:
         )
 
     def __post_init__(self) -> None:
+        if self.public_url is not None:
+            object.__setattr__(self, "public_url", check_public_url(self.public_url))
         if not 0 <= self.port <= 65535:
             raise ConfigurationError(f"ViewConfig.port={self.port} is not a TCP port (0..65535)")
         if not (math.isfinite(self.image_margin) and 0 <= self.image_margin <= 0.5):
@@ -159,7 +165,10 @@ class OperatorView(Closeable):
 
     @property
     def url(self) -> str:
-        """Address to open in a browser (a real address of this machine for 0.0.0.0)."""
+        """Address to open in a browser: the public URL if given, else an address of this
+        machine (for 0.0.0.0 one that other machines can reach)."""
+        if self.config.public_url is not None:
+            return self.config.public_url
         address = self.host.addresses[0]
         host = f"[{address}]" if ":" in address else address  # an IPv6 address, as URLs write it
         return f"http://{host}:{self.server.get_port()}"

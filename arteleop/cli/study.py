@@ -181,6 +181,8 @@ class StudyServeCommand:
     """port to serve the page on; refused if it is taken (0: any free one)"""
     links: bool = False
     """each participant joins by a link of their own (printed as their session begins); always so when --host lets other machines connect"""
+    public_url: str | None = None
+    """the address participants open when a reverse proxy or a tunnel forwards to this server (https://study.example.org): links name it, with a wss:// socket for https; links are then always on"""
     width_px: int = 640
     """camera image width (px): the simulated cohort's; 320x240 keeps 30 frames/s on a loaded two-core machine"""
     height_px: int = 480
@@ -198,7 +200,8 @@ def study_serve(cmd: StudyServeCommand) -> int:
     study = None if cmd.file is None else load_study_file(cmd.file)[0]
     camera = HeadCameraConfig(width_px=cmd.width_px, height_px=cmd.height_px)
     host = check_host(cmd.host, cmd.port)  # before the run folder is begun
-    view = ViewConfig(host=cmd.host, port=cmd.port, links=cmd.links or not host.loopback)
+    view = ViewConfig(host=cmd.host, port=cmd.port, public_url=cmd.public_url,
+                      links=cmd.links or not host.loopback or cmd.public_url is not None)  # fmt: skip
 
     def tell_link(participant: str, url: str) -> None:
         print(f"participant {participant}'s link: {url}", flush=True)

@@ -3,7 +3,9 @@
 import numpy as np
 import pytest
 
+from arteleop.ar_features import OperatorView, ViewConfig
 from arteleop.ar_features.links import LinkGate, link_url
+from arteleop.errors import ConfigurationError
 from tests.instruments.view_probe import ViewProbe, admitted, refused, until
 
 
@@ -43,3 +45,36 @@ def test_a_link_carries_the_token_to_the_socket_address() -> None:
     assert link_url("http://10.0.0.5:8080", "Ab-_9") == (
         "http://10.0.0.5:8080/?websocket=ws://10.0.0.5:8080/Ab-_9"
     )
+
+
+def test_behind_a_proxy_that_adds_tls_the_link_opens_a_secure_socket() -> None:
+    # A secure page may open no plain socket: ws:// under https never connected.
+    assert link_url("https://study.example.org", "Ab-_9") == (
+        "https://study.example.org/?websocket=wss://study.example.org/Ab-_9"
+    )
+
+
+@pytest.mark.parametrize(
+    "url", ["ftp://proxy", "study.example.org", "https://", "https://proxy/study",
+            "https://proxy:0", "https://proxy:99999", "https://proxy/?a=1", "https://u:p@proxy"],
+)  # fmt: skip
+def test_a_public_url_browsers_cannot_be_sent_to_is_refused(url: str) -> None:
+    with pytest.raises(ConfigurationError) as refusal:
+        ViewConfig(public_url=url)
+    assert str(refusal.value) == (
+        f"--public-url {url}: expected http://HOST[:PORT] or https://HOST[:PORT], the address "
+        "participants open (a reverse proxy's or a tunnel's), with nothing after it: the proxy "
+        "forwards every path, the page's and its socket's, to the server."
+    )
+
+
+def test_links_name_the_public_url_and_admit_through_it() -> None:
+    # This machine's other name stands in for a proxy's: the link must name it, and work.
+    view_config = ViewConfig(port=0, links=True, public_url="http://localhost:1/")
+    with OperatorView(view_config) as view:
+        assert view.url == "http://localhost:1"
+        link = view.link("tok")
+        assert link == "http://localhost:1/?websocket=ws://localhost:1/tok"
+        view.gate.allow({"tok"})
+        socket_url = link.split("websocket=")[1].replace(":1/", f":{view.server.get_port()}/")
+        assert admitted(socket_url)
