@@ -88,8 +88,8 @@ class ViewProbe(Closeable):
             if m.get("type") == "GetRenderRequestMessage":
                 reply = {"type": "GetRenderResponseMessage", "payload": self._render_reply,
                          "render_uuid": m["render_uuid"]}  # fmt: skip
+                self.render_replies += 1  # counted first: the server may act on the reply at once
                 self.send(reply)
-                self.render_replies += 1
 
     def sent(self) -> list[dict[str, object]]:
         """Every message the server sent so far, decoded."""
