@@ -6,6 +6,7 @@ traceback or a hang.
 
 from __future__ import annotations
 
+import collections
 import ipaddress
 import os
 import re
@@ -172,8 +173,31 @@ def test_other_hosts_warn_and_a_taken_port_moves_on() -> None:
         with OperatorView(ViewConfig(port=port)) as view:
             assert view.notices() == [f"port {port} is taken; serving on {port + 1}"]
     with OperatorView(ViewConfig(host="0.0.0.0", port=0)) as view:
-        (notice,) = view.notices()
-        assert "anyone on that network can see it and drive the robot" in notice
+        assert "anyone on that network can see it and drive the robot" in view.notices()[0]
+
+
+def test_served_on_every_interface_of_a_machine_no_other_reaches_says_so(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # A laptop off its network: eth0 has an address but is down, lo is up.
+    nic = collections.namedtuple("nic", "family address")
+    up = collections.namedtuple("up", "isup")
+    monkeypatch.setattr(
+        psutil,
+        "net_if_addrs",
+        lambda: {
+            "lo": [nic(socket.AF_INET, "127.0.0.1")],
+            "eth0": [nic(socket.AF_INET, "192.0.2.7")],
+        },
+    )
+    monkeypatch.setattr(psutil, "net_if_stats", lambda: {"lo": up(True), "eth0": up(False)})
+    with OperatorView(ViewConfig(host="0.0.0.0", port=0)) as view:
+        assert view.url.startswith("http://127.0.0.1:")
+        assert view.notices()[1] == (
+            "warning: no network interface other machines can reach is up, so the address "
+            "printed, 127.0.0.1, opens only on this machine: bring a network up, or give study "
+            "serve a --public-url (a tunnel's, say)"
+        )
 
 
 @pytest.mark.parametrize("host", ["0.0.0.0", "::"])

@@ -138,9 +138,9 @@ def trimmed_paired_p(a: Array, b: Array) -> Array:
         mean = d[:, g : k - g].mean(axis=1)
         w = np.clip(d, d[:, [g]], d[:, [k - g - 1]])
         var_w = w.var(axis=1, ddof=1)
-        with np.errstate(invalid="ignore", divide="ignore"):  # no spread: p is NaN
+        with np.errstate(invalid="ignore", divide="ignore"):  # no spread: t is +-inf or NaN
             t = mean / np.sqrt((k - 1) * var_w / (h * (h - 1)))
-        p[rows] = np.where(var_w > 0, 2 * stats.t.sf(np.abs(t), h - 1), np.nan)
+        p[rows] = 2 * stats.t.sf(np.abs(t), h - 1)  # p 0 at +-inf, NaN at 0/0, as in analyse
     return p
 
 

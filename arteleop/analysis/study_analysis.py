@@ -39,7 +39,7 @@ from arteleop.analysis.statistics import (
     compare,
     order_effect,
     pairwise,
-    stars,
+    tested,
     trim_extremes,
     untested,
 )
@@ -222,23 +222,11 @@ def _expertise(
                         )
                     )
                     continue
-                name, stat, p, effect, kind_e = compare(a, b, between_groups)
+                result = compare(a, b, between_groups)
                 tests.append(
-                    TestResult(
-                        subset,
-                        m,
-                        f"expert:{modality}",
-                        f"novice:{modality}",
-                        name,
-                        len(a),
-                        len(b),
-                        stat,
-                        p,
-                        effect,
-                        kind_e,
-                        stars(p, options.alpha),
-                    )
-                )
+                    tested(subset, m, f"expert:{modality}", f"novice:{modality}", a, b, result,
+                           options)
+                )  # fmt: skip
     return tests, norms
 
 

@@ -76,11 +76,13 @@ but takes the address of the interface this machine would reach other networks f
 
 def _reachable(family: socket.AddressFamily) -> tuple[str, ...]:
     """This machine's interfaces' addresses in ``family`` that other machines can reach, the
-    one it reaches other networks from first; loopback and link-local ones left out. Not its
+    one it reaches other networks from first; loopback, link-local and down ones left out. Not its
     name's: Debian and Ubuntu give it 127.0.1.1, which no other machine reaches."""
+    up = {name for name, stats in psutil.net_if_stats().items() if stats.isup}
     found = {
         ipaddress.ip_address(a.address.split("%")[0])  # an IPv6 address's zone
-        for nic in psutil.net_if_addrs().values()
+        for name, nic in psutil.net_if_addrs().items()
+        if name in up
         for a in nic
         if a.family == family
     }

@@ -34,19 +34,19 @@ def link_url(url: str, token: str) -> str:
 def check_public_url(url: str) -> str:
     """``url`` if browsers can be sent to it (``http(s)://HOST[:PORT]``, nothing after; a
     trailing slash is dropped), else :class:`ConfigurationError` saying what is expected."""
-    parts = urlsplit(url)
+    parts = urlsplit(url.strip())
     try:
         port_ok = parts.port != 0  # urlsplit refuses ports out of range or not numbers
     except ValueError:
         port_ok = False
-    extra = parts.path not in ("", "/") or parts.query or parts.fragment or parts.username
+    extra = parts.path not in ("", "/") or parts.query or parts.fragment or "@" in parts.netloc
     if parts.scheme not in ("http", "https") or not parts.hostname or not port_ok or extra:
         raise ConfigurationError(
             f"--public-url {url}: expected http://HOST[:PORT] or https://HOST[:PORT], the "
             "address participants open (a reverse proxy's or a tunnel's), with nothing after "
             "it: the proxy forwards every path, the page's and its socket's, to the server."
         )
-    return url.rstrip("/")
+    return f"{parts.scheme}://{parts.netloc}"  # urlsplit lowercased the scheme
 
 
 class LinkGate:

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import contextlib
 import io
+import ipaddress
 import math
 import time
 from dataclasses import dataclass, replace
@@ -183,11 +184,18 @@ class OperatorView(Closeable):
         if self.config.port and self.server.get_port() != self.config.port:
             out.append(f"port {self.config.port} is taken; serving on {self.server.get_port()}")
         if not self.host.loopback:
+            address = self.host.addresses[0]
             who = "anyone on that network" + (" with a link" if self.gate else "")
             out.append(
                 f"warning: the view is served on {self.config.host}: {who} can see it and drive "
                 "the robot"
             )
+            if self.config.public_url is None and ipaddress.ip_address(address).is_loopback:
+                out.append(
+                    "warning: no network interface other machines can reach is up, so the "
+                    f"address printed, {address}, opens only on this machine: bring a network "
+                    "up, or give study serve a --public-url (a tunnel's, say)"
+                )
         return out
 
     @property

@@ -189,3 +189,21 @@ def test_values_that_do_not_vary_after_trimming_get_no_p_and_say_why() -> None:
                          AnalysisOptions(method="yuen"))  # fmt: skip
     assert (row.test, row.stars) == ("yuen", "") and math.isnan(row.p_value)
     assert row.note == "no p: the values compared do not vary (after trimming)"
+
+
+@pytest.mark.parametrize(("shift", "want_p"), [(1.0, 0.0), (0.0, math.nan)])
+def test_differences_without_spread_are_certain_or_untestable_as_in_yuens(
+    shift: float, want_p: float
+) -> None:
+    # Every participant 1 slower: Yuen's test (scipy's) says p 0 for a like difference between
+    # groups; the paired test and its vectorised copy in the power engine must agree with it.
+    from arteleop.analysis.resampled_tests import trimmed_paired_p
+
+    a = np.array([3.0, 5, 8, 9, 14])
+    _, _, p, _, _ = compare_trimmed_differences(a + shift, a)
+    assert p == pytest.approx(want_p, nan_ok=True)
+    assert trimmed_paired_p((a + shift)[None, :], a[None, :])[0] == pytest.approx(
+        want_p, nan_ok=True
+    )
+    groups = stats.ttest_ind(np.ones(5) + shift, np.ones(5), equal_var=False, trim=0.2).pvalue
+    assert groups == pytest.approx(want_p, nan_ok=True)

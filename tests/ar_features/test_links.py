@@ -56,7 +56,8 @@ def test_behind_a_proxy_that_adds_tls_the_link_opens_a_secure_socket() -> None:
 
 @pytest.mark.parametrize(
     "url", ["ftp://proxy", "study.example.org", "https://", "https://proxy/study",
-            "https://proxy:0", "https://proxy:99999", "https://proxy/?a=1", "https://u:p@proxy"],
+            "https://proxy:0", "https://proxy:99999", "https://proxy/?a=1", "https://u:p@proxy",
+            "https://:p@proxy"],
 )  # fmt: skip
 def test_a_public_url_browsers_cannot_be_sent_to_is_refused(url: str) -> None:
     with pytest.raises(ConfigurationError) as refusal:
@@ -65,6 +66,14 @@ def test_a_public_url_browsers_cannot_be_sent_to_is_refused(url: str) -> None:
         f"--public-url {url}: expected http://HOST[:PORT] or https://HOST[:PORT], the address "
         "participants open (a reverse proxy's or a tunnel's), with nothing after it: the proxy "
         "forwards every path, the page's and its socket's, to the server."
+    )
+
+
+def test_a_public_url_is_read_as_browsers_read_it() -> None:
+    # Browsers lowercase the scheme and drop an empty query or fragment: the socket's scheme
+    # is derived from the page's, so it must be read the same way.
+    assert ViewConfig(public_url=" HTTPS://Study.example.org:8443/? ").public_url == (
+        "https://Study.example.org:8443"
     )
 
 
