@@ -33,6 +33,7 @@ if TYPE_CHECKING:
         pooled_effects,
         write_cohort_report,
     )
+    from arteleop.analysis.pooling import check_cohorts
     from arteleop.analysis.power import Pool, PowerOptions, make_pool, power
     from arteleop.analysis.power_report import write_power_report
     from arteleop.analysis.report import write_report
@@ -76,6 +77,7 @@ _LAZY = {
          "write_cohort_report"),
         "arteleop.analysis.cohorts",
     ),
+    "check_cohorts": "arteleop.analysis.pooling",
     **dict.fromkeys(("Pool", "PowerOptions", "make_pool", "power"), "arteleop.analysis.power"),
     "write_power_report": "arteleop.analysis.power_report",
     "AnalysisResult": "arteleop.analysis.study_analysis",
@@ -104,6 +106,7 @@ __all__ = [
     "StudyData",
     "TestResult",
     "analyse",
+    "check_cohorts",
     "cohens_d",
     "cohort_medians",
     "compare",

@@ -24,6 +24,7 @@ from scipy import stats
 from arteleop.analysis.data import StudyData, sources_in
 from arteleop.analysis.delay import cue_sets, profiles, with_network
 from arteleop.analysis.output import whole_folder
+from arteleop.analysis.pooling import DIFFERENT
 
 REFERENCE = "none"
 RATIOS = {"completion_time_s": "time", "placement_error_m": "error"}
@@ -151,17 +152,20 @@ def _table(frame: pd.DataFrame, columns: dict[str, str]) -> list[str]:
 
 
 def write_cohort_report(
-    sources: Sequence[Path], trials: pd.DataFrame, out_dir: Path
+    sources: Sequence[Path], trials: pd.DataFrame, out_dir: Path, notes: Sequence[str] = ()
 ) -> dict[str, Path]:
     """``cohort_medians.csv``, ``pooled_effects.csv``, ``experts.csv`` (with participants) and
     ``cohorts.md`` in ``out_dir``, whole or not at all (it replaces an existing ``out_dir``);
-    returns them by name."""
+    returns them by name. ``notes``: what :func:`~arteleop.analysis.check_cohorts` said of
+    the cohorts."""
     with whole_folder(out_dir) as partial:
-        files = _write(sources, trials, partial)
+        files = _write(sources, trials, partial, notes)
     return {name: out_dir / path.relative_to(partial) for name, path in files.items()}
 
 
-def _write(sources: Sequence[Path], trials: pd.DataFrame, out_dir: Path) -> dict[str, Path]:
+def _write(
+    sources: Sequence[Path], trials: pd.DataFrame, out_dir: Path, notes: Sequence[str]
+) -> dict[str, Path]:
     medians, effects, experts = cohort_medians(trials), pooled_effects(trials), expert_gaps(trials)
     files = {"cohort_medians.csv": medians, "pooled_effects.csv": effects}
     if experts is not None:
@@ -189,9 +193,12 @@ def _write(sources: Sequence[Path], trials: pd.DataFrame, out_dir: Path) -> dict
             for lo, hi, r in zip(effects["low"], effects["high"], ratio, strict=True)],
     )  # fmt: skip
     lines = [
-        f"# {len(sources)} cohorts of one design", "",
+        f"# {len(sources)} cohorts of "
+        + ("different designs" if any(n.startswith(DIFFERENT) for n in notes) else "one design"),
+        "",
         *(f"{k}. `{path}`" + (f" ({who})" if (who := cohort_source(trials, k)) else "")
           for k, path in enumerate(sources, start=1)), "",
+        *(line for note in notes for line in (f"**{note}**", "")),
         "Experimental trials only. Each cue set is paired with the same participant's trial "
         "without AR at the same network profile; ratios (time, error) are geometric means of "
         "the paired ratios, differences (smoothness) mean paired differences, each with its "

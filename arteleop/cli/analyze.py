@@ -36,6 +36,8 @@ class AnalyzeCommand:
     """within-subject tests (paired t-test / Wilcoxon) between modalities (one source)"""
     holm: bool = False
     """Holm-correct each family of pairwise tests (one source)"""
+    allow_different_designs: bool = False
+    """pool run folders whose study files differ in more than seed and cohort size, as a deliberate comparison of designs (several sources; the report says so)"""
     force: bool = False
     """replace --out if it holds an earlier report (never a folder of anything else)"""
 
@@ -112,7 +114,7 @@ def _analyse_one(cmd: AnalyzeCommand, options: AnalysisOptions) -> int:
 
 
 def _pool(cmd: AnalyzeCommand) -> int:
-    from arteleop.analysis import load_study, pool_cohorts, write_cohort_report
+    from arteleop.analysis import check_cohorts, load_study, pool_cohorts, write_cohort_report
 
     if cmd.participants is not None:
         raise ConfigurationError(
@@ -126,10 +128,14 @@ def _pool(cmd: AnalyzeCommand) -> int:
                 f"{path} is given twice (as {seen[path.resolve()]}): each cohort is pooled once."
             )
         seen[path.resolve()] = path
-    trials = pool_cohorts([load_study(path) for path in cmd.sources])
-    files = write_cohort_report(cmd.sources, trials, cmd.out)
+    studies = [load_study(path) for path in cmd.sources]
+    notes = check_cohorts(cmd.sources, studies, cmd.allow_different_designs)
+    trials = pool_cohorts(studies)
+    files = write_cohort_report(cmd.sources, trials, cmd.out, notes)
     print(f"pooled {len(cmd.sources)} cohorts: {len(trials)} experimental trials of "
           f"{trials.groupby('cohort')['participant'].nunique().sum()} participants")  # fmt: skip
+    for note in notes:
+        print(f"note: {note}")
     print(files["cohorts.md"].read_text(), end="")
     print(f"wrote {len(files)} files to {cmd.out}, see {files['cohorts.md']}")
     return 0

@@ -4,6 +4,7 @@ run folders with known effects."""
 from __future__ import annotations
 
 import re
+import shutil
 from pathlib import Path
 
 import numpy as np
@@ -89,3 +90,69 @@ def test_a_missing_run_is_named(tmp_path: Path, capsys) -> None:
 def test_what_pooling_cannot_take_is_refused(args: list[str], message: str, capsys) -> None:
     assert main(["analyze", *args]) == 2
     assert capsys.readouterr().err == f"arteleop: error: {message}\n"
+
+
+# Pooling that checks: no cohort twice, one design --------------------------------------------
+
+STUDY = 'name = "{name}"\nseed = {seed}\ntimeout_s = {timeout}\n[cohort]\nsize = {size}\n'
+
+
+def _refusal(args: list[str], capsys) -> str:
+    assert main(["analyze", *args]) == 2
+    return capsys.readouterr().err
+
+
+def test_a_cohort_is_not_pooled_twice(tmp_path: Path, capsys) -> None:
+    run = make_run(tmp_path / "run", seed=1, trajectories=False)
+    make_run(tmp_path / "again", seed=1, trajectories=False)  # forgot --seed
+    shutil.copytree(run, tmp_path / "backup")
+    for copy in ("again", "backup"):
+        assert _refusal([str(run), str(tmp_path / copy), "--out", str(tmp_path / "r")], capsys) == (
+            f"arteleop: error: {tmp_path / copy} repeats {run}'s trials row for row for 22 "
+            "participant(s) (P01, P02, P03, ...): a copy of the folder, or one run twice. Each "
+            "participant may count once: leave one of them out\n"
+        )
+    # Run twice with one seed where the numbers still differ (another machine's rounding).
+    other = make_run(tmp_path / "other", seed=2, trajectories=False)
+    for folder in (run, other):
+        (folder / "manifest.json").write_text('{"seed": 7, "plan_sha256": "ab12"}')
+    assert _refusal([str(run), str(other)], capsys) == (
+        f"arteleop: error: {run} and {other} are one cohort run twice (seed 7, the same plan): "
+        "the same simulated participants would count twice. Pool runs of other seeds "
+        "(arteleop study run FILE --seed N)\n"
+    )
+    assert not (tmp_path / "r").exists()
+    # People served one plan twice are two cohorts.
+    (other / "manifest.json").write_text('{"seed": 7, "plan_sha256": "ab12", "cohort": "real"}')
+    assert main(["analyze", str(run), str(other), "--out", str(tmp_path / "r")]) == 0
+
+
+def test_cohorts_of_other_designs_are_pooled_only_when_asked(tmp_path: Path, capsys) -> None:
+    a, b = (make_run(tmp_path / f"run{k}", seed=k, n=8, trajectories=False) for k in (1, 2))
+    (a / "study.toml").write_text(STUDY.format(name="pilot", seed=1, timeout=120.0, size=8))
+    # Seed, size and name are not the design: pooled without a word.
+    (b / "study.toml").write_text(STUDY.format(name="main", seed=2, timeout=120, size=20))
+    assert main(["analyze", str(a), str(b), "--out", str(tmp_path / "same")]) == 0
+    assert "note:" not in capsys.readouterr().out
+    (b / "study.toml").write_text(STUDY.format(name="main", seed=2, timeout=60.0, size=20))
+    said = f"timeout_s (120.0 in {a}, 60.0 here)"
+    assert _refusal([str(a), str(b), "--out", str(tmp_path / "r")], capsys) == (
+        f"arteleop: error: {b / 'study.toml'}: not the design of {a}: {said}. Cohorts pooled "
+        "must differ only in seed and size; give --allow-different-designs to compare the "
+        "designs deliberately\n"
+    )
+    out_dir = tmp_path / "compared"
+    args = [str(a), str(b), "--out", str(out_dir), "--allow-different-designs"]
+    assert main(["analyze", *args]) == 0
+    note = f"Different designs, compared deliberately: {b} differs from {a} in {said}."
+    assert f"note: {note}\n" in capsys.readouterr().out
+    report = (out_dir / "cohorts.md").read_text()
+    assert report.startswith("# 2 cohorts of different designs\n") and f"**{note}**" in report
+    (b / "study.toml").unlink()
+    assert main(["analyze", str(a), str(b), "--out", str(out_dir), "--force"]) == 0
+    assert f"note: Designs not checked: no study.toml in {b}.\n" in capsys.readouterr().out
+    (b / "study.toml").write_text("timeout_s = [")
+    assert _refusal([str(a), str(b), "--out", str(out_dir), "--force"], capsys) == (
+        f"arteleop: error: {b / 'study.toml'}: not a study file (Invalid value (at end of "
+        "document))\n"
+    )
