@@ -34,7 +34,7 @@ if TYPE_CHECKING:
         write_cohort_report,
     )
     from arteleop.analysis.pooling import check_cohorts
-    from arteleop.analysis.power import Pool, PowerOptions, make_pool, power
+    from arteleop.analysis.power import Pool, PowerOptions, check_pool_size, make_pool, power
     from arteleop.analysis.power_report import write_power_report
     from arteleop.analysis.report import write_report
     from arteleop.analysis.statistics import (
@@ -78,7 +78,10 @@ _LAZY = {
         "arteleop.analysis.cohorts",
     ),
     "check_cohorts": "arteleop.analysis.pooling",
-    **dict.fromkeys(("Pool", "PowerOptions", "make_pool", "power"), "arteleop.analysis.power"),
+    **dict.fromkeys(
+        ("Pool", "PowerOptions", "check_pool_size", "make_pool", "power"),
+        "arteleop.analysis.power",
+    ),
     "write_power_report": "arteleop.analysis.power_report",
     "AnalysisResult": "arteleop.analysis.study_analysis",
     "analyse": "arteleop.analysis.study_analysis",
@@ -107,6 +110,7 @@ __all__ = [
     "TestResult",
     "analyse",
     "check_cohorts",
+    "check_pool_size",
     "cohens_d",
     "cohort_medians",
     "compare",

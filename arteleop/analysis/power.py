@@ -106,6 +106,30 @@ class Pool:
     sources: tuple[str, ...] = ()
 
 
+MIN_POOL = 4
+"""Fewest participants with a successful experimental trial that power resamples. From k people
+resampling draws at most C(2k - 1, k) different studies (1, 3 and 10 for k = 1, 2, 3), and one
+person's groups have no spread at all: power would read 1 at every n."""
+
+
+def check_pool_size(pool: Pool, names: str, coming: int = 0) -> None:
+    """Refuse ``pool`` (from ``names``) if it has fewer than :data:`MIN_POOL` participants
+    with a successful experimental trial, ``coming`` more participants counted in."""
+    placed = np.zeros(len(pool.participants), dtype=bool)
+    for values in pool.values.values():
+        placed |= np.isfinite(values).any(axis=1)
+    have = int(placed.sum())
+    if have + coming >= MIN_POOL:
+        return
+    what = "no participant" if have == 0 else f"{have} participant(s)"
+    raise AnalysisInputError(
+        f"{names}: {what} with a successful experimental trial; power needs at least {MIN_POOL} "
+        "to resample (from fewer too few different studies can be drawn, and one person's "
+        "groups have no spread: power would read 1 at every n). Add participants, or "
+        "--simulate N simulated ones of the first run folder's design"
+    )
+
+
 def make_pool(studies: Sequence[StudyData], names: Sequence[str]) -> Pool:
     """The pool of the experimental trials of ``studies`` (named ``names`` in the report)."""
     frames = []

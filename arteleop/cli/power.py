@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import csv
+import shutil
 import sys
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -41,7 +43,7 @@ class StudyPowerCommand:
     holm: bool = False
     """Holm-correct each family of pairwise tests, as 'arteleop analyze --holm'"""
     simulate: int = 0
-    """add this many simulated participants of the first run folder's design to the pool, run first into the folder OUT-simulated-run (a run folder of its own)"""
+    """add this many simulated participants of the first run folder's design to the pool, run first into the folder OUT-simulated-run (a run folder of its own; --force simulates them anew there)"""
     workers: int = 0
     """processes running the simulated participants' trials; 0: one per core"""
     seed: int = 0
@@ -72,7 +74,13 @@ def study_power(cmd: StudyPowerCommand) -> int:
     from tqdm import tqdm
 
     from arteleop.analysis import AnalysisInputError, load_study
-    from arteleop.analysis.power import PowerOptions, make_pool, power
+    from arteleop.analysis.power import (
+        PowerOptions,
+        check_pool_size,
+        comparisons,
+        make_pool,
+        power,
+    )
     from arteleop.analysis.power_report import write_power_report
 
     if not cmd.sources:
@@ -90,21 +98,24 @@ def study_power(cmd: StudyPowerCommand) -> int:
     if cmd.simulate < 0:
         raise ConfigurationError(f"--simulate {cmd.simulate}: give 0 or more participants.")
     check_report_folder(cmd.out, cmd.sources, cmd.force)
+    simulated = cmd.out.parent / f"{cmd.out.name}-simulated-run"
+    if cmd.simulate:
+        _check_simulated_folder(simulated, cmd.force)
     sources = list(cmd.sources)
     try:
         studies = [load_study(path) for path in sources]
         pool = make_pool(studies, [str(p) for p in sources])
-        from arteleop.analysis.power import comparisons
-
+        check_pool_size(pool, ", ".join(map(str, sources)), cmd.simulate)
         comparisons(pool, options)  # an unknown condition is refused before anything runs
+        if cmd.simulate:
+            _simulate(sources[0], cmd.simulate, cmd.seed, simulated, cmd.workers)
+            sources.append(simulated)
+            studies.append(load_study(simulated))
+            pool = make_pool(studies, [str(p) for p in sources])
+            check_pool_size(pool, ", ".join(map(str, sources)))
     except AnalysisInputError as err:
         print(f"arteleop: error: {err}", file=sys.stderr)
         return 2
-    if cmd.simulate:
-        simulated = _simulate(sources[0], cmd.simulate, cmd.seed, cmd.out, cmd.workers)
-        sources.append(simulated)
-        studies.append(load_study(simulated))
-        pool = make_pool(studies, [str(p) for p in sources])
     simulated_pool = {k for s in studies for k in s.sources} == {"synthetic"}
     parts = []
     interrupted = False
@@ -133,8 +144,39 @@ def study_power(cmd: StudyPowerCommand) -> int:
     return 0
 
 
-def _simulate(first: Path, size: int, seed: int, out: Path, workers: int) -> Path:
-    """``size`` simulated participants of the design of the run folder ``first``."""
+def _check_simulated_folder(target: Path, force: bool) -> None:
+    """Make way for the simulated participants' run folder ``target``: replaced with ``force``
+    if an earlier --simulate wrote it, else refused."""
+    from arteleop.study import RunFolder
+
+    if not target.exists():
+        return
+    if not force:
+        raise ConfigurationError(
+            f"--simulate: {target} holds the simulated participants of an earlier power "
+            "analysis; give --force to simulate them anew there, or another --out."
+        )
+    if not (RunFolder(target).is_run_folder() and _all_simulated(target)):
+        raise ConfigurationError(
+            f"--simulate: {target} is in the way and is not a run of simulated participants; "
+            "move it, or give another --out (--force replaces only what power wrote)."
+        )
+    shutil.rmtree(target)
+
+
+def _all_simulated(folder: Path) -> bool:
+    """Whether ``folder``'s participants table lists only simulated participants."""
+    people = folder / "participants.csv"
+    if not people.is_file():
+        return False
+    with people.open(encoding="utf-8", newline="") as f:
+        sources = [row.get("source") for row in csv.DictReader(f)]
+    return bool(sources) and all(source == "synthetic" for source in sources)
+
+
+def _simulate(first: Path, size: int, seed: int, target: Path, workers: int) -> None:
+    """``size`` simulated participants of the design of the run folder ``first``, run into
+    the new folder ``target``."""
     from arteleop.study import RunFolder, parse_study, run_study
 
     folder = RunFolder(first)
@@ -150,6 +192,4 @@ def _simulate(first: Path, size: int, seed: int, out: Path, workers: int) -> Pat
     avr, games = (max(round(k * size / c.size), both) for k in (c.avr_experts, c.games_experts))
     cohort = replace(c, size=size, avr_experts=avr, games_experts=games, both_experts=both)
     study = replace(study, participants=(), cohort=cohort, seed=seed + 1000)
-    target = out.parent / f"{out.name}-simulated-run"
     run_study(study, target, workers or None)
-    return target

@@ -3,6 +3,7 @@ the same files; bad input writes nothing. (Error rates and analytic power: test_
 
 from __future__ import annotations
 
+import shutil
 from pathlib import Path
 
 import numpy as np
@@ -177,6 +178,26 @@ def test_a_pool_without_the_columns_the_tests_need_is_refused(tmp_path: Path, ca
     assert not out.exists()
 
 
+@pytest.mark.parametrize(("people", "said"), [(3, "3 participant(s)"), (0, "no participant")])
+def test_a_pool_too_small_to_resample_is_refused(
+    tmp_path: Path, capsys, people: int, said: str
+) -> None:
+    # One participant read as power 1.000 at every n; no success wrote empty files.
+    folder = _pool_folder(tmp_path / "pool", {"full": -0.5}, people=5)
+    trials = pd.read_csv(folder / "trials.csv")
+    trials.loc[trials["participant"] >= f"P{people:03d}", "outcome"] = "timeout"
+    trials.to_csv(folder / "trials.csv", index=False)
+    out = tmp_path / "out"
+    assert main(["study", "power", str(folder), "--out", str(out), "--quiet"]) == 2
+    assert capsys.readouterr().err == (
+        f"arteleop: error: {folder}: {said} with a successful experimental trial; power needs "
+        "at least 4 to resample (from fewer too few different studies can be drawn, and one "
+        "person's groups have no spread: power would read 1 at every n). Add participants, or "
+        "--simulate N simulated ones of the first run folder's design\n"
+    )
+    assert not out.exists()
+
+
 def test_simulated_participants_of_the_design_join_the_pool(tmp_path: Path, capsys) -> None:
     """--simulate runs participants of the first run folder's design as a run folder of their
     own (the study runner), another seed than the pilot's, and resamples them with it."""
@@ -184,14 +205,20 @@ def test_simulated_participants_of_the_design_join_the_pool(tmp_path: Path, caps
 
     tiny = StudyConfig(seed=3, modalities=("none", "full"), timeout_s=1.0,
                        familiarization=FamiliarizationConfig(trials=0),
-                       cohort=CohortConfig(size=2, avr_experts=0, games_experts=0,
+                       cohort=CohortConfig(size=4, avr_experts=0, games_experts=0,
                                            both_experts=0))  # fmt: skip
     run_study(tiny, tmp_path / "pilot", workers=1)
+    # Trials of 1 s time out; the pilot's are read as placed, so that the pool can be resampled.
+    trials = pd.read_csv(tmp_path / "pilot" / "trials.csv")
+    trials["outcome"] = "success"
+    trials["completion_time_s"] = RNG.uniform(20.0, 40.0, len(trials))
+    trials["placement_error_m"] = RNG.uniform(0.005, 0.03, len(trials))
+    trials.to_csv(tmp_path / "pilot" / "trials.csv", index=False)
     out = tmp_path / "power"
     args = ["study", "power", str(tmp_path / "pilot"), "--out", str(out), "--simulate", "3",
             "--n", "3:4:1", "--resamples", "20", "--workers", "1", "--quiet"]  # fmt: skip
     assert main(args) == 0
-    assert "pool: 5 participants from 2 source(s)" in capsys.readouterr().out
+    assert "pool: 7 participants from 2 source(s)" in capsys.readouterr().out
     simulated = tmp_path / "power-simulated-run"
     assert pd.read_csv(simulated / "participants.csv")["participant"].tolist() == [
         "P01",
@@ -200,6 +227,23 @@ def test_simulated_participants_of_the_design_join_the_pool(tmp_path: Path, caps
     ]
     assert "seed = 1000" in (simulated / "study.toml").read_text()
     assert "(simulated)" in (out / "power.md").read_text()
+    # Again: the simulated run is in the way until --force, which makes the same files anew.
+    first = {p.name: p.read_bytes() for p in (simulated / "trials.csv", out / "power.csv")}
+    shutil.rmtree(out)
+    assert main(args) == 2
+    assert capsys.readouterr().err == (
+        f"arteleop: error: --simulate: {simulated} holds the simulated participants of an "
+        "earlier power analysis; give --force to simulate them anew there, or another --out.\n"
+    )
+    assert main([*args, "--force"]) == 0
+    assert first == {p.name: p.read_bytes() for p in (simulated / "trials.csv", out / "power.csv")}
+    (simulated / "participants.csv").write_text("participant,source\nS01,real\n")
+    assert main([*args, "--force"]) == 2
+    assert capsys.readouterr().err == (
+        f"arteleop: error: --simulate: {simulated} is in the way and is not a run of simulated "
+        "participants; move it, or give another --out (--force replaces only what power "
+        "wrote).\n"
+    )
 
 
 def test_a_crossed_delay_design_gets_the_anovas_power(tmp_path: Path) -> None:
