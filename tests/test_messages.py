@@ -15,7 +15,6 @@ import pandas as pd
 import pytest
 
 from arteleop.cli import main
-from arteleop.study import FORMAT_VERSION
 from tests.analysis.make_study import make_run
 from tests.helpers import ctrl_c_reaches_it
 
@@ -117,11 +116,33 @@ def test_analyze_refuses_a_value_out_of_its_set(
 
 
 def _run_folder(tmp_path: Path) -> Path:
+    """A run folder as study run begins it: study.toml and the manifest, no trial yet."""
+    from arteleop.study import parse_study
+    from arteleop.study.runner import new_manifest, plan_run
+
     run = tmp_path / "run"
     run.mkdir()
     (run / "study.toml").write_text("seed = 0\n")
-    (run / "manifest.json").write_text(f'{{"format_version": {FORMAT_VERSION}}}\n')
+    plan, people = plan_run(parse_study("seed = 0\n", "study.toml"))
+    manifest = new_manifest(parse_study("seed = 0\n", "study.toml"), "seed = 0\n", plan,
+                            len(people))  # fmt: skip
+    (run / "manifest.json").write_text(json.dumps(manifest))
     return run
+
+
+@pytest.mark.parametrize("key", ["definition", "definition_sha256", "plan_sha256"])
+def test_resume_with_a_manifest_that_cannot_vouch_for_the_run(
+    tmp_path: Path, capsys, key: str
+) -> None:
+    # A null definition digest resumed without checking the definition.
+    run = _run_folder(tmp_path)
+    manifest = json.loads((run / "manifest.json").read_text())
+    (run / "manifest.json").write_text(json.dumps(manifest | {key: None}))
+    assert _error(["study", "resume", str(run)], capsys) == (
+        f"{run / 'manifest.json'}: its 'definition', 'definition_sha256' or 'plan_sha256' is "
+        "missing, null or edited, so the run cannot be checked against what it began with. "
+        "Restore manifest.json from a backup."
+    )
 
 
 def test_resume_with_a_manifest_that_is_not_an_object(tmp_path: Path, capsys) -> None:

@@ -82,6 +82,10 @@ def trace_text(trace: dict[str, np.ndarray]) -> str:
     return table_text(columns, zip(*(trace[c].tolist() for c in columns), strict=True))
 
 
+REAL = "real"
+"""A run folder's ``cohort`` (manifest.json) when people take part (``arteleop study serve``)."""
+
+
 class RunFolder:
     """The files of one study run, in ``path``."""
 
@@ -109,6 +113,17 @@ class RunFolder:
                 "format_version, seed and packages; restore it from a backup."
             )
         return manifest
+
+    def carry_on(self) -> str:
+        """The command that continues this run: ``study serve`` for a run served to people
+        (``cohort`` real in the manifest), else ``study resume``."""
+        try:
+            served = self.manifest().get("cohort") == REAL
+        except RunFolderError:
+            served = False
+        if served:
+            return f"'arteleop study serve --out {self.path}'"
+        return f"'arteleop study resume {self.path}'"
 
     def report_finished(self) -> bool:
         """Whether the run's report was written whole (``report_finished`` in the manifest)."""
@@ -235,8 +250,7 @@ class RunFolder:
         except OSError as err:
             raise RunFolderError(
                 f"Cannot add a row to {path}: {err.strerror or err}. The rows before it are "
-                "intact; free space or fix permissions, then 'arteleop study resume "
-                f"{self.path}'."
+                f"intact; free space or fix permissions, then {self.carry_on()}."
             ) from err
 
     def finish(self, order: Sequence[tuple[str, int]]) -> None:

@@ -16,6 +16,7 @@ from collections.abc import Iterator
 from pathlib import Path
 
 from arteleop.errors import RunFolderError
+from arteleop.study.run_folder import RunFolder
 
 LOCK_FILE = ".arteleop.lock"
 
@@ -48,7 +49,7 @@ def run_lock(folder: Path) -> Iterator[None]:
         os.close(fd)
         raise RunFolderError(
             f"{folder} is being written by another arteleop (pid {holder}): wait for it to "
-            "end, or stop it, then 'arteleop study resume' this folder."
+            f"end, or stop it; then {RunFolder(folder).carry_on()} continues the run."
         ) from None
     os.ftruncate(fd, 0)
     os.pwrite(fd, f"{os.getpid()}\n".encode("ascii"), 0)

@@ -38,7 +38,13 @@ from arteleop.study.definition import ParticipantSpec, StudyConfig
 from arteleop.study.plan import EXPERIMENTAL, TrialSpec, plan_study
 from arteleop.study.protocol import TrialRecord, run_planned_trial
 from arteleop.study.questionnaire import classes_shown, simulated_answers
-from arteleop.study.run_folder import FORMAT_VERSION, STUDY_FILE, RunFolder, table_text
+from arteleop.study.run_folder import (
+    FORMAT_VERSION,
+    REAL,
+    STUDY_FILE,
+    RunFolder,
+    table_text,
+)
 from arteleop.study.run_lock import LOCK_FILE, after_fork_in_child, run_lock
 from arteleop.study.sites import StudySite
 from arteleop.study.study_file import first_difference, parse_study, study_text
@@ -68,10 +74,6 @@ class StudyRun:
     ran: int
     speed: list[tuple[float, float]]
     notes: tuple[str, ...] = ()
-
-
-REAL = "real"
-"""A run folder's ``cohort`` (manifest.json) when people take part (``arteleop study serve``)."""
 
 
 class RunComplete(RunFolderError):
@@ -147,8 +149,8 @@ def check_new(folder: RunFolder) -> None:
     if folder.path.exists() and not _begun_only(folder):
         if folder.is_run_folder():
             raise RunFolderError(
-                f"{folder.path} already holds a run: 'arteleop study resume {folder.path}' "
-                "continues it; give --out a new folder for a new run."
+                f"{folder.path} already holds a run: {folder.carry_on()} continues it; give "
+                "--out a new folder for a new run."
             )
         raise RunFolderError(
             f"{folder.path} exists and is not empty: give --out a new or empty folder."
@@ -168,12 +170,12 @@ def resume_study(
     _require_run_folder(folder)
     with run_lock(folder.path):
         site = StudySite()  # plans the run, then runs its trials: its robot model loads once
-        recorded, plan, people, manifest = open_run(folder, study, site)
-        if manifest.get("cohort") == REAL:
+        if folder.manifest().get("cohort") == REAL:
             raise RunFolderError(
                 f"{folder.path} is a study served to people: 'arteleop study serve --out "
                 f"{folder.path}' continues it with the next participant."
             )
+        recorded, plan, people, manifest = open_run(folder, study, site)
         if manifest.get("finished") and len(folder.done_rows(repair=True)) == len(plan):
             notes = "".join(f"\nnote: {note}" for note in folder.notes)
             raise RunComplete(
@@ -205,9 +207,16 @@ def open_run(
             "resume it with the version that began it "
             f"({_get(manifest, 'packages', {}).get('arteleop', 'unknown')})."
         )
+    began = manifest.get("definition")
+    if (not isinstance(began, str) or manifest.get("definition_sha256") != _digest(began)
+            or not isinstance(manifest.get("plan_sha256"), str)):  # fmt: skip
+        raise RunFolderError(
+            f"{folder.path / 'manifest.json'}: its 'definition', 'definition_sha256' or "
+            "'plan_sha256' is missing, null or edited, so the run cannot be checked against "
+            "what it began with. Restore manifest.json from a backup."
+        )
     plan, people = plan_run(recorded, site)
-    planned = manifest.get("plan_sha256")
-    if planned is not None and planned != _plan_digest(plan):
+    if manifest.get("plan_sha256") != _plan_digest(plan):
         raise RunFolderError(
             f"{folder.path}: this arteleop plans the run's definition otherwise than the "
             "version that began it (its plan's digest differs); resume it with that version "

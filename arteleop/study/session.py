@@ -49,6 +49,7 @@ from arteleop.study.questionnaire import classes_shown
 from arteleop.study.run_folder import (
     PARTICIPANTS_FILE,
     QUESTIONNAIRE_FILE,
+    REAL,
     RunFolder,
     csv_line,
     read_table,
@@ -57,7 +58,6 @@ from arteleop.study.run_folder import (
 )
 from arteleop.study.run_lock import run_lock
 from arteleop.study.runner import (
-    REAL,
     check_new,
     make_folder,
     new_manifest,
@@ -219,12 +219,12 @@ class ServedRun:
         definition."""
         folder = RunFolder(out)
         site = site or StudySite()
-        study, plan, people, manifest = open_run(folder, study, site)
-        if manifest.get("cohort") != REAL:
+        if folder.is_run_folder() and folder.manifest().get("cohort") != REAL:
             raise RunFolderError(
                 f"{folder.path} holds a simulated run: 'arteleop study resume {folder.path}' "
                 "continues it; give 'study serve' a new folder."
             )
+        study, plan, people, _ = open_run(folder, study, site)
         folder.done_rows(repair=True)  # a row a kill cut short is set aside now, and said
         return cls(folder, study, plan, people, site)
 

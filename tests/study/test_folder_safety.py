@@ -70,7 +70,7 @@ def test_a_second_writer_is_refused_with_the_holders_pid(tiny_run: Path, tmp_pat
             resume_study(run)
         assert str(err.value) == (
             f"{run} is being written by another arteleop (pid {holder.pid}): wait for it to "
-            "end, or stop it, then 'arteleop study resume' this folder."
+            f"end, or stop it; then 'arteleop study resume {run}' continues the run."
         )
     finally:
         holder.kill()

@@ -234,6 +234,14 @@ def test_resume_refuses_what_is_not_its_run(tmp_path: Path, capsys) -> None:
     )
     with pytest.raises(RunFolderError, match=r"already holds a run: 'arteleop study resume"):
         run_study(SMALL, folder)
+    # A study served to people is continued by study serve: resume refuses it.
+    (folder / "manifest.json").write_text('{"format_version": 1, "cohort": "real"}')
+    with pytest.raises(RunFolderError) as err:
+        run_study(SMALL, folder)
+    assert str(err.value) == (
+        f"{folder} already holds a run: 'arteleop study serve --out {folder}' continues it; "
+        "give --out a new folder for a new run."
+    )
     assert main(["study", "resume", str(empty)]) == 2
     assert "is not a run folder" in capsys.readouterr().err
 
