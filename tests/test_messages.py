@@ -218,3 +218,25 @@ def test_ctrl_c_stops_teleop_and_its_render_process_without_a_traceback() -> Non
     _, err = view.communicate(timeout=60)
     assert view.returncode == 130
     assert err == "arteleop: interrupted\n"
+
+
+@pytest.mark.parametrize("name", ["trials.csv", "participants.csv"])
+def test_a_run_folders_table_that_is_a_link_is_not_followed(
+    tmp_path: Path, capsys, name: str
+) -> None:
+    # Followed, the error quoted the target's first line (/etc/shadow's, run as root).
+    secret = tmp_path / "secret"
+    secret.write_text("root:$6$hash:19000:0:99999:7:::\n")
+    run = _run_folder(tmp_path)
+    (run / "trials.csv").write_text("participant,phase\n")
+    (run / name).unlink(missing_ok=True)
+    (run / name).symlink_to(secret)
+    assert _error(["analyze", str(run), "--out", str(tmp_path / "r")], capsys) == (
+        f"{run / name}: a symbolic link; a run folder's tables are read only as files in it (a "
+        "link could put another file's lines into a message): copy the file itself into the "
+        "folder"
+    )
+    assert _error(["study", "resume", str(run)], capsys) == (
+        f"{run / name}: a symbolic link in a run folder, which reads and writes only its own "
+        "files; put the file itself there, or start a new run in another folder."
+    )

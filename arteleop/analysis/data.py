@@ -108,6 +108,13 @@ def load_study(path: Path, participants_path: Path | None = None) -> StudyData:
     trials CSV (with ``participants_path`` if given)."""
     path = Path(path)
     if path.is_dir():
+        for name in ("trials.csv", "participants.csv", "questionnaire.csv"):
+            if (path / name).is_symlink():
+                raise AnalysisInputError(
+                    f"{path / name}: a symbolic link; a run folder's tables are read only as "
+                    "files in it (a link could put another file's lines into a message): copy "
+                    "the file itself into the folder"
+                )
         trials_path = path / "trials.csv"
         base = path
         participants_path = participants_path or _optional(path / "participants.csv")

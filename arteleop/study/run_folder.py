@@ -206,7 +206,18 @@ class RunFolder:
         if twice and repair:
             self.set_aside(twice, f"{len(twice)} second row(s) of a trial already in it")
             self._rewrite_trials([lines[0], *rows.values()])
+        lost = {key: line for key, line in rows.items() if self._trajectory_lost(line)}
+        if lost:  # a trial's record is its row and its trajectory: it runs again
+            rows = {key: line for key, line in rows.items() if key not in lost}
+            if repair:
+                self.set_aside(list(lost.values()), f"{len(lost)} row(s) whose trajectory file "
+                               "is missing, whose trials run again")  # fmt: skip
+                self._rewrite_trials([lines[0], *rows.values()])
         return rows
+
+    def _trajectory_lost(self, line: str) -> bool:
+        name = next(csv.reader([line]))[TRIAL_COLUMNS.index("trajectory_file")]
+        return bool(name) and not (self.path / name).is_file()
 
     def _whole_row(self, fields: list[str]) -> bool:
         """A row with every field, down to its trajectory file's whole name (the last field,

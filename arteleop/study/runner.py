@@ -192,6 +192,12 @@ def open_run(
     manifest. With ``study``, refuses a folder made from another definition; ``site`` plans
     it (see :func:`plan_run`). The caller holds the folder's lock."""
     _require_run_folder(folder)
+    for entry in folder.path.iterdir():
+        if entry.is_symlink():  # it would be read, or appended to, wherever it points
+            raise RunFolderError(
+                f"{entry}: a symbolic link in a run folder, which reads and writes only its own "
+                "files; put the file itself there, or start a new run in another folder."
+            )
     manifest = folder.manifest()
     recorded = _recorded_definition(folder, manifest)
     if study is not None and (key := first_difference(study, recorded)) is not None:

@@ -159,6 +159,23 @@ def test_duplicate_and_unplanned_rows_are_set_aside_and_said(
     )
 
 
+def test_a_row_whose_trajectory_was_deleted_runs_again(tiny_run: Path, tmp_path: Path) -> None:
+    # The row alone was counted: resume said the run was complete.
+    run = _copy(tiny_run, tmp_path / "run")
+    trials, lost = run / "trials.csv", run / "trajectories" / "P02" / "1.csv"
+    rows, trajectory = trials.read_text(), lost.read_bytes()
+    lost.unlink()
+    done = resume_study(run, workers=1)
+    assert done.ran == 1 and lost.read_bytes() == trajectory  # same seed, same trial
+    assert trials.read_text() == rows
+    aside = run / "trials-set-aside.csv"
+    assert aside.read_text() == rows.splitlines(keepends=True)[2]
+    assert done.notes == (
+        f"{trials}: 1 row(s) whose trajectory file is missing, whose trials run again; moved "
+        f"to {aside}.",
+    )
+
+
 # 4. A recording is not replaced unless asked, and is written whole ------------------------
 
 
