@@ -25,16 +25,13 @@ from arteleop.operator.arm_model import (
     segments_for_hand_pose,
 )
 from arteleop.operator.belief import probability_within
+from arteleop.operator.bowl_memory import BowlMemory
 from arteleop.operator.live import HandTarget, LiveOperator
 from arteleop.operator.minimum_jerk import minimum_jerk, minimum_jerk_profile
+from arteleop.operator.output import OperatorOutput
 from arteleop.operator.params import OperatorParams
-from arteleop.operator.perception import (
-    BowlMemory,
-    Perceived,
-    PerceptionParams,
-    PerceptualErrors,
-    perceive,
-)
+from arteleop.operator.perception import Perceived, PerceptionParams, perceive
+from arteleop.operator.perceptual_errors import PerceptualErrors
 from arteleop.operator.phase_log import ACTIVITIES, PhaseRecord
 from arteleop.operator.posture import CalibrationPosture, hand_from_calibration
 from arteleop.operator.recording import (
@@ -58,7 +55,7 @@ from arteleop.operator.sources import (
 )
 from arteleop.operator.submovements import expected_time_s, submovement_duration_s
 from arteleop.operator.synthesis import SynthesizedRecording, record_hand_motion
-from arteleop.operator.synthetic import OperatorOutput, SyntheticOperator
+from arteleop.operator.synthetic import SyntheticOperator
 from arteleop.operator.tasks import (
     Action,
     Goal,

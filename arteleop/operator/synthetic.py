@@ -18,7 +18,6 @@ in the torso frame and a grip value; the loop turns them into IMU signals.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 from enum import Enum
 
 import numpy as np
@@ -28,12 +27,14 @@ from scipy.spatial.transform import Rotation
 from arteleop.ar_features import DisplayFrame
 from arteleop.moved import moved_names
 from arteleop.operator.arm_model import ArmModel
-from arteleop.operator.belief import probability_within
+from arteleop.operator.criterion import PhaseCriterion
 from arteleop.operator.hand import Hand, Tremor
 from arteleop.operator.look import Look
 from arteleop.operator.minimum_jerk import minimum_jerk_profile
+from arteleop.operator.output import ALIGN, CALIBRATE, DONE, ENGAGE, OperatorOutput
 from arteleop.operator.params import OperatorParams
-from arteleop.operator.perception import Perceived, PerceptualErrors, perceive
+from arteleop.operator.perception import Perceived, perceive
+from arteleop.operator.perceptual_errors import PerceptualErrors
 from arteleop.operator.phase_log import PhaseLog, PhaseRecord
 from arteleop.operator.posture import CalibrationPosture, hand_from_calibration
 from arteleop.operator.submovements import planned_submovement
@@ -41,33 +42,12 @@ from arteleop.operator.tasks import Action, Goal, Task, TaskPhase, phase_named
 from arteleop.operator.traits import OperatorTraits
 from arteleop.operator.watch import DisplayWatch
 
-CALIBRATE = "calibrate"
-"""The operator's phase while it holds the calibration posture."""
-ALIGN = "align"
-"""...while it brings the hand to where it commands the resting gripper."""
-ENGAGE = "engage"
-"""...while it waits for the display to show the robot engaged."""
-DONE = "done"
-"""...once the task's last phase is over."""
-
 
 class _Mode(Enum):
     MOVE = "move"  # submovements under way
     WATCH = "watch"  # the hand has stopped: wait for the display to show the gripper still
     LOOK = "look"  # glance after glance at the error
     WAIT = "wait"  # a fixed wait (grip, motor delay)
-
-
-@dataclass(frozen=True)
-class OperatorOutput:
-    """The operator's hand at one sample: torso frame. ``phase`` is the name of the operator's
-    phase (:data:`CALIBRATE`, :data:`ALIGN`, :data:`ENGAGE`, one of the task's, :data:`DONE`)."""
-
-    time_s: float
-    hand_m: NDArray[np.float64]
-    R_torso_hand: NDArray[np.float64]
-    grip: float
-    phase: str
 
 
 class SyntheticOperator:
@@ -103,7 +83,7 @@ class SyntheticOperator:
         self._wait_until = calibration.hold_s + 0.2
         self.hand = Hand(calib_pos)
         self._grip = 0.0
-        self._correcting_from_s: float | None = None  # the primary's arrival in this phase
+        self._criterion = PhaseCriterion(task, self.traits, self.p.gross_criterion_m)
         self._tremor = Tremor(self.p.tremor_amplitude_m, self.p.tremor_hz, rng)
         self._errors = PerceptualErrors(rng, self.traits.bias_seed, self.p.perception.bias_share)
         self._watch = DisplayWatch(self.p)
@@ -148,38 +128,6 @@ class SyntheticOperator:
         self._mode, self._wait_until = _Mode.WAIT, time_s
 
     # -- what the operator knows ---------------------------------------------------------------
-    def criterion_m(self, t: float) -> float:
-        """The current phase's criterion (m), loosened by the phase's effort so far."""
-        c0 = self._task_criterion_m()
-        return (self.p.gross_criterion_m if c0 is None else c0) * self._loosening(t)
-
-    def _task_criterion_m(self) -> float | None:
-        phase = self._task_phase
-        return None if phase is None else self.task.criterion_m(phase, self.traits)
-
-    def _loosening(self, t: float) -> float:
-        """How much the criterion has grown with the effort spent correcting in this phase:
-        from the arrival of its primary movement, which was planned to meet the criterion."""
-        if self._correcting_from_s is None:
-            return 1.0
-        return 1.0 + (t - self._correcting_from_s) / self.traits.urgency_s
-
-    def _sure_within(
-        self,
-        t: float,
-        error: NDArray[np.float64],
-        goal: Goal,
-        cov_m2: NDArray[np.float64] | None = None,
-    ) -> float:
-        """How sure the operator is that ``error`` (m) is within the phase's criterion, believing
-        it has the covariance ``cov_m2`` (m^2; the goal's judgement's by default). Judged in the
-        table's plane, the height must first be reached, as any movement without a precision
-        demand (within ``gross_criterion_m``)."""
-        if goal.axes == "xy" and abs(error[2]) > self.p.gross_criterion_m:
-            return 0.0
-        cov = goal.cov_m2 if cov_m2 is None else cov_m2
-        return probability_within(error, cov, self.criterion_m(t), goal.axes)
-
     def _timed_s(self, interval_s: float) -> float:
         """An interval (s) as the operator times it, once: people time intervals with a
         variability proportional to their length (scalar timing)."""
@@ -199,7 +147,7 @@ class SyntheticOperator:
         """Add a submovement of the hand by ``hand_delta`` (m) from ``start_s`` (s), timed by the
         planner, its endpoint scattered by its speed."""
         move = planned_submovement(
-            hand_delta, start_s, self.criterion_m(t), self._look_cost_s(), self.p,
+            hand_delta, start_s, self._criterion.at(t), self._look_cost_s(), self.p,
             self.traits.movement_time_factor, self._rng,
         )  # fmt: skip
         self.hand.add(move)
@@ -257,7 +205,7 @@ class SyntheticOperator:
                 self._set_back(t, back)
                 return
         error = goal.gripper_m - seen.gripper_m
-        sure = self._sure_within(t, error, goal)
+        sure = self._criterion.sure_within(t, error, goal)
         accept = self._look.verdict(t, sure, float(np.trace(goal.cov_m2)))
         if accept is None:  # not sure either way: look again
             return
@@ -291,7 +239,7 @@ class SyntheticOperator:
         phase = self._task_phase
         if (
             phase is None
-            or self._task_criterion_m() is None
+            or self._criterion.task_m() is None
             or t < self._look.next_glance_s
             # A correction's effect must be on the display before the next one is planned.
             or t < self._last_amend_s + p.visuomotor_delay_s + self.lag_s
@@ -316,7 +264,7 @@ class SyntheticOperator:
         error = goal.gripper_m - (seen.gripper_m + to_gripper @ to_end)
         cov = goal.cov_m2 + to_gripper @ to_end_cov @ to_gripper.T
         # As after a look, it corrects what it is sure will miss.
-        if self._sure_within(t, error, goal, cov) > 1 - self.traits.confidence:
+        if self._criterion.sure_within(t, error, goal, cov) > 1 - self.traits.confidence:
             return
         self.corrections_total += 1
         self._last_amend_s = t
@@ -336,7 +284,7 @@ class SyntheticOperator:
         self._log.enter(None if task_phase is None else task_phase.name, t)
         self._task_phase = task_phase
         self.phase = phase if task_phase is None else task_phase.name
-        self._correcting_from_s = None
+        self._criterion.enter(task_phase)
         self._moved_in_phase = False
 
     def _advance(self, t: float) -> None:
@@ -377,8 +325,7 @@ class SyntheticOperator:
             if not moves_in_task:
                 self._decide(t, view)
             elif self._watch.arrived(t):
-                if self._correcting_from_s is None:
-                    self._correcting_from_s = t
+                self._criterion.arrived(t)
                 self._start_look(t)
         elif self._mode is _Mode.LOOK:
             if t >= self._look.next_glance_s:
@@ -435,13 +382,11 @@ class SyntheticOperator:
             rot = rot.as_matrix()
         else:
             rot = self._work_R
-        grip = self._grip
-        phase = self._task_phase
-        if phase is not None and phase.action is not Action.MOVE:
+        grip, phase = self._grip, self._task_phase
+        if phase is not None and phase.action is not Action.MOVE:  # ramped over the grip's wait
             squeezed = 1.0 if phase.action is Action.CLOSE else 0.0
-            grip = self._grip + (squeezed - self._grip) * min(
-                1.0, (t - (self._wait_until - self.p.grip_ramp_s)) / self.p.grip_ramp_s
-            )
+            ramp = min(1.0, (t - (self._wait_until - self.p.grip_ramp_s)) / self.p.grip_ramp_s)
+            grip = self._grip + (squeezed - self._grip) * ramp
         return OperatorOutput(
             t, self.hand.position_m + tremor, rot, float(np.clip(grip, 0.0, 1.0)), self.phase
         )

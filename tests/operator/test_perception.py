@@ -16,6 +16,7 @@ from arteleop.ar_features import (
     PredictedArm,
 )
 from arteleop.errors import ConfigurationError
+from arteleop.operator import BowlMemory, Perceived, PerceptionParams, PerceptualErrors, perceive
 from arteleop.operator.acuity import (
     ARCMIN_RAD,
     Acuities,
@@ -23,13 +24,6 @@ from arteleop.operator.acuity import (
     fixations,
     judgement_sd,
     reading_sd_m,
-)
-from arteleop.operator.perception import (
-    BowlMemory,
-    Perceived,
-    PerceptionParams,
-    PerceptualErrors,
-    perceive,
 )
 from arteleop.transforms import make_transform
 from tests.ar_features.frames import display_frame

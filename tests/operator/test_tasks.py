@@ -19,18 +19,19 @@ from arteleop.operator import (
     OperatorParams,
     OperatorTraits,
     Perceived,
+    PerceptualErrors,
     PickAndPlace,
     PointingTask,
     SyntheticOperator,
     TaskPhase,
+    perceive,
 )
-from arteleop.operator.perception import PerceptualErrors, perceive
 from arteleop.operator.tasks import relative_goal
 from arteleop.operator.tasks.pointing import TO_START
 from arteleop.transforms import make_transform
 from tests.ar_features.frames import display_frame
 
-MECHANISM = ("synthetic", "hand", "watch", "params")
+MECHANISM = ("synthetic", "hand", "watch", "params", "criterion", "output", "perceptual_errors")
 """The operator's mechanism: the same for every task."""
 TASK_WORDS = ("bowl", "grasp", "place", "transport", "reach", "descend", "lift", "lower",
               "retract", "target", "point", "select")  # fmt: skip

@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from arteleop.operator.perception import BowlMemory, Perceived
+from arteleop.operator.bowl_memory import BowlMemory
+from arteleop.operator.perception import Perceived
 from arteleop.operator.tasks.task import (
     Action,
     Goal,

@@ -1,0 +1,66 @@
+"""How close to a phase's goal the operator demands to be, and how sure it is of being there."""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from arteleop.operator.belief import probability_within
+from arteleop.operator.tasks import Goal, Task, TaskPhase
+from arteleop.operator.traits import OperatorTraits
+
+
+class PhaseCriterion:
+    """The criterion (m) of the task's phase under way: the task's for the phase, or
+    ``gross_criterion_m`` for a movement without a precision demand (and outside the task),
+    loosened by the effort spent correcting since the phase's primary movement arrived."""
+
+    def __init__(self, task: Task, traits: OperatorTraits, gross_criterion_m: float) -> None:
+        self._task = task
+        self._traits = traits
+        self._gross_m = gross_criterion_m
+        self._phase: TaskPhase | None = None
+        self._correcting_from_s: float | None = None  # the primary's arrival in this phase
+
+    def enter(self, phase: TaskPhase | None) -> None:
+        """A phase begins (None: one of the operator's own): no effort spent in it yet."""
+        self._phase = phase
+        self._correcting_from_s = None
+
+    def arrived(self, t: float) -> None:
+        """The phase's movement has come to rest at ``t`` (s): correcting starts, once."""
+        if self._correcting_from_s is None:
+            self._correcting_from_s = t
+
+    def task_m(self) -> float | None:
+        """The task's own criterion for the phase (m); None where it demands no precision."""
+        phase = self._phase
+        return None if phase is None else self._task.criterion_m(phase, self._traits)
+
+    def at(self, t: float) -> float:
+        """The criterion at ``t`` (s), loosened by the phase's effort so far (m)."""
+        c0 = self.task_m()
+        return (self._gross_m if c0 is None else c0) * self._loosening(t)
+
+    def _loosening(self, t: float) -> float:
+        """How much the criterion has grown with the effort spent correcting in this phase:
+        from the arrival of its primary movement, which was planned to meet the criterion."""
+        if self._correcting_from_s is None:
+            return 1.0
+        return 1.0 + (t - self._correcting_from_s) / self._traits.urgency_s
+
+    def sure_within(
+        self,
+        t: float,
+        error: NDArray[np.float64],
+        goal: Goal,
+        cov_m2: NDArray[np.float64] | None = None,
+    ) -> float:
+        """How sure the operator is that ``error`` (m) is within the criterion at ``t``,
+        believing it has the covariance ``cov_m2`` (m^2; the goal's judgement's by default).
+        Judged in the table's plane, the height must first be reached, as any movement without
+        a precision demand (within ``gross_criterion_m``)."""
+        if goal.axes == "xy" and abs(error[2]) > self._gross_m:
+            return 0.0
+        cov = goal.cov_m2 if cov_m2 is None else cov_m2
+        return probability_within(error, cov, self.at(t), goal.axes)
