@@ -12,6 +12,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import pybullet as p
 from numpy.typing import ArrayLike, NDArray
+from scipy.spatial.transform import Rotation
 
 from arteleop.errors import CameraConfigError, ConfigurationError, WorkspaceError
 from arteleop.lifetime import Closeable
@@ -272,12 +273,23 @@ class RemoteSite(Closeable):
         xy_m: tuple[float, float],
         velocity_m_s: tuple[float, float, float] = (0.0, 0.0, 0.0),
         angular_velocity_rad_s: tuple[float, float, float] = (0.0, 0.0, 0.0),
+        tilt_rad: tuple[float, float] = (0.0, 0.0),
     ) -> None:
-        """Teleport the bowl upright onto the table at ``xy_m``, at rest unless given the
-        velocities of its centre of mass (m/s, rad/s, base frame)."""
+        """Teleport the bowl onto the table with its bottom centre over ``xy_m``, at rest unless
+        given the velocities of its centre of mass (m/s, rad/s, base frame); upright, or tilted
+        by the rotation vector ``(tilt_rad[0], tilt_rad[1], 0)`` (rad, about the base's x and
+        y axes) with its foot's lowest edge on the table, as a bowl left leaning is."""
         ws = self.config.workspace
-        com = [xy_m[0], xy_m[1], ws.table_top_z_m + ws.bowl.center_of_mass_height_m]
-        self._client.resetBasePositionAndOrientation(self._bowl_id, com, (0.0, 0.0, 0.0, 1.0))
+        if not any(tilt_rad):
+            com = [xy_m[0], xy_m[1], ws.table_top_z_m + ws.bowl.center_of_mass_height_m]
+            quat_xyzw: Sequence[float] = (0.0, 0.0, 0.0, 1.0)
+        else:
+            tilt = Rotation.from_rotvec([tilt_rad[0], tilt_rad[1], 0.0])
+            lean = float(np.hypot(*tilt_rad))
+            bottom = np.array([*xy_m, ws.table_top_z_m + ws.bowl.bottom_radius_m * np.sin(lean)])
+            com = (bottom + tilt.apply([0.0, 0.0, ws.bowl.center_of_mass_height_m])).tolist()
+            quat_xyzw = tilt.as_quat().tolist()
+        self._client.resetBasePositionAndOrientation(self._bowl_id, com, quat_xyzw)
         self._client.resetBaseVelocity(self._bowl_id, velocity_m_s, angular_velocity_rad_s)
 
     def pose(

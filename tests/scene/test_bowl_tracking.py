@@ -20,6 +20,20 @@ def test_tracking_error_at_most_5_mm(site: RemoteSite, where: str) -> None:
         assert np.linalg.norm(track.position_m - site.observe().bowl_m) <= 0.005
 
 
+@pytest.mark.parametrize("tilt_rad", [(0.26, 0.0), (0.0, -0.52)])  # 15 and 30 degrees
+def test_a_bowl_left_tilted_is_placed_where_it_is(
+    site: RemoteSite, tilt_rad: tuple[float, float]
+) -> None:
+    # Fitted upright, a bowl leaning 30 degrees was placed 37 mm off, and accepted.
+    ws = site.config.workspace
+    site.place_bowl(ws.target_xy_m, tilt_rad=tilt_rad)
+    truth = site.observe().bowl_m
+    assert np.degrees(np.arccos(site.observe().T_base_bowl[2, 2])) > 14  # premise: it leans
+    track = BowlTracker(ws.bowl).track(site.capture(), ws.table_top_z_m)
+    assert track.found, track.reason
+    assert np.linalg.norm(track.position_m - truth) <= 0.005
+
+
 def test_out_of_view_is_not_found(site: RemoteSite) -> None:
     xy = (0.40, 0.40)  # on the table, below the bottom edge of the camera's view
     frame = site.capture()
