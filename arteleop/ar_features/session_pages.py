@@ -13,11 +13,12 @@ import viser
 
 CHOOSE = "(choose)"
 """A dropdown's first entry: no answer yet."""
-HOURS = ("under 1 h", "2-5 h", "over 5 h")
-"""The weekly-hours buckets 1, 2 and 3, as the original questionnaire asked them."""
+HOURS = ("under 2 h", "2-5 h", "over 5 h")
+"""The weekly-hours buckets 1, 2 and 3. The original asked "under one hour" for the first, which
+left one to two hours without an answer; its experts' cut (two hours) is kept."""
 RATINGS = tuple(str(k) for k in range(1, 8))
-"""A 1-7 rating's answers. A dropdown, not a slider: a slider starts at an answer (its middle),
-which a participant can send without reading the question."""
+"""A 1-7 rating's answers, before :func:`_scale` labels its ends. A dropdown, not a slider: a
+slider starts at an answer (its middle), which a participant can send without reading it."""
 
 Form = Mapping[str, object]
 """A page's answers by question key, as the browser gave them."""
@@ -68,9 +69,9 @@ class SessionPages:
             age = self._gui.add_text("Age (years)", "")
             gender = self._gui.add_dropdown("Gender", (CHOOSE, *genders))
             hand = self._gui.add_dropdown("Handedness", (CHOOSE, *handedness))
-            avr = self._rating("AR/VR experience", "1: none, 7: a great deal")
+            avr = self._rating("AR/VR experience", EXPERIENCE)
             avr_hours = self._gui.add_dropdown("AR/VR per week", (CHOOSE, *HOURS))
-            games = self._rating("Video-game experience", "1: none, 7: a great deal")
+            games = self._rating("Video-game experience", EXPERIENCE)
             games_hours = self._gui.add_dropdown("Video games per week", (CHOOSE, *HOURS))
             self._error = self._gui.add_markdown("")
 
@@ -117,7 +118,7 @@ class SessionPages:
             for class_key, class_text in classes:
                 self._gui.add_markdown(f"**{class_text}**")
                 for item_key, item_text in items:
-                    ratings[class_key, item_key] = self._rating(item_text)
+                    ratings[class_key, item_key] = self._rating(item_text, AGREEMENT)
             self._error = self._gui.add_markdown("")
             self._button(
                 "Submit", lambda: on_submit({k: _rated(r.value) for k, r in ratings.items()})
@@ -135,9 +136,9 @@ class SessionPages:
         self._page = self._gui.add_folder(title, order=-1.0)
         return self._page
 
-    def _rating(self, label: str, hint: str | None = None) -> viser.GuiDropdownHandle[str]:
-        """A 1-7 rating, unanswered until chosen."""
-        return self._gui.add_dropdown(label, (CHOOSE, *RATINGS), hint=hint)
+    def _rating(self, label: str, ends: tuple[str, str]) -> viser.GuiDropdownHandle[str]:
+        """A 1-7 rating whose ends read ``ends`` (1 and 7), unanswered until chosen."""
+        return self._gui.add_dropdown(label, (CHOOSE, *_scale(ends)))
 
     def _button(self, label: str, on_click: Callable[[], None]) -> None:
         self._gui.add_button(label).on_click(lambda _: on_click())
@@ -147,8 +148,21 @@ def _status(elapsed_s: float, state: str) -> str:
     return f"**Timer** {elapsed_s:.1f} s: {state}"
 
 
+EXPERIENCE = ("none", "a great deal")
+"""The experience scales' ends."""
+AGREEMENT = ("not at all", "very much")
+"""The questionnaire's ends."""
+
+
+def _scale(ends: tuple[str, str]) -> tuple[str, ...]:
+    """The 1-7 options, the first and the last with what they mean: "1 (none)", ..."""
+    return (f"1 ({ends[0]})", *RATINGS[1:-1], f"7 ({ends[1]})")
+
+
 def _rated(value: str) -> int:
-    return int(value) if value in RATINGS else 0
+    """The rating an option stands for (its leading digit); 0 for none chosen."""
+    head = value.split(" ", 1)[0]
+    return int(head) if head in RATINGS else 0
 
 
 def _bucket(value: str) -> int:

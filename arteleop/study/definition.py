@@ -33,7 +33,7 @@ class ParticipantSpec:
 
     Attributes:
         id: Participant id, as written in every file (letters, digits, ``-`` and ``_``).
-        avr_hours: Weekly AR/VR hours bucket: 1 = under 1 h, 2 = 2-5 h, 3 = over 5 h.
+        avr_hours: Weekly AR/VR hours bucket: 1 = under 2 h, 2 = 2-5 h, 3 = over 5 h.
         games_hours: Weekly video-game hours bucket, same buckets.
         avr_experience: AR/VR experience, Likert 1-7.
         games_experience: Video-game experience, Likert 1-7.
@@ -216,7 +216,9 @@ class StudyConfig:
     Attributes:
         name: A name for the report.
         consent: The information and consent page shown to people (``arteleop study serve``),
-            in Markdown; empty: the built-in page (:data:`arteleop.study.serve.CONSENT`).
+            in Markdown (the study file's ``consent``, or the file its ``consent_file`` names);
+            empty: the built-in page, which says this study's trials and timeout
+            (:func:`arteleop.study.serve.consent_text`).
         seed: Seed of everything random in the study: the cohort, the orders, the practice
             positions and every trial (each trial's seed derives from it and the trial's place).
         modalities: The conditions, in the order the order schemes number them: modalities

@@ -46,6 +46,7 @@ from arteleop.errors import ArteleopError
 from arteleop.lifetime import Closeable
 from arteleop.operator import HandTarget, live_source
 from arteleop.scene import HeadCameraConfig, RemoteSite
+from arteleop.study.definition import StudyConfig
 from arteleop.study.plan import FAMILIARIZATION, TrialSpec
 from arteleop.study.protocol import trial_config, trial_record
 from arteleop.study.questionnaire import classes_shown
@@ -69,9 +70,9 @@ CONSENT = """\
 You are invited to take part in a study of how drawings over a robot's camera view help people
 steer a robot arm from a distance. The robot, the table and the bowl are simulated.
 
-**What you do.** With the mouse you move the gripper of a robot arm, pick up a bowl and put it
-on a target, in a few practice trials and then once under each of several displays. It takes
-about half an hour. Afterwards you rate the displays.
+**What you do.** With the mouse or the keyboard you move the gripper of a robot arm, pick up a
+bowl and put it on a target: {trials}. Each trial ends when the bowl stands still after you
+let it go, or after {limit} at most. Afterwards you rate the displays.
 
 **What is recorded.** Your movements, each trial's time and accuracy, your answers about
 yourself and your ratings, under a participant number: never your name.
@@ -82,7 +83,31 @@ delete it.
 
 Ask the researcher who runs the study about anything that is not clear before you go on.
 """
-"""The information and consent page when the study file gives none (its key ``consent``)."""
+"""The information and consent page when the study file gives none (its key ``consent``),
+before :func:`consent_text` fills in the study's trials and their limit."""
+
+
+def consent_text(study: StudyConfig) -> str:
+    """The information and consent page: the study file's own (``consent``), else the
+    built-in one, saying only what is true of ``study``: its trials and how long one may last."""
+    if study.consent:
+        return study.consent
+    practice = study.familiarization.trials
+    measured = len(study.planned_conditions) * study.trials_per_modality
+    displays = len(study.condition_names)
+    trials = f"{_count(practice, 'practice trial')} and then " if practice else ""
+    trials += _count(measured, "measured trial")
+    if displays > 1:
+        trials += f", one under each of {displays} different display conditions"
+    limit_s = max(study.timeout_s, study.familiarization.timeout_s if practice else 0.0)
+    limit = f"{limit_s / 60:g} minutes" if limit_s >= 120 else f"{limit_s:g} seconds"
+    return CONSENT.format(trials=trials, limit=limit)
+
+
+def _count(n: int, what: str) -> str:
+    return f"{n} {what}" + ("" if n == 1 else "s")
+
+
 AGREE = "I have read the information above and agree to take part."
 TUTORIAL = """\
 **Drive the robot.** Drag the arrows of the handle at the gripper: the robot's gripper follows
@@ -234,7 +259,7 @@ class StudyServer(Closeable):
             gate.allow({token, self._observer})
             self._on_link(participant, self.view.link(token))
         if not run.consented(participant):
-            text = run.study.consent or CONSENT
+            text = consent_text(run.study)
             self._show(lambda p: p.consent(text, AGREE, lambda: self._act("agree")))
             self._wait("agree")
             self._ask_demographics(participant)

@@ -93,7 +93,7 @@ class Demographics:
         gender: One of :data:`GENDERS`.
         handedness: One of :data:`HANDEDNESS`.
         avr_experience: Experience with AR/VR, Likert 1-7.
-        avr_hours: Weekly AR/VR hours: 1 = under 1 h, 2 = 2-5 h, 3 = over 5 h.
+        avr_hours: Weekly AR/VR hours: 1 = under 2 h, 2 = 2-5 h, 3 = over 5 h.
         games_experience: Experience with video games, Likert 1-7.
         games_hours: Weekly video-game hours, the same buckets.
     """

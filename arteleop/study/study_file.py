@@ -30,6 +30,9 @@ _TABLES: dict[str, type] = {
     "hand_filter": HandFilterConfig,
 }
 CAMERA_GRAPH_KEY = "camera_graph"
+CONSENT_FILE_KEY = "consent_file"
+"""A study-file key read into ``consent``: the page's Markdown from a file beside the study file
+(the run folder's study.toml then holds the text itself, as shown)."""
 """Not a field: a graph file whose camera edge becomes ``camera_pose``."""
 
 
@@ -121,6 +124,13 @@ def parse_study(text: str, source: str = "<study>") -> StudyConfig:
                         f"{where.at('participants', 'id', index)}: participant id {pid!r} is "
                         "used twice; each participant needs an id of their own."
                     )
+        elif key == CONSENT_FILE_KEY:
+            if "consent" in data:
+                raise StudyDefinitionError(
+                    f"{where.at('', key)}: consent_file and consent: give the page's text once, "
+                    "in the study file or in a file."
+                )
+            top["consent"] = _consent_file(value, source, where.at("", key))
         elif key == CAMERA_GRAPH_KEY:
             others = [k for k in ("camera_pose", "camera_offset_mm", "camera_offset_deg")
                       if k in data]  # fmt: skip
@@ -133,6 +143,25 @@ def parse_study(text: str, source: str = "<study>") -> StudyConfig:
         else:
             top[key] = value
     return _build(StudyConfig, top, "", where)
+
+
+def _consent_file(value: Any, source: str, at: str) -> str:
+    """The information and consent page's Markdown, from the file ``consent_file`` names."""
+    if not isinstance(value, str) or not value:
+        raise StudyDefinitionError(f"{at}: consent_file must be a file name, got {value!r}.")
+    path = Path(source).parent / value
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise StudyDefinitionError(
+            f"{at}: consent_file: {path}: no such file. Put the text your ethics board approved "
+            "(Markdown) there, or name its file relative to the study file."
+        ) from None
+    except (OSError, UnicodeDecodeError) as err:
+        raise StudyDefinitionError(f"{at}: consent_file: {path}: cannot read it ({err}).") from None
+    if not text.strip():
+        raise StudyDefinitionError(f"{at}: consent_file: {path} is empty.")
+    return text
 
 
 def _graph_camera_pose(value: Any, source: str, at: str) -> list[list[float]]:
@@ -281,7 +310,8 @@ def _toml_value(value: Any) -> str:
 _COMMENTS = {
     "name": "a name for the report",
     "consent": "the information and consent page of 'arteleop study serve' (Markdown; \\n is a "
-    "new line); empty: the built-in one",
+    'new line), the text your ethics board approved; consent_file = "consent.md" reads it from '
+    "that file instead; empty: a built-in one that says this file's trials and timeout",
     "seed": "seed of the cohort, the orders, the practice positions and every trial",
     "modalities": "AR modalities compared: none, manipulation, embodiment, task, full",
     "order": "williams (balanced Latin square), cyclic, random (seeded) or listed (in orders)",

@@ -164,7 +164,7 @@ def press_button(tab: Any, name: str, timeout_s: float = 60.0) -> None:
 
 CHOICES = {"Gender": "female", "Handedness": "right", "AR/VR experience": "4",
            "AR/VR per week": "2-5 h", "Video-game experience": "4",
-           "Video games per week": "under 1 h"}  # fmt: skip
+           "Video games per week": "under 2 h"}  # fmt: skip
 """A participant's answers to the start page's dropdowns."""
 
 
