@@ -375,7 +375,9 @@ class ScriptedParticipant:
             if not n:
                 break
             self.press(AXES[axis][0] if n > 0 else AXES[axis][1], abs(n))
-            now = coordinate(self.bowl())
+            before, now = now, coordinate(self.bowl())
+            if abs(now - before) >= abs(n):  # as the steps went, not as assumed: a bowl that
+                per_step_px = (now - before) / n  # turned in the fingers moves otherwise
         return per_step_px
 
     def do_trial(self) -> str:
