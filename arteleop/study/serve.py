@@ -263,6 +263,7 @@ class StudyServer(Closeable):
             self._show(lambda p: p.consent(text, AGREE, lambda: self._act("agree")))
             self._wait("agree")
             self._ask_demographics(participant)
+        if not run.instructed(participant):
             self._show(lambda p: p.message("How to drive the robot", TUTORIAL, "Continue",
                                            lambda: self._act("next")), driving=True)  # fmt: skip
             self._wait("next")

@@ -286,6 +286,12 @@ class ServedRun:
     def consented(self, participant: str) -> bool:
         return participant in self._participant_rows()
 
+    def instructed(self, participant: str) -> bool:
+        """Whether ``participant`` has been through the tutorial, as far as the files can say:
+        a trial of theirs is in ``trials.csv``. A server restarted between the consent and the
+        first trial's end shows the tutorial again, so that no trial runs without it."""
+        return len(self.pending(participant)) < len(self.trials_of(participant))
+
     def consent(self, participant: str, answers: Demographics) -> None:
         """The participant has agreed and answered the questions before the trials."""
         rows = self._participant_rows()

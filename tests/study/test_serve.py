@@ -122,6 +122,8 @@ def test_people_take_the_places_of_a_simulated_runs_plan(tmp_path: Path) -> None
     with served_run(tmp_path / "run") as again:  # a restarted server: the same session
         assert again.consented("P01") and again.current().id == "P01"
         assert [s.key for s in again.pending("P01")] == [("P01", 1), ("P01", 2)]
+        # Consented, no trial in: a restart showed "Trial 1" with no instructions.
+        assert not again.instructed("P01")
 
 
 def test_a_participants_link_is_their_own_and_survives_a_restart(tmp_path: Path) -> None:
@@ -155,6 +157,7 @@ def test_a_trial_run_again_after_a_restart_has_one_row_of_its_browser(tmp_path: 
         for spec in (first, second):
             run.keep(TrialRecord(spec, trial_row(spec, {"outcome": "timeout"}),
                                  {c: np.zeros(2) for c in TRACE_COLUMNS}, 2.0, 1.0))  # fmt: skip
+        assert run.instructed("P01") and not run.instructed("P02")  # a trial of theirs is in
         run.keep_browser(first, BrowserCheck(0.5, 900, 800, "gizmo"))
         run.keep_browser(second, BrowserCheck(0.4, 900, 800))
         run.keep_browser(first, BrowserCheck(0.25, 900, 800, "buttons"))
