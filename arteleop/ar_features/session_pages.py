@@ -20,6 +20,9 @@ RATINGS = tuple(str(k) for k in range(1, 8))
 """A 1-7 rating's answers, before :func:`_scale` labels its ends. A dropdown, not a slider: a
 slider starts at an answer (its middle), which a participant can send without reading it."""
 
+PRESS_START = "Press **Start** when you are ready."
+"""The line that asks for Start; it goes with the button."""
+
 Form = Mapping[str, object]
 """A page's answers by question key, as the browser gave them."""
 
@@ -89,12 +92,20 @@ class SessionPages:
             self._button("Continue", submit)
 
     def trial(self, heading: str, text: str, on_start: Callable[[], None]) -> None:
-        """Before and during a trial: what it is, its timer and state, and Start."""
+        """Before and during a trial: what it is (``text``), its timer and state, and Start,
+        which goes once pressed, with the line that asks for it."""
         with self._new(heading):
-            self._gui.add_markdown(text)
+            intro = self._gui.add_markdown(f"{text} {PRESS_START}")
             # Markdown wraps: a read-only text field cut long states off at the panel's edge.
             self._status = self._gui.add_markdown(_status(0.0, "press Start when ready"))
-            self._button("Start", on_start)
+            start = self._gui.add_button("Start")
+
+            def started(_: object) -> None:
+                start.remove()
+                intro.content = text
+                on_start()
+
+            start.on_click(started)
 
     def running(self, elapsed_s: float, state: str) -> None:
         """The trial's timer (s) and state, on its page."""

@@ -318,7 +318,7 @@ class StudyServer(Closeable):
         k, n = trials.index(spec) + 1, len(trials)
         kind = "practice trial" if spec.phase == FAMILIARIZATION else "trial"
         heading = f"Trial {k} of {n}"
-        text = f"This is a {kind}. Press **Start** when you are ready."
+        text = f"This is a {kind}."
         config = replace(trial_config(self.run.study, self._site, spec),
                          realtime=True, render_camera=True)  # fmt: skip
         with RemoteSite(config.site) as site:

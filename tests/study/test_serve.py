@@ -259,6 +259,9 @@ def _take_part(
         # Driven by a step button: the device is recorded. Once the trial's status has
         # replaced the prompt, Start's reset is behind.
         watcher.get_by_text("press Start when ready", exact=False).wait_for(state="hidden")
+        # Start goes once pressed, with the line asking for it.
+        watcher.get_by_role("button", name="Start", exact=True).wait_for(state="hidden")
+        watcher.get_by_text("when you are ready", exact=False).wait_for(state="hidden")
         # From the keyboard: focused (as Tab would), pressed with Space.
         watcher.get_by_role("button", name="down", exact=True).focus()
         watcher.keyboard.press("Space")
