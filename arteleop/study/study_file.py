@@ -40,15 +40,10 @@ def load_study_file(path: Path) -> tuple[StudyConfig, str]:
     """The definition in ``path`` and the file's text; refuses a start or target that the
     site would refuse (off the table, out of the arm's reach), naming the key's line."""
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise StudyDefinitionError(
-            f"{path}: no such study file. 'arteleop study init {path}' writes the default one "
-            "to edit."
-        ) from None
-    except (OSError, UnicodeDecodeError) as err:
-        raise StudyDefinitionError(f"{path}: cannot read it ({err}).") from err
+    text = _read_text(
+        path, f"{path}", f"no such study file. 'arteleop study init {path}' writes the default "
+        "one to edit."
+    )  # fmt: skip
     study = parse_study(text, str(path))
     _check_points(study, text, str(path))
     return study, text
@@ -145,20 +140,25 @@ def parse_study(text: str, source: str = "<study>") -> StudyConfig:
     return _build(StudyConfig, top, "", where)
 
 
+def _read_text(path: Path, named: str, missing: str) -> str:
+    """``path``'s UTF-8 text; its absence or unreadability a message that begins ``named``."""
+    try:
+        return path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise StudyDefinitionError(f"{named}: {missing}") from None
+    except (OSError, UnicodeDecodeError) as err:
+        raise StudyDefinitionError(f"{named}: cannot read it ({err}).") from None
+
+
 def _consent_file(value: Any, source: str, at: str) -> str:
     """The information and consent page's Markdown, from the file ``consent_file`` names."""
     if not isinstance(value, str) or not value:
         raise StudyDefinitionError(f"{at}: consent_file must be a file name, got {value!r}.")
     path = Path(source).parent / value
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise StudyDefinitionError(
-            f"{at}: consent_file: {path}: no such file. Put the text your ethics board approved "
-            "(Markdown) there, or name its file relative to the study file."
-        ) from None
-    except (OSError, UnicodeDecodeError) as err:
-        raise StudyDefinitionError(f"{at}: consent_file: {path}: cannot read it ({err}).") from None
+    text = _read_text(
+        path, f"{at}: consent_file: {path}", "no such file. Put the text your ethics board "
+        "approved (Markdown) there, or name its file relative to the study file."
+    )  # fmt: skip
     if not text.strip():
         raise StudyDefinitionError(f"{at}: consent_file: {path} is empty.")
     return text
