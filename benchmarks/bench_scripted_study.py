@@ -47,7 +47,7 @@ from playwright.sync_api import Error as PlaywrightError
 
 from arteleop.ar_features import modality_cues
 from arteleop.errors import ConfigurationError
-from arteleop.study.serve import outcome_text
+from arteleop.study.session_words import outcome_text
 from tests.instruments.browser import chromium
 from tests.instruments.scripted_participant import TrialDone, take_part
 

@@ -218,7 +218,7 @@ class StudyConfig:
         consent: The information and consent page shown to people (``arteleop study serve``),
             in Markdown (the study file's ``consent``, or the file its ``consent_file`` names);
             empty: the built-in page, which says this study's trials and timeout
-            (:func:`arteleop.study.serve.consent_text`).
+            (:func:`arteleop.study.session_words.consent_text`).
         seed: Seed of everything random in the study: the cohort, the orders, the practice
             positions and every trial (each trial's seed derives from it and the trial's place).
         modalities: The conditions, in the order the order schemes number them: modalities

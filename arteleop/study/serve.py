@@ -46,7 +46,6 @@ from arteleop.errors import ArteleopError
 from arteleop.lifetime import Closeable
 from arteleop.operator import HandTarget, live_source
 from arteleop.scene import HeadCameraConfig, RemoteSite
-from arteleop.study.definition import StudyConfig
 from arteleop.study.plan import FAMILIARIZATION, TrialSpec
 from arteleop.study.protocol import trial_config, trial_record
 from arteleop.study.questionnaire import classes_shown
@@ -58,6 +57,18 @@ from arteleop.study.session import (
     ServedRun,
     SessionInputError,
 )
+from arteleop.study.session_words import (
+    AGREE,
+    AR_CLASS_TEXT,
+    CUT_SHORT,
+    IN_PROGRESS,
+    ITEM_TEXT,
+    OBSERVING,
+    SESSION_OVER,
+    TUTORIAL,
+    consent_text,
+    outcome_text,
+)
 from arteleop.teleop import (
     ControllerConfig,
     TrialProgress,
@@ -65,91 +76,6 @@ from arteleop.teleop import (
     site_frame,
     view_assets,
 )
-
-CONSENT = """\
-You are invited to take part in a study of how drawings over a robot's camera view help people
-steer a robot arm from a distance. The robot, the table and the bowl are simulated.
-
-**What you do.** With the mouse or the keyboard you move the gripper of a robot arm, pick up a
-bowl and put it on a target: {trials}. Each trial ends when the bowl stands still after you
-let it go, or after {limit} at most. Afterwards you rate the displays.
-
-**What is recorded.** Your movements, each trial's time and accuracy, your answers about
-yourself and your ratings, under a participant number: never your name.
-
-**Your choice.** Taking part is voluntary. You may stop at any time, without giving a reason,
-by closing this page; what was recorded until then is kept unless you ask the researcher to
-delete it.
-
-Ask the researcher who runs the study about anything that is not clear before you go on.
-"""
-"""The information and consent page when the study file gives none (its key ``consent``),
-before :func:`consent_text` fills in the study's trials and their limit."""
-
-
-def consent_text(study: StudyConfig) -> str:
-    """The information and consent page: the study file's own (``consent``), else the
-    built-in one, saying only what is true of ``study``: its trials and how long one may last."""
-    if study.consent:
-        return study.consent
-    practice = study.familiarization.trials
-    measured = len(study.planned_conditions) * study.trials_per_modality
-    displays = len(study.condition_names)
-    trials = f"{_count(practice, 'practice trial')} and then " if practice else ""
-    trials += _count(measured, "measured trial")
-    if displays > 1:
-        trials += f", one under each of {displays} different display conditions"
-    limit_s = max(study.timeout_s, study.familiarization.timeout_s if practice else 0.0)
-    limit = f"{limit_s / 60:g} minutes" if limit_s >= 120 else f"{limit_s:g} seconds"
-    return CONSENT.format(trials=trials, limit=limit)
-
-
-def _count(n: int, what: str) -> str:
-    return f"{n} {what}" + ("" if n == 1 else "s")
-
-
-AGREE = "I have read the information above and agree to take part."
-TUTORIAL = """\
-**Drive the robot.** Drag the arrows of the handle at the gripper: the robot's gripper follows
-the handle. Or step the handle with the **Move** and **Height** buttons, as the camera sees it
-(left, away, nearer, right; up, down), by the **Step** chosen, or with the keys: W A S D or
-the arrows to move, E up, Q down. The robot is seen through its head camera, a moment late;
-move, then watch the gripper arrive.
-
-**Grip.** The fingers open sideways, across the view: take the bowl by its left or right
-wall. Move the Grip slider to *closed* to close the gripper on the bowl (it closes past the
-first mark) and back to *open* to let go (it opens below the second mark); or press G, once
-to close, again to open.
-
-**The timer** starts when your hand first moves towards the bowl and stops when the bowl,
-released, stands still. Be as quick and as accurate as you can: put the bowl's centre on the
-target.
-
-The practice trials come first; they teach the controls and are not compared.
-"""
-SESSION_OVER = "Your session is over: thank you for taking part."
-OBSERVING = (
-    "The experimenter's view: the robot as the participant sees it, read-only. The "
-    "participant's pages show in their own tab."
-)
-IN_PROGRESS = (
-    "A session is in progress in another browser tab. This page shows the robot's view only; "
-    "close the other tab to take over."
-)
-CUT_SHORT = ("Trial cut short", "The page was closed or lost during the trial: the trial starts "
-             "again from its beginning in a moment.")  # fmt: skip
-AR_CLASS_TEXT = {
-    "embodiment": "The robot's ghost: a model of the arm drawn over the camera view",
-    "manipulation": "The red beam to the grasp point, and the green and blue bars (distance "
-    "and grip)",
-    "task": "The green bowl drawn at the target",
-}
-ITEM_TEXT = {
-    "presence": "I felt present at the robot's place",
-    "embodiment": "The robot arm felt like my own arm",
-    "ease": "The task was easy to do",
-}
-
 
 ROUND_TRIPS = 3
 """Frames asked of the browser after each trial: their median is its display round trip."""
@@ -159,15 +85,6 @@ ROUND_TRIP_TIMEOUT_S = 5.0
 
 class SessionInterrupted(ArteleopError):
     """The controlling tab went during a trial: the attempt is recorded, the trial repeated."""
-
-
-def outcome_text(outcome: str, completion_time_s: float, placement_error_m: float) -> str:
-    """What the page tells a participant after a trial, from its ``trials.csv`` row's
-    outcome, time (s) and error (m)."""
-    if outcome == "success":
-        error_mm = 1000 * placement_error_m
-        return f"Placed in {completion_time_s:.1f} s, {error_mm:.0f} mm from the target."
-    return f"Not placed: {outcome.replace('_', ' ')}."
 
 
 class StudyServer(Closeable):

@@ -23,14 +23,7 @@ from arteleop.study import (
 )
 from arteleop.study.plan import EXPERIMENTAL
 from arteleop.study.runner import resume_study
-from arteleop.study.serve import (
-    AR_CLASS_TEXT,
-    IN_PROGRESS,
-    ITEM_TEXT,
-    OBSERVING,
-    ROUND_TRIP_TIMEOUT_S,
-    StudyServer,
-)
+from arteleop.study.serve import ROUND_TRIP_TIMEOUT_S, StudyServer
 from arteleop.study.session import (
     BROWSER_FILE,
     INTERRUPTED_FILE,
@@ -41,6 +34,7 @@ from arteleop.study.session import (
     SessionInputError,
     served_run,
 )
+from arteleop.study.session_words import AR_CLASS_TEXT, IN_PROGRESS, ITEM_TEXT, OBSERVING
 from tests.helpers import serve_to
 from tests.instruments.browser import (
     answer_questions,

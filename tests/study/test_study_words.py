@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from arteleop.ar_features.session_pages import AGREEMENT, EXPERIENCE, HOURS, _rated, _scale
 from arteleop.study import FamiliarizationConfig, StudyConfig
-from arteleop.study.serve import CONSENT, consent_text
+from arteleop.study.session_words import CONSENT, consent_text
 
 
 def _what_you_do(text: str) -> str:
