@@ -34,12 +34,8 @@ from arteleop.study.session import (
     served_run,
 )
 from arteleop.study.sites import StudySite
-from arteleop.study.study_file import (
-    first_difference,
-    load_study_file,
-    parse_study,
-    study_text,
-)
+from arteleop.study.study_file import first_difference, load_study_file, parse_study
+from arteleop.study.study_writing import study_text
 
 if TYPE_CHECKING:
     from arteleop.study.serve import StudyServer

@@ -47,7 +47,8 @@ from arteleop.study.run_folder import (
 )
 from arteleop.study.run_lock import LOCK_FILE, after_fork_in_child, run_lock
 from arteleop.study.sites import StudySite
-from arteleop.study.study_file import first_difference, parse_study, study_text
+from arteleop.study.study_file import first_difference, parse_study
+from arteleop.study.study_writing import study_text
 
 PACKAGES = ("arteleop", "pybullet", "pin", "mink", "mujoco", "ruckig", "numpy", "scipy",
             "pandas", "statsmodels", "open3d", "moderngl")  # fmt: skip

@@ -66,7 +66,7 @@ from arteleop.study.runner import (
     utc_now,
 )
 from arteleop.study.sites import StudySite
-from arteleop.study.study_file import study_text
+from arteleop.study.study_writing import study_text
 
 INTERRUPTED_FILE = "interrupted.csv"
 BROWSER_FILE = "browser.csv"
