@@ -44,7 +44,7 @@ from arteleop.operator.tasks.task import Action, TaskPhase
 from arteleop.scene import RemoteSite, Workspace
 from arteleop.study import StudyConfig
 from arteleop.study.protocol import operator_traits, trial_config
-from arteleop.study.runner import plan_run
+from arteleop.study.run_opening import plan_run
 from arteleop.study.sites import StudySite
 from arteleop.teleop import run_trial, trial_operator
 from arteleop.teleop.trace import TRACE_COLUMNS

@@ -118,7 +118,7 @@ def test_analyze_refuses_a_value_out_of_its_set(
 def _run_folder(tmp_path: Path) -> Path:
     """A run folder as study run begins it: study.toml and the manifest, no trial yet."""
     from arteleop.study import parse_study
-    from arteleop.study.runner import new_manifest, plan_run
+    from arteleop.study.run_opening import new_manifest, plan_run
 
     run = tmp_path / "run"
     run.mkdir()

@@ -11,48 +11,35 @@ Ray's equivalent). Whatever the order, the finished folder's CSVs are the same b
 from __future__ import annotations
 
 import csv
-import dataclasses
-import hashlib
 import math
 import multiprocessing
 import os
-import platform
 import signal
 import threading
 import time
 from collections.abc import Callable, Sequence
 from concurrent.futures import FIRST_COMPLETED, Executor, Future, ProcessPoolExecutor, wait
 from dataclasses import dataclass
-from datetime import UTC, datetime
-from importlib import metadata
 from pathlib import Path
 
 import pandas as pd
 
 from arteleop.analysis.data import PARTICIPANT_COLUMNS, QUESTIONNAIRE_COLUMNS, TRIAL_COLUMNS
-from arteleop.blas_kernel import blas_description
-from arteleop.errors import RunFolderError, StudyDefinitionError
-from arteleop.scene.gl_renderer import renderer_description, resolve_renderer
-from arteleop.study.cohort import participants
+from arteleop.errors import RunFolderError
 from arteleop.study.definition import ParticipantSpec, StudyConfig
-from arteleop.study.plan import EXPERIMENTAL, TrialSpec, plan_study
+from arteleop.study.plan import EXPERIMENTAL, TrialSpec
 from arteleop.study.protocol import TrialRecord, run_planned_trial
 from arteleop.study.questionnaire import classes_shown, simulated_answers
 from arteleop.study.run_folder import (
-    FORMAT_VERSION,
     REAL,
     STUDY_FILE,
     RunFolder,
     table_text,
 )
 from arteleop.study.run_lock import LOCK_FILE, after_fork_in_child, run_lock
+from arteleop.study.run_opening import new_manifest, open_run, plan_run, require_run_folder, utc_now
 from arteleop.study.sites import StudySite
-from arteleop.study.study_file import first_difference, parse_study
 from arteleop.study.study_writing import study_text
-
-PACKAGES = ("arteleop", "pybullet", "pin", "mink", "mujoco", "ruckig", "numpy", "scipy",
-            "pandas", "statsmodels", "open3d", "moderngl")  # fmt: skip
-"""Packages whose versions the manifest records: each can change the numbers."""
 
 Progress = Callable[[TrialSpec, int, int], None]
 """Called after each trial is written: (the trial, trials done, trials in the plan)."""
@@ -109,32 +96,6 @@ def run_study(
         return _execute(study, site, folder, plan, people, workers, executor, progress)
 
 
-def new_manifest(
-    study: StudyConfig, text: str, plan: Sequence[TrialSpec], participants: int
-) -> dict[str, object]:
-    """A new run's manifest.json: what it is and what it ran on."""
-    return {
-        "format_version": FORMAT_VERSION,
-        "seed": study.seed,
-        "trials_planned": len(plan),
-        "participants": participants,
-        "packages": _versions(),
-        "python": platform.python_version(),
-        # OpenBLAS's kernels round in their own way: trials differ between them.
-        "blas": blas_description(),
-        # The final tracker looks are rendered: a GPU and Mesa may differ in a pixel's last bit.
-        "head_camera": renderer_description(resolve_renderer("auto")),
-        "started": utc_now(),
-        "finished": None,
-        # What the run is, so that resume can refuse a folder whose definition was edited or
-        # whose plan this arteleop would make otherwise.
-        "definition": text,
-        "definition_sha256": _digest(text),
-        "plan_sha256": _plan_digest(plan),
-        "report_finished": None,
-    }
-
-
 def make_folder(folder: RunFolder) -> None:
     """Create the run folder (and its parents), or say why it cannot be."""
     try:
@@ -168,7 +129,7 @@ def resume_study(
     """Continue the run in ``out`` after a crash, Ctrl-C or ``kill -9``: the trials it lacks
     run, the rest are kept. With ``study``, refuses a folder made from another definition."""
     folder = RunFolder(out)
-    _require_run_folder(folder)
+    require_run_folder(folder)
     with run_lock(folder.path):
         site = StudySite()  # plans the run, then runs its trials: its robot model loads once
         if folder.manifest().get("cohort") == REAL:
@@ -186,60 +147,6 @@ def resume_study(
         return _execute(recorded, site, folder, plan, people, workers, executor, progress)
 
 
-def open_run(
-    folder: RunFolder, study: StudyConfig | None = None, site: StudySite | None = None
-) -> tuple[StudyConfig, list[TrialSpec], list[ParticipantSpec], dict[str, object]]:
-    """A run folder to continue, checked: its definition, plan and participants, and its
-    manifest. With ``study``, refuses a folder made from another definition; ``site`` plans
-    it (see :func:`plan_run`). The caller holds the folder's lock."""
-    _require_run_folder(folder)
-    for entry in folder.path.iterdir():
-        if entry.is_symlink():  # it would be read, or appended to, wherever it points
-            raise RunFolderError(
-                f"{entry}: a symbolic link in a run folder, which reads and writes only its own "
-                "files; put the file itself there, or start a new run in another folder."
-            )
-    manifest = folder.manifest()
-    recorded = _recorded_definition(folder, manifest)
-    if study is not None and (key := first_difference(study, recorded)) is not None:
-        raise RunFolderError(
-            f"{folder.path} was made from another definition: its key {key!r} is "
-            f"{_value(recorded, key)!r}, the given one {_value(study, key)!r}. Resume it "
-            "without a definition, or start a new run in another folder."
-        )
-    if manifest.get("format_version") != FORMAT_VERSION:
-        raise RunFolderError(
-            f"{folder.path / 'manifest.json'}: format_version "
-            f"{manifest.get('format_version')!r}, this arteleop writes {FORMAT_VERSION}; "
-            "resume it with the version that began it "
-            f"({_get(manifest, 'packages', {}).get('arteleop', 'unknown')})."
-        )
-    began = manifest.get("definition")
-    if (not isinstance(began, str) or manifest.get("definition_sha256") != _digest(began)
-            or not isinstance(manifest.get("plan_sha256"), str)):  # fmt: skip
-        raise RunFolderError(
-            f"{folder.path / 'manifest.json'}: its 'definition', 'definition_sha256' or "
-            "'plan_sha256' is missing, null or edited, so the run cannot be checked against "
-            "what it began with. Restore manifest.json from a backup."
-        )
-    plan, people = plan_run(recorded, site)
-    if manifest.get("plan_sha256") != _plan_digest(plan):
-        raise RunFolderError(
-            f"{folder.path}: this arteleop plans the run's definition otherwise than the "
-            "version that began it (its plan's digest differs); resume it with that version "
-            f"({_get(manifest, 'packages', {}).get('arteleop', 'unknown')})."
-        )
-    return recorded, plan, people, manifest
-
-
-def _require_run_folder(folder: RunFolder) -> None:
-    if not folder.is_run_folder():
-        raise RunFolderError(
-            f"{folder.path} is not a run folder (it has no {STUDY_FILE} and manifest.json): "
-            "'arteleop study run --out DIR' starts one."
-        )
-
-
 def _begun_only(folder: RunFolder) -> bool:
     """Whether ``folder`` holds nothing but what :meth:`RunFolder.start` writes before the
     manifest (a start cut short: no trial has run), its temporary files, and the lock."""
@@ -250,58 +157,6 @@ def _begun_only(folder: RunFolder) -> bool:
             return False
     trials = folder.trials_path
     return not trials.exists() or trials.read_text(encoding="utf-8").count("\n") <= 1
-
-
-def _recorded_definition(folder: RunFolder, manifest: dict[str, object]) -> StudyConfig:
-    """The run's definition: study.toml, refused if it no longer says what the run began with
-    (the manifest keeps the text it began with)."""
-    path = folder.path / STUDY_FILE
-    try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as err:
-        raise RunFolderError(f"Cannot read {path}: {err}.") from err
-    recorded = parse_study(text, str(path))
-    began = manifest.get("definition")
-    if isinstance(began, str) and text != began:
-        original = parse_study(began, f"{folder.path / 'manifest.json'} (definition)")
-        key = first_difference(original, recorded)
-        if key is not None:
-            raise RunFolderError(
-                f"{path} was edited after the run began: its key {key!r} is "
-                f"{_value(recorded, key)!r}, the run's {_value(original, key)!r}. Put it back "
-                "(manifest.json keeps the run's definition as 'definition'), or start a new run "
-                "in another folder."
-            )
-    return recorded
-
-
-def _digest(text: str) -> str:
-    return hashlib.sha256(text.encode("utf-8")).hexdigest()
-
-
-def _plan_digest(plan: Sequence[TrialSpec]) -> str:
-    return _digest("\n".join(repr(dataclasses.astuple(spec)) for spec in plan))
-
-
-def _get(manifest: dict[str, object], key: str, default: dict) -> dict:
-    value = manifest.get(key, default)
-    return value if isinstance(value, dict) else default
-
-
-def plan_run(
-    study: StudyConfig, site: StudySite | None = None
-) -> tuple[list[TrialSpec], list[ParticipantSpec]]:
-    """The run's plan and participants; ``site`` probes the practice points (a new one if
-    none), and is closed after."""
-    site = site or StudySite()
-    problem = site.problem(study.start_xy_m, study.target_xy_m)
-    if problem is not None:
-        raise StudyDefinitionError(f"start_xy_m / target_xy_m: {problem}")
-    points = site.practice_points(study.start_xy_m, study.target_xy_m)
-    try:
-        return plan_study(study, points), list(participants(study))
-    finally:
-        site.close()  # the probe of practice points; forked workers must not inherit it
 
 
 def _execute(
@@ -483,24 +338,3 @@ def _questionnaire_text(
         own = experimental[experimental["participant"] == person.id]
         rows += simulated_answers(person.id, (study.seed, 4, k), own, study.timeout_s, classes)
     return table_text(QUESTIONNAIRE_COLUMNS, rows)
-
-
-def _versions() -> dict[str, str]:
-    versions = {}
-    for name in PACKAGES:
-        try:
-            versions[name] = metadata.version(name)
-        except metadata.PackageNotFoundError:
-            versions[name] = "not installed"
-    return versions
-
-
-def utc_now() -> str:
-    return datetime.now(UTC).isoformat(timespec="seconds")
-
-
-def _value(study: StudyConfig, dotted: str) -> object:
-    value: object = study
-    for part in dotted.split("."):
-        value = getattr(value, part)
-    return value

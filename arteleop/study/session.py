@@ -57,14 +57,8 @@ from arteleop.study.run_folder import (
     write_atomic,
 )
 from arteleop.study.run_lock import run_lock
-from arteleop.study.runner import (
-    check_new,
-    make_folder,
-    new_manifest,
-    open_run,
-    plan_run,
-    utc_now,
-)
+from arteleop.study.run_opening import new_manifest, open_run, plan_run, utc_now
+from arteleop.study.runner import check_new, make_folder
 from arteleop.study.sites import StudySite
 from arteleop.study.study_writing import study_text
 

@@ -1,0 +1,179 @@
+"""A run's plan and manifest when it begins, and the checks a run folder passes when it is
+opened again (to resume it, or to serve its next participant): its definition unedited, its
+manifest able to vouch for it, its plan the one this version makes."""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import platform
+from collections.abc import Sequence
+from datetime import UTC, datetime
+from importlib import metadata
+
+from arteleop.blas_kernel import blas_description
+from arteleop.errors import RunFolderError, StudyDefinitionError
+from arteleop.scene.gl_renderer import renderer_description, resolve_renderer
+from arteleop.study.cohort import participants
+from arteleop.study.definition import ParticipantSpec, StudyConfig
+from arteleop.study.plan import TrialSpec, plan_study
+from arteleop.study.run_folder import FORMAT_VERSION, STUDY_FILE, RunFolder
+from arteleop.study.sites import StudySite
+from arteleop.study.study_file import first_difference, parse_study
+
+PACKAGES = ("arteleop", "pybullet", "pin", "mink", "mujoco", "ruckig", "numpy", "scipy",
+            "pandas", "statsmodels", "open3d", "moderngl")  # fmt: skip
+"""Packages whose versions the manifest records: each can change the numbers."""
+
+
+def new_manifest(
+    study: StudyConfig, text: str, plan: Sequence[TrialSpec], participants: int
+) -> dict[str, object]:
+    """A new run's manifest.json: what it is and what it ran on."""
+    return {
+        "format_version": FORMAT_VERSION,
+        "seed": study.seed,
+        "trials_planned": len(plan),
+        "participants": participants,
+        "packages": _versions(),
+        "python": platform.python_version(),
+        # OpenBLAS's kernels round in their own way: trials differ between them.
+        "blas": blas_description(),
+        # The final tracker looks are rendered: a GPU and Mesa may differ in a pixel's last bit.
+        "head_camera": renderer_description(resolve_renderer("auto")),
+        "started": utc_now(),
+        "finished": None,
+        # What the run is, so that resume can refuse a folder whose definition was edited or
+        # whose plan this arteleop would make otherwise.
+        "definition": text,
+        "definition_sha256": _digest(text),
+        "plan_sha256": _plan_digest(plan),
+        "report_finished": None,
+    }
+
+
+def open_run(
+    folder: RunFolder, study: StudyConfig | None = None, site: StudySite | None = None
+) -> tuple[StudyConfig, list[TrialSpec], list[ParticipantSpec], dict[str, object]]:
+    """A run folder to continue, checked: its definition, plan and participants, and its
+    manifest. With ``study``, refuses a folder made from another definition; ``site`` plans
+    it (see :func:`plan_run`). The caller holds the folder's lock."""
+    require_run_folder(folder)
+    for entry in folder.path.iterdir():
+        if entry.is_symlink():  # it would be read, or appended to, wherever it points
+            raise RunFolderError(
+                f"{entry}: a symbolic link in a run folder, which reads and writes only its own "
+                "files; put the file itself there, or start a new run in another folder."
+            )
+    manifest = folder.manifest()
+    recorded = _recorded_definition(folder, manifest)
+    if study is not None and (key := first_difference(study, recorded)) is not None:
+        raise RunFolderError(
+            f"{folder.path} was made from another definition: its key {key!r} is "
+            f"{_value(recorded, key)!r}, the given one {_value(study, key)!r}. Resume it "
+            "without a definition, or start a new run in another folder."
+        )
+    if manifest.get("format_version") != FORMAT_VERSION:
+        raise RunFolderError(
+            f"{folder.path / 'manifest.json'}: format_version "
+            f"{manifest.get('format_version')!r}, this arteleop writes {FORMAT_VERSION}; "
+            "resume it with the version that began it "
+            f"({_get(manifest, 'packages', {}).get('arteleop', 'unknown')})."
+        )
+    began = manifest.get("definition")
+    if (not isinstance(began, str) or manifest.get("definition_sha256") != _digest(began)
+            or not isinstance(manifest.get("plan_sha256"), str)):  # fmt: skip
+        raise RunFolderError(
+            f"{folder.path / 'manifest.json'}: its 'definition', 'definition_sha256' or "
+            "'plan_sha256' is missing, null or edited, so the run cannot be checked against "
+            "what it began with. Restore manifest.json from a backup."
+        )
+    plan, people = plan_run(recorded, site)
+    if manifest.get("plan_sha256") != _plan_digest(plan):
+        raise RunFolderError(
+            f"{folder.path}: this arteleop plans the run's definition otherwise than the "
+            "version that began it (its plan's digest differs); resume it with that version "
+            f"({_get(manifest, 'packages', {}).get('arteleop', 'unknown')})."
+        )
+    return recorded, plan, people, manifest
+
+
+def require_run_folder(folder: RunFolder) -> None:
+    if not folder.is_run_folder():
+        raise RunFolderError(
+            f"{folder.path} is not a run folder (it has no {STUDY_FILE} and manifest.json): "
+            "'arteleop study run --out DIR' starts one."
+        )
+
+
+def _recorded_definition(folder: RunFolder, manifest: dict[str, object]) -> StudyConfig:
+    """The run's definition: study.toml, refused if it no longer says what the run began with
+    (the manifest keeps the text it began with)."""
+    path = folder.path / STUDY_FILE
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as err:
+        raise RunFolderError(f"Cannot read {path}: {err}.") from err
+    recorded = parse_study(text, str(path))
+    began = manifest.get("definition")
+    if isinstance(began, str) and text != began:
+        original = parse_study(began, f"{folder.path / 'manifest.json'} (definition)")
+        key = first_difference(original, recorded)
+        if key is not None:
+            raise RunFolderError(
+                f"{path} was edited after the run began: its key {key!r} is "
+                f"{_value(recorded, key)!r}, the run's {_value(original, key)!r}. Put it back "
+                "(manifest.json keeps the run's definition as 'definition'), or start a new run "
+                "in another folder."
+            )
+    return recorded
+
+
+def _digest(text: str) -> str:
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+def _plan_digest(plan: Sequence[TrialSpec]) -> str:
+    return _digest("\n".join(repr(dataclasses.astuple(spec)) for spec in plan))
+
+
+def _get(manifest: dict[str, object], key: str, default: dict) -> dict:
+    value = manifest.get(key, default)
+    return value if isinstance(value, dict) else default
+
+
+def plan_run(
+    study: StudyConfig, site: StudySite | None = None
+) -> tuple[list[TrialSpec], list[ParticipantSpec]]:
+    """The run's plan and participants; ``site`` probes the practice points (a new one if
+    none), and is closed after."""
+    site = site or StudySite()
+    problem = site.problem(study.start_xy_m, study.target_xy_m)
+    if problem is not None:
+        raise StudyDefinitionError(f"start_xy_m / target_xy_m: {problem}")
+    points = site.practice_points(study.start_xy_m, study.target_xy_m)
+    try:
+        return plan_study(study, points), list(participants(study))
+    finally:
+        site.close()  # the probe of practice points; forked workers must not inherit it
+
+
+def _versions() -> dict[str, str]:
+    versions = {}
+    for name in PACKAGES:
+        try:
+            versions[name] = metadata.version(name)
+        except metadata.PackageNotFoundError:
+            versions[name] = "not installed"
+    return versions
+
+
+def utc_now() -> str:
+    return datetime.now(UTC).isoformat(timespec="seconds")
+
+
+def _value(study: StudyConfig, dotted: str) -> object:
+    value: object = study
+    for part in dotted.split("."):
+        value = getattr(value, part)
+    return value
