@@ -18,8 +18,11 @@ With ``--ring`` every camera frame is rendered, and each placement says how much
 ring the cloud drew when the fingers opened (``ring_share``, of the most any frame drew) and how
 long before that half of it was last drawn (``ring_unseen_s``).
 
+With ``--memory-drift-deg`` the participant's ``PerceptionParams.memory_drift_rad`` is set to
+that angle (deg) for every trial: the placements' sensitivity to it.
+
     python benchmarks/read_placements.py [--people 10] [--modalities none,full] [--seed 0]
-        [--ring]
+        [--ring] [--memory-drift-deg DEG]
 """
 
 from __future__ import annotations
@@ -38,6 +41,7 @@ import numpy as np
 import pandas as pd
 
 from arteleop.ar_features import DisplayFrame
+from arteleop.operator import OperatorParams, PerceptionParams
 from arteleop.operator.perception import Perceived
 from arteleop.operator.tasks import pick_and_place
 from arteleop.operator.tasks.task import Action, TaskPhase
@@ -106,7 +110,13 @@ def _column(trace: dict[str, np.ndarray] | np.ndarray, name: str) -> np.ndarray:
     return trace[:, TRACE_COLUMNS.index(name)]
 
 
-def read(study: StudyConfig, people: int, modalities: list[str], ring: bool) -> pd.DataFrame:
+def read(
+    study: StudyConfig,
+    people: int,
+    modalities: list[str],
+    ring: bool,
+    params: OperatorParams | None = None,
+) -> pd.DataFrame:
     site = StudySite()
     plan, cohort = plan_run(study, site)
     persons = {p.id: p for p in cohort[:people]}
@@ -123,7 +133,7 @@ def read(study: StudyConfig, people: int, modalities: list[str], ring: bool) -> 
             config = replace(config, render_camera=True)
         watch = RingWatch(config.site.workspace)
         with RemoteSite(config.site) as remote:
-            source = trial_operator(remote, config,
+            source = trial_operator(remote, config, params=params,
                                     traits=operator_traits(study, persons[spec.participant]))  # fmt: skip
             result = run_trial(source, config, remote, watch if ring else None)
             traits = source.operator.traits
@@ -207,9 +217,15 @@ def main() -> None:
         action="store_true",
         help="render every frame and count the target ring's points drawn",
     )
+    parser.add_argument("--memory-drift-deg", type=float, default=None,
+                        help="the participant's memory drift in its first second (deg)")  # fmt: skip
     args = parser.parse_args()
     study = StudyConfig(seed=args.seed)
-    table = read(study, args.people, args.modalities.split(","), args.ring)
+    params = None
+    if args.memory_drift_deg is not None:
+        drift_rad = np.radians(args.memory_drift_deg)
+        params = OperatorParams(perception=PerceptionParams(memory_drift_rad=drift_rad))
+    table = read(study, args.people, args.modalities.split(","), args.ring, params)
     print()
     print(table.groupby("modality")[[c for c in table.columns
                                      if c.endswith(("_mm", "_s", "_share"))]]

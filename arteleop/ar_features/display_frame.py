@@ -136,6 +136,8 @@ class DisplayFrame:
     predicted: PredictedArm | None = None
     start_m: NDArray[np.float64] | None = None
     depth_aids: bool = False
+    target_drawn: float = 1.0
+    start_drawn: float = 1.0
 
     def __post_init__(self) -> None:
         shapes = {
@@ -164,6 +166,11 @@ class DisplayFrame:
             raise DisplayFrameError(
                 "DisplayFrame needs cloud_points_m, cloud_colors and cloud_spacing_rad together"
             )
+        for name in ("target_drawn", "start_drawn"):
+            if not 0.0 <= getattr(self, name) <= 1.0:
+                raise DisplayFrameError(
+                    f"DisplayFrame.{name}={getattr(self, name)}: expected a share from 0 to 1"
+                )
         spacing = self.cloud_spacing_rad
         if spacing is not None and not (np.isfinite(spacing) and spacing > 0):
             raise DisplayFrameError(

@@ -27,6 +27,7 @@ from arteleop.operator.arm_model import (
 from arteleop.operator.belief import probability_within
 from arteleop.operator.bowl_memory import BowlMemory
 from arteleop.operator.live import HandTarget, LiveOperator
+from arteleop.operator.mark_memory import MarkMemory
 from arteleop.operator.minimum_jerk import minimum_jerk, minimum_jerk_profile
 from arteleop.operator.output import OperatorOutput
 from arteleop.operator.params import OperatorParams
@@ -92,6 +93,7 @@ __all__ = [
     "LiveOperator",
     "LoadReport",
     "LoaderConfig",
+    "MarkMemory",
     "OperatorOutput",
     "OperatorParams",
     "OperatorSource",

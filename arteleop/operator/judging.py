@@ -8,6 +8,8 @@ errors); :mod:`arteleop.operator.perception` says which judgements a glance make
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -15,6 +17,7 @@ from numpy.typing import NDArray
 
 from arteleop.ar_features import HEIGHT_LABEL_STEP_M, DisplayFrame
 from arteleop.operator.acuity import Judgement, fixations, judgement_sd, reading_sd_m
+from arteleop.operator.mark_memory import MarkMemory
 from arteleop.operator.perceptual_errors import PerceptualErrors
 
 if TYPE_CHECKING:
@@ -22,6 +25,17 @@ if TYPE_CHECKING:
 
 Estimate = tuple[NDArray[np.float64], NDArray[np.float64]]
 """A judged point or interval (m) and the covariance the person believes it has (m^2)."""
+
+
+@dataclass(frozen=True)
+class Mark:
+    """A mark on the table as judged (m) with its believed covariance (m^2), the fixations it
+    took, and whether it came from memory (the display did not draw enough of it)."""
+
+    mark_m: NDArray[np.float64]
+    cov: NDArray[np.float64]
+    fixations: int
+    remembered: bool = False
 
 
 def shown_gripper_m(view: DisplayFrame) -> NDArray[np.float64]:
@@ -37,7 +51,8 @@ def shown_gripper_m(view: DisplayFrame) -> NDArray[np.float64]:
 class Judge:
     """The judgements of one glance at ``view`` by a person with ``errors``: ``depth_factor``
     scales their depth SD; ``depth_scale`` is how they see a depth interval in the rendered
-    scene (1: true), a lasting error they do not know of, so not in the believed covariances.
+    scene (1: true), a lasting error they do not know of, so not in the believed covariances;
+    ``marks``: where they remember the marks on the table (a fresh memory: none seen yet).
     """
 
     def __init__(
@@ -47,6 +62,7 @@ class Judge:
         errors: PerceptualErrors,
         depth_factor: float = 1.0,
         depth_scale: float = 1.0,
+        marks: MarkMemory | None = None,
     ) -> None:
         self.view = view
         self.params = params
@@ -58,6 +74,25 @@ class Judge:
         self.lead_m = np.zeros(3) if predicted is None else predicted.gripper_m - view.gripper_m
         """How far the predictive ghost leads the frame's own arm (m), which the person sees."""
         self.cloud_grain = view.cloud_spacing_rad or 0.0  # batch frames carry no cloud
+        self.marks = marks or MarkMemory(params.memory_drift_rad, params.memory_plateau_s)
+
+    def mark(
+        self, name: str, drawn: float, against_m: NDArray[np.float64], judge: Callable[[], Mark]
+    ) -> Mark:
+        """The mark ``name`` on the table, of which the display draws the share ``drawn``:
+        ``judge()``'s judgement of it where enough is drawn to find its centre, remembered;
+        else where it is remembered, looking there and at what it is judged against
+        (``against_m``). A mark never seen in the trial is judged where it is drawn: the
+        person saw the scene before the trial began."""
+        view = self.view
+        if drawn < self.params.mark_drawn_min:
+            recalled = self.marks.recall(name, view.time_s, view.viewpoint_m, self.errors)
+            if recalled is not None:
+                remembered, cov = recalled
+                return Mark(remembered, cov, self.fixated(remembered, against_m), True)
+        seen = judge()
+        self.marks.saw(name, view.time_s, seen.mark_m, seen.cov)
+        return seen
 
     def fixated(self, *seen_m: NDArray[np.float64], read_m: tuple = ()) -> int:
         """The fixations a judgement of ``seen_m`` that reads the labels at ``read_m`` takes."""

@@ -12,8 +12,10 @@ class Look:
 
     Glances go on until the probability that the error is within the criterion reaches the
     person's confidence (accept) or falls to ``1 - confidence`` (correct), or looking longer no
-    longer helps (the averaged noise is small beside what lasts: correct anyway), or the look
-    has lasted ``max_look_s``.
+    longer helps (the averaged noise is small beside what lasts, or a remembered mark's drift
+    grows: then accept if the judged error is within the criterion, since neither a look nor a
+    correction of an error within it makes the person surer, else correct), or the look has
+    lasted ``max_look_s`` (accept only if sure enough).
     """
 
     def __init__(self, traits: OperatorTraits, max_look_s: float) -> None:
@@ -37,10 +39,13 @@ class Look:
         self._glances += 1
         self.next_glance_s = time_s + duration_s
 
-    def verdict(self, time_s: float, sure: float, variance_m2: float) -> bool | None:
+    def verdict(
+        self, time_s: float, sure: float, variance_m2: float, judged_within: bool
+    ) -> bool | None:
         """After a glance, over at ``time_s`` (s), that leaves the person ``sure`` (a
         probability) that the error is within the criterion, believing its judgement's variance
-        ``variance_m2``: True to accept, False to correct, None to look again."""
+        ``variance_m2``, the judged error itself within the criterion or not
+        (``judged_within``): True to accept, False to correct, None to look again."""
         confidence = self.traits.confidence
         looked = time_s - self.start_s
         glances = self._glances
@@ -51,4 +56,4 @@ class Look:
         if not (accept or sure <= 1.0 - confidence or saturated or looked >= self.max_look_s):
             return None
         self.cost_s = 0.5 * self.cost_s + 0.5 * looked
-        return accept
+        return accept or (saturated and judged_within)

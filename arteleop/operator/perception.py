@@ -45,7 +45,8 @@ from numpy.typing import NDArray
 from arteleop.ar_features import DISTANCE_LABEL_STEP_M, DisplayFrame
 from arteleop.checks import Bounds, check_fields
 from arteleop.operator.acuity import Acuities, DisplayGeometry, reading_sd_m
-from arteleop.operator.judging import Judge, combined, shown_gripper_m
+from arteleop.operator.judging import Judge, Mark, combined, shown_gripper_m
+from arteleop.operator.mark_memory import MarkMemory
 from arteleop.operator.perceptual_errors import PerceptualErrors
 
 __all__ = [
@@ -81,6 +82,13 @@ class PerceptionParams:
             (:func:`~arteleop.operator.acuity.fixations`).
         eye_movement_s: What each fixation after a glance's first adds to its time (s): an
             eye movement and the fixation it ends in.
+        mark_drawn_min: The share of a mark's line (the target circle, the start cross) the
+            display must draw for the mark to be judged where it is; less, and it is placed
+            from memory (:class:`~arteleop.operator.mark_memory.MarkMemory`).
+        memory_drift_rad: How far a remembered mark's place drifts in its first second
+            unseen, SD per axis in the table's plane, as an angle at the eye (rad); the drift's
+            variance grows in proportion to the time unseen.
+        memory_plateau_s: How long that drift grows (s).
     """
 
     display: DisplayGeometry = field(default_factory=DisplayGeometry)
@@ -90,10 +98,16 @@ class PerceptionParams:
     parafovea_rad: float = math.radians(5.0)
     fovea_rad: float = math.radians(1.0)
     eye_movement_s: float = 0.23
+    mark_drawn_min: float = 0.5
+    memory_drift_rad: float = math.radians(0.1)
+    memory_plateau_s: float = 20.0
 
     def __post_init__(self) -> None:
         check_fields(self, {
             "bias_share": Bounds(0, 1),
+            "mark_drawn_min": Bounds(0, 1, "a share of the mark's line"),
+            "memory_drift_rad": Bounds(0, 0.1, "rad"),
+            "memory_plateau_s": Bounds(0, 600, "s"),
             "parafovea_rad": Bounds(0, 0.5, "rad", above=True),
             "fovea_rad": Bounds(0, 0.5, "rad", above=True),
             "eye_movement_s": Bounds(0, 1, "s"),
@@ -157,6 +171,7 @@ def perceive(
     depth_factor: float = 1.0,
     depth_scale: float = 1.0,
     aims_gripper: bool = False,
+    marks: MarkMemory | None = None,
 ) -> Perceived:
     """One glance at the display frame ``view``, averaged with this look's earlier glances.
 
@@ -166,8 +181,10 @@ def perceive(
     the person sees a depth interval in the rendered scene (1: true), a lasting error the person
     does not know of, so it is not in the believed covariances. Where the task ``aims_gripper``
     (pointing), the target is judged against the gripper shown over it, not the bowl, and so is
-    the start (``view.start_m``)."""
-    judge = Judge(view, params, errors, depth_factor, depth_scale)
+    the start (``view.start_m``). A mark the display does not draw is judged from ``marks``,
+    the operator's memory of the marks, which this glance's judgements update (a fresh
+    memory: none seen yet)."""
+    judge = Judge(view, params, errors, depth_factor, depth_scale, marks)
     cues = view.cues
     gripper_seen = view.gripper_in_camera or cues.ghost or cues.predictive_ghost
     bowl = bowl_cov = None
@@ -284,16 +301,21 @@ def judge_placement(
     cues, tracked, shown = view.cues, view.bowl_m, judge.shown_gripper
     # The target as drawn: the mesh where the AR layers put it, or the marker in the cloud.
     mark_point = view.target_m if cues.target_mesh else view.in_cloud(view.target_m)
+    drawn = 1.0 if cues.target_mesh else view.target_drawn  # the mesh is drawn over all
     if aims_gripper and gripper_seen:
-        # The mark against the gripper over it.
-        grain = params.display.pixel_rad if cues.target_mesh else judge.cloud_grain
-        mark, mark_cov = judge.seen("target", mark_point, shown, grain)
-        mark, mark_cov, fixations = judge.with_aids(
-            "target", mark_point, mark, mark_cov, grain, read_height=False
-        )
-        centring, centring_cov = judge.centre(mark_point, grain)
-        target = grasp.gripper_m + mark - shown + centring
-        return PlacementJudgement(target, mark_cov + centring_cov, True, fixations)
+
+        def against_gripper() -> Mark:  # the mark against the gripper over it
+            grain = params.display.pixel_rad if cues.target_mesh else judge.cloud_grain
+            mark, mark_cov = judge.seen("target", mark_point, shown, grain)
+            mark, mark_cov, fixations = judge.with_aids(
+                "target", mark_point, mark, mark_cov, grain, read_height=False
+            )
+            centring, centring_cov = judge.centre(mark_point, grain)
+            target = grasp.gripper_m + mark - shown + centring
+            return Mark(target, mark_cov + centring_cov, fixations)
+
+        aimed = judge.mark("target", drawn, shown, against_gripper)
+        return PlacementJudgement(aimed.mark_m, aimed.cov, True, aimed.fixations)
     if cues.target_mesh and bowl is not None and tracked is not None:
         # Coincidence of the real and the virtual bowl: their offset, at the mesh's grain.
         offset_m = float(np.linalg.norm((tracked - view.target_m)[:2]))
@@ -313,19 +335,23 @@ def judge_placement(
     # and centred on by eye: its centre bisects the circle, a radius from its rim. Against the
     # bowl, their interval was stretched in the bowl's judgement.
     against = bowl if bowl is not None else shown
-    marker, marker_cov = judge.seen(
-        "target", mark_point, against, judge.cloud_grain, stretched=bowl is None
-    )
-    fixations = judge.fixated(mark_point, against)
-    if bowl is None and gripper_seen:
-        marker, marker_cov, fixations = judge.with_aids(
-            "target", mark_point, marker, marker_cov, judge.cloud_grain, read_height=False
+
+    def in_cloud() -> Mark:
+        marker, marker_cov = judge.seen(
+            "target", mark_point, against, judge.cloud_grain, stretched=bowl is None
         )
-    centring, centring_cov = judge.centre(mark_point, judge.cloud_grain)
-    cov = marker_cov + centring_cov
+        fixations = judge.fixated(mark_point, against)
+        if bowl is None and gripper_seen:
+            marker, marker_cov, fixations = judge.with_aids(
+                "target", mark_point, marker, marker_cov, judge.cloud_grain, read_height=False
+            )
+        centring, centring_cov = judge.centre(mark_point, judge.cloud_grain)
+        return Mark(marker + centring, marker_cov + centring_cov, fixations)
+
+    marker = judge.mark("target", drawn, against, in_cloud)
     by_gripper = bowl_cov is None
-    cov = cov + (grasp.gripper_cov if by_gripper else bowl_cov)
-    return PlacementJudgement(marker + centring, cov, by_gripper, fixations)
+    cov = marker.cov + (grasp.gripper_cov if by_gripper else bowl_cov)
+    return PlacementJudgement(marker.mark_m, cov, by_gripper, marker.fixations)
 
 
 def judge_start(
@@ -338,12 +364,22 @@ def judge_start(
     view = judge.view
     cross = view.in_cloud(view.start_m)
     if gripper_seen:
-        mark, cov = judge.seen("start", cross, judge.shown_gripper, judge.cloud_grain)
-        mark, cov, fixations = judge.with_aids(
-            "start", cross, mark, cov, judge.cloud_grain, read_height=True
-        )
-        return grasp.gripper_m + mark - judge.shown_gripper, cov, fixations
+
+        def against_gripper() -> Mark:
+            mark, cov = judge.seen("start", cross, judge.shown_gripper, judge.cloud_grain)
+            mark, cov, fixations = judge.with_aids(
+                "start", cross, mark, cov, judge.cloud_grain, read_height=True
+            )
+            return Mark(grasp.gripper_m + mark - judge.shown_gripper, cov, fixations)
+
+        aimed = judge.mark("start", view.start_drawn, judge.shown_gripper, against_gripper)
+        return aimed.mark_m, aimed.cov, aimed.fixations
     mark_point = view.target_m if view.cues.target_mesh else view.in_cloud(view.target_m)
     against = view.bowl_m if view.bowl_m is not None else mark_point
-    start, mark_cov = judge.seen("start", cross, against, judge.cloud_grain)
-    return start, mark_cov + grasp.cov, judge.fixated(cross, against)
+
+    def against_scene() -> Mark:
+        start, mark_cov = judge.seen("start", cross, against, judge.cloud_grain)
+        return Mark(start, mark_cov, judge.fixated(cross, against))
+
+    seen = judge.mark("start", view.start_drawn, against, against_scene)
+    return seen.mark_m, seen.cov + grasp.cov, seen.fixations

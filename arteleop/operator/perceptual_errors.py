@@ -42,6 +42,10 @@ class PerceptualErrors:
         self._sums[stream] = (n, total)
         return total / n
 
+    def drift(self, size: int) -> NDArray[np.float64]:
+        """Standard normal steps of a memory's drift: fresh, never averaged over a look."""
+        return self._rng.normal(0.0, 1.0, size)
+
     def bias(self, stream: str, size: int) -> NDArray[np.float64]:
         """The person's lasting bias of ``stream`` (standard units)."""
         bias = self._bias.get(stream)

@@ -30,6 +30,7 @@ from arteleop.operator.arm_model import ArmModel
 from arteleop.operator.criterion import PhaseCriterion
 from arteleop.operator.hand import Hand, Tremor
 from arteleop.operator.look import Look
+from arteleop.operator.mark_memory import MarkMemory
 from arteleop.operator.minimum_jerk import minimum_jerk_profile
 from arteleop.operator.output import ALIGN, CALIBRATE, DONE, ENGAGE, OperatorOutput
 from arteleop.operator.params import OperatorParams
@@ -86,6 +87,8 @@ class SyntheticOperator:
         self._criterion = PhaseCriterion(task, self.traits, self.p.gross_criterion_m)
         self._tremor = Tremor(self.p.tremor_amplitude_m, self.p.tremor_hz, rng)
         self._errors = PerceptualErrors(rng, self.traits.bias_seed, self.p.perception.bias_share)
+        seeing = self.p.perception
+        self._marks = MarkMemory(seeing.memory_drift_rad, seeing.memory_plateau_s)
         self._watch = DisplayWatch(self.p)
         self._look = Look(self.traits, self.p.max_look_s)
         self._glancing: tuple[Perceived, Goal | None] | None = None  # a look's glance under way
@@ -159,7 +162,7 @@ class SyntheticOperator:
         t = self.traits
         return perceive(
             view, self.p.perception, self._errors, t.depth_factor, t.depth_scale,
-            self.task.aims_gripper,
+            self.task.aims_gripper, self._marks,
         )  # fmt: skip
 
     def _glance_s(self, goal: Goal | None) -> float:
@@ -206,7 +209,8 @@ class SyntheticOperator:
                 return
         error = goal.gripper_m - seen.gripper_m
         sure = self._criterion.sure_within(t, error, goal)
-        accept = self._look.verdict(t, sure, float(np.trace(goal.cov_m2)))
+        within = self._criterion.sure_within(t, error, goal, np.zeros((3, 3))) == 1.0
+        accept = self._look.verdict(t, sure, float(np.trace(goal.cov_m2)), within)
         if accept is None:  # not sure either way: look again
             return
         if accept:

@@ -23,6 +23,7 @@ from arteleop.scene.camera_config import CameraIntrinsics, HeadCameraConfig
 from arteleop.scene.camera_geometry import CameraGeometry, landmark_problem
 from arteleop.scene.depth_mesh import DepthMesh, MeshReconstructor, MeshReconstructorConfig
 from arteleop.scene.depth_noise import DepthNoiseConfig, apply_depth_noise
+from arteleop.scene.mark_sight import MarksSight, start_line_m, target_line_m
 from arteleop.scene.marker_body import MarkerBody, PrintedSquare
 from arteleop.scene.pointcloud import PointCloud, depth_to_camera_points, frame_to_point_cloud
 from arteleop.scene.site import RemoteSite, SiteConfig, reach_problem
@@ -62,6 +63,7 @@ __all__ = [
     "HeadCamera",
     "HeadCameraConfig",
     "MarkerBody",
+    "MarksSight",
     "MeshReconstructor",
     "MeshReconstructorConfig",
     "PointCloud",
@@ -80,5 +82,7 @@ __all__ = [
     "frame_to_point_cloud",
     "landmark_problem",
     "reach_problem",
+    "start_line_m",
+    "target_line_m",
     "write_snapshot",
 ]

@@ -40,6 +40,7 @@ from arteleop.scene.camera import HeadCamera, RGBDFrame
 from arteleop.scene.camera_config import HeadCameraConfig
 from arteleop.scene.camera_geometry import colocation_errors, landmark_problem
 from arteleop.scene.gl_renderer import resolve_renderer
+from arteleop.scene.mark_sight import MARK_HIT_TOLERANCE_M, MarksSight, start_line_m, target_line_m
 from arteleop.scene.render_process import RenderProcess
 from arteleop.scene.render_world import RenderWorld, SceneState
 from arteleop.scene.site_frames import BASE_FRAME, BOWL_FRAME, SiteFrames
@@ -52,7 +53,8 @@ from arteleop.transforms import (
 )
 
 RAY_OVERSHOOT_M = 0.02
-""":meth:`RemoteSite.sight_bowl`'s rays run this far past their surface point (m)."""
+""":meth:`RemoteSite.sight_bowl`'s and :meth:`RemoteSite.sight_marks`'s rays run this far past
+their surface point (m)."""
 
 
 MOVING_JOINTS = (*RIGHT_ARM_JOINTS, *RIGHT_FINGER_JOINTS)
@@ -202,6 +204,9 @@ class RemoteSite(Closeable):
             self._client.disconnect()
             raise
         self._sight = BowlSight(ws.bowl, config.bowl_sight)
+        target_line = target_line_m(ws)
+        self._target_points = len(target_line)
+        self._mark_points_m = np.vstack([target_line, start_line_m(ws)])
         self.frames = SiteFrames(
             self.kinematics,
             ws,
@@ -314,14 +319,7 @@ class RemoteSite(Closeable):
         (:class:`~arteleop.scene.BowlSight`): found when the camera sees enough of the bowl,
         at its true position."""
         T_base_bowl = self._bowl_transform()
-        points = self._sight.surface_points_m(T_base_bowl)
-        eye = self.camera.geometry.position_m
-        rays = points - eye
-        # Past the point: a ray that ends at the drawn surface may stop short of the collision
-        # shape, which stands off it by a few millimetres.
-        ends = points + RAY_OVERSHOOT_M * rays / np.linalg.norm(rays, axis=1, keepdims=True)
-        results = self._client.rayTestBatch([eye.tolist()] * len(points), ends.tolist())
-        hits = np.array([r[3] if r[0] >= 0 else (np.nan,) * 3 for r in results])
+        hits = self._first_hits(self._sight.surface_points_m(T_base_bowl))
         track = self._sight.look(T_base_bowl, self.camera.geometry, hits, self.time_s)
         if track.position_m is None:
             return track
@@ -330,6 +328,27 @@ class RemoteSite(Closeable):
             self._T_camera_base_true @ make_transform(np.eye(3), track.position_m)
         )
         return replace(track, position_m=self.frames.T(BASE_FRAME, BOWL_FRAME)[:3, 3])
+
+    def sight_marks(self) -> MarksSight:
+        """How much of each mark on the table the point cloud would draw now, from rays instead
+        of a rendered frame (:mod:`~arteleop.scene.mark_sight`)."""
+        points = self._mark_points_m
+        seen = self.camera.geometry.sees_points(points)
+        miss = np.linalg.norm(self._first_hits(points) - points, axis=1)
+        seen &= np.nan_to_num(miss, nan=np.inf) <= MARK_HIT_TOLERANCE_M
+        n = self._target_points
+        return MarksSight(float(seen[:n].mean()), float(seen[n:].mean()))
+
+    def _first_hits(self, points_m: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Where the rays from the camera to (N, 3) points first hit anything (N, 3; nan: no
+        hit), base frame, m."""
+        eye = self.camera.geometry.position_m
+        rays = points_m - eye
+        # Past the point: a ray that ends at the drawn surface may stop short of the collision
+        # shape, which stands off it by a few millimetres.
+        ends = points_m + RAY_OVERSHOOT_M * rays / np.linalg.norm(rays, axis=1, keepdims=True)
+        results = self._client.rayTestBatch([eye.tolist()] * len(points_m), ends.tolist())
+        return np.array([r[3] if r[0] >= 0 else (np.nan,) * 3 for r in results])
 
     @property
     def T_cloud_true(self) -> NDArray[np.float64] | None:

@@ -137,7 +137,7 @@ def replay(
         state = site.observe()
         frame = display_frame(
             state, site.sight_bowl(), site.frames, site.config.workspace, cues, engaged[k],
-            site.T_cloud_true, source.depth_aids,
+            site.T_cloud_true, source.depth_aids, site.sight_marks(),
         )  # fmt: skip
         shown = with_cloud(frame, site.capture())
         if speed > 0:

@@ -36,6 +36,7 @@ from arteleop.scene import (
     START_MARKER_FRAME,
     TARGET_MARKER_FRAME,
     BowlTrack,
+    MarksSight,
     RemoteSite,
     RGBDFrame,
     SiteFrames,
@@ -73,12 +74,15 @@ def display_frame(
     engaged: bool,
     T_cloud_true: NDArray[np.float64] | None = None,
     depth_aids: bool = False,
+    marks: MarksSight | None = None,
 ) -> DisplayFrame:
     """The display's content for a site state and the bowl's track at that instant, without a
     cloud. Placed through the site's frames: the eye at the camera's registration, the ghost at
     the arm's encoder readings, the target mesh at the target marker; ``T_cloud_true``: the
     registration's error (:attr:`RemoteSite.T_cloud_true`); ``depth_aids``: drawn
-    (:attr:`DisplayFrame.depth_aids`)."""
+    (:attr:`DisplayFrame.depth_aids`); ``marks``: how much of the marks the cloud draws
+    (:meth:`RemoteSite.sight_marks`; None: all of them)."""
+    marks = marks or MarksSight()
     frames.set_joints(dict(zip(RIGHT_ARM_JOINTS, state.arm_q_rad.tolist(), strict=True)))
     grasp = workspace.bowl.grasp_offset_m()
     return DisplayFrame(
@@ -98,6 +102,8 @@ def display_frame(
         engaged=engaged,
         T_cloud_true=T_cloud_true,
         depth_aids=depth_aids,
+        target_drawn=marks.target_share,
+        start_drawn=marks.start_share,
     )
 
 
@@ -115,7 +121,7 @@ def site_frame(
     drawn."""
     frame = display_frame(
         site.observe(), site.sight_bowl(), site.frames, site.config.workspace, cues, False,
-        site.T_cloud_true, depth_aids,
+        site.T_cloud_true, depth_aids, site.sight_marks(),
     )  # fmt: skip
     if not in_background:
         return with_cloud(frame, site.capture())
@@ -185,6 +191,7 @@ class DisplayFeed:
         self._track_every = track_every
         self._ticks = 0
         self._track: BowlTrack | None = None
+        self._marks = MarksSight()
         self._cues = cues
         self._workspace = site.config.workspace
         self._render = render
@@ -211,10 +218,11 @@ class DisplayFeed:
         if self._ticks % self._track_every == 0 or self._track is None:
             with self._timer.stage("tracking"):
                 self._track = self._site.sight_bowl()
+                self._marks = self._site.sight_marks()
         self._ticks += 1
         frame = display_frame(
             state, self._track, self._site.frames, self._workspace, self._cues, engaged,
-            self._site.T_cloud_true, self._depth_aids,
+            self._site.T_cloud_true, self._depth_aids, self._marks,
         )  # fmt: skip
         self._history.append(frame)
         px, m = self._site.colocation_errors(frame.T_base_gripper[None, :3, 3])
@@ -246,7 +254,7 @@ class DisplayFeed:
                 track = self._track or self._site.sight_bowl()
                 owed = display_frame(
                     state, track, self._site.frames, self._workspace, self._cues, engaged,
-                    self._site.T_cloud_true, self._depth_aids,
+                    self._site.T_cloud_true, self._depth_aids, self._marks,
                 )  # fmt: skip
                 self._request(owed, applied_sample_time_s)
         if rgbd is None or finished is None:

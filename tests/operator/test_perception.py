@@ -16,7 +16,14 @@ from arteleop.ar_features import (
     PredictedArm,
 )
 from arteleop.errors import ConfigurationError
-from arteleop.operator import BowlMemory, Perceived, PerceptionParams, PerceptualErrors, perceive
+from arteleop.operator import (
+    BowlMemory,
+    MarkMemory,
+    Perceived,
+    PerceptionParams,
+    PerceptualErrors,
+    perceive,
+)
 from arteleop.operator.acuity import (
     ARCMIN_RAD,
     Acuities,
@@ -138,10 +145,60 @@ def test_no_layer_has_a_precision_of_its_own() -> None:
              for f in dataclasses.fields(cls)}  # fmt: skip
     assert names == {"display", "acuities", "proprioception_sd_m", "bias_share", "pixel_rad",
                      "interocular_m", "interval_fraction", "stereo_pixels", "fovea_rad",
-                     "parafovea_rad",
-                     "eye_movement_s"}  # fmt: skip
+                     "parafovea_rad", "eye_movement_s", "mark_drawn_min", "memory_drift_rad",
+                     "memory_plateau_s"}  # fmt: skip
     for layer in ("bar", "beam", "mesh", "ghost", "target", "centring"):
         assert not any(layer in name for name in names)
+
+
+# -- marks the display does not draw ----------------------------------------------------------
+def _target_errors(unseen_s: float, drawn: float = 0.0, cues: ArCues = MODALITIES["none"],
+                   n: int = 600) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+    """The target judged, in the table's plane, by ``n`` people who saw it drawn at 0 s and
+    look again ``unseen_s`` later at a frame that draws the share ``drawn`` of it: (n, 2) errors
+    (m) and the last one's believed SD per axis (m)."""
+    shown = display_frame(cues=cues, time_s=0.0)
+    later = display_frame(cues=cues, time_s=unseen_s, target_drawn=drawn)
+    errors, sd = [], 0.0
+    for seed in range(n):
+        noise, marks = _independent(seed), MarkMemory(P.memory_drift_rad, P.memory_plateau_s)
+        perceive(shown, P, noise, marks=marks)
+        seen = perceive(later, P, noise, marks=marks)
+        errors.append((seen.target_m - later.target_m)[:2])
+        sd = math.sqrt(seen.placement_cov[0, 0])
+    return np.array(errors), sd
+
+
+def test_a_target_the_cloud_does_not_draw_is_judged_worse_the_longer_it_is_unseen() -> None:
+    in_view, sd_in_view = _target_errors(12.0, drawn=1.0)
+    spread = {s: _target_errors(s)[0].std() for s in (0.0, 2.0, 12.0, 20.0, 40.0)}
+    # From memory, with no time unseen, as the glance that saw it; then the drift's SD grows
+    # with the root of the time unseen, up to its plateau, past which it no longer grows.
+    assert spread[0.0] == pytest.approx(in_view.std(), rel=0.15)
+    eye = _eye_m(display_frame(), display_frame().target_m)
+    for unseen_s in (2.0, 12.0, 20.0):
+        drift = P.memory_drift_rad * eye * math.sqrt(unseen_s)
+        assert spread[unseen_s] == pytest.approx(math.hypot(spread[0.0], drift), rel=0.15)
+    assert spread[40.0] == pytest.approx(spread[20.0], rel=0.15)
+    # The person knows its memory fades: the believed variance grows by the drift's.
+    drift = P.memory_drift_rad * eye * math.sqrt(12.0)
+    assert _target_errors(12.0, n=1)[1] == pytest.approx(math.hypot(sd_in_view, drift), rel=0.05)
+
+
+def test_a_target_half_drawn_is_seen_and_the_target_mesh_is_always_drawn() -> None:
+    in_view = _target_errors(12.0, drawn=1.0)[0].std()
+    assert _target_errors(12.0, drawn=P.mark_drawn_min)[0].std() == pytest.approx(in_view, rel=0.15)
+    mesh = MODALITIES["full"]
+    assert _target_errors(12.0, drawn=0.0, cues=mesh)[0].std() == pytest.approx(
+        _target_errors(12.0, drawn=1.0, cues=mesh)[0].std(), rel=0.15
+    )
+
+
+def test_a_target_never_seen_in_the_trial_is_judged_where_it_is_drawn() -> None:
+    hidden = display_frame(time_s=5.0, target_drawn=0.0)
+    errors = [perceive(hidden, P, _independent(k)).target_m - hidden.target_m for k in range(300)]
+    in_view, _ = _target_errors(0.0, drawn=1.0, n=300)
+    assert np.std(np.array(errors)[:, :2]) == pytest.approx(in_view.std(), rel=0.15)
 
 
 # -- layer by layer, against the function -------------------------------------------------------
