@@ -219,6 +219,10 @@ class StudyConfig:
             in Markdown (the study file's ``consent``, or the file its ``consent_file`` names);
             empty: the built-in page, which says this study's trials and timeout
             (:func:`arteleop.study.session_words.consent_text`).
+        instructions: The page on how to drive the robot, shown once before the first trial,
+            in Markdown (the study file's ``instructions``, or the file its
+            ``instructions_file`` names); empty: the built-in page
+            (:func:`arteleop.study.session_words.instructions_text`).
         seed: Seed of everything random in the study: the cohort, the orders, the practice
             positions and every trial (each trial's seed derives from it and the trial's place).
         modalities: The conditions, in the order the order schemes number them: modalities
@@ -267,6 +271,7 @@ class StudyConfig:
 
     name: str = "arteleop default study"
     consent: str = ""
+    instructions: str = ""
     seed: int = 0
     modalities: tuple[str, ...] = MODALITY_NAMES
     order: str = "williams"

@@ -65,8 +65,8 @@ from arteleop.study.session_words import (
     ITEM_TEXT,
     OBSERVING,
     SESSION_OVER,
-    TUTORIAL,
     consent_text,
+    instructions_text,
     outcome_text,
 )
 from arteleop.teleop import (
@@ -181,7 +181,8 @@ class StudyServer(Closeable):
             self._wait("agree")
             self._ask_demographics(participant)
         if not run.instructed(participant):
-            self._show(lambda p: p.message("How to drive the robot", TUTORIAL, "Continue",
+            text = instructions_text(run.study)
+            self._show(lambda p: p.message("How to drive the robot", text, "Continue",
                                            lambda: self._act("next")), driving=True)  # fmt: skip
             self._wait("next")
         while pending := run.pending(participant):

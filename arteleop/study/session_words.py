@@ -43,6 +43,14 @@ def consent_text(study: StudyConfig) -> str:
     return CONSENT.format(trials=trials, limit=limit)
 
 
+def instructions_text(study: StudyConfig) -> str:
+    """The page on how to drive the robot: the study file's own (``instructions``), else the
+    built-in one, which says practice trials come first only if ``study`` has some."""
+    if study.instructions:
+        return study.instructions
+    return TUTORIAL + ("\n" + PRACTICE_FIRST if study.familiarization.trials else "")
+
+
 def _count(n: int, what: str) -> str:
     return f"{n} {what}" + ("" if n == 1 else "s")
 
@@ -63,9 +71,10 @@ to close, again to open.
 **The timer** starts when your hand first moves towards the bowl and stops when the bowl,
 released, stands still. Be as quick and as accurate as you can: put the bowl's centre on the
 target.
-
-The practice trials come first; they teach the controls and are not compared.
 """
+"""How to drive the robot when the study file gives no page of its own (``instructions``),
+before :func:`instructions_text` says whether practice trials come first."""
+PRACTICE_FIRST = "The practice trials come first; they teach the controls and are not compared.\n"
 SESSION_OVER = "Your session is over: thank you for taking part."
 OBSERVING = (
     "The experimenter's view: the robot as the participant sees it, read-only. The "

@@ -31,10 +31,10 @@ TABLES: dict[str, type] = {
 }
 """The study file's tables and what each is read into."""
 CAMERA_GRAPH_KEY = "camera_graph"
-CONSENT_FILE_KEY = "consent_file"
-"""A study-file key read into ``consent``: the page's Markdown from a file beside the study file
-(the run folder's study.toml then holds the text itself, as shown)."""
 """Not a field: a graph file whose camera edge becomes ``camera_pose``."""
+TEXT_FILE_KEYS = {"consent_file": "consent", "instructions_file": "instructions"}
+"""Study-file keys read into a page's text: its Markdown from a file beside the study file (the
+run folder's study.toml then holds the text itself, as shown)."""
 
 
 def load_study_file(path: Path) -> tuple[StudyConfig, str]:
@@ -120,13 +120,14 @@ def parse_study(text: str, source: str = "<study>") -> StudyConfig:
                         f"{where.at('participants', 'id', index)}: participant id {pid!r} is "
                         "used twice; each participant needs an id of their own."
                     )
-        elif key == CONSENT_FILE_KEY:
-            if "consent" in data:
+        elif key in TEXT_FILE_KEYS:
+            field_name = TEXT_FILE_KEYS[key]
+            if field_name in data:
                 raise StudyDefinitionError(
-                    f"{where.at('', key)}: consent_file and consent: give the page's text once, "
+                    f"{where.at('', key)}: {key} and {field_name}: give the page's text once, "
                     "in the study file or in a file."
                 )
-            top["consent"] = _consent_file(value, source, where.at("", key))
+            top[field_name] = _text_file(key, value, source, where.at("", key))
         elif key == CAMERA_GRAPH_KEY:
             others = [k for k in ("camera_pose", "camera_offset_mm", "camera_offset_deg")
                       if k in data]  # fmt: skip
@@ -151,17 +152,17 @@ def _read_text(path: Path, named: str, missing: str) -> str:
         raise StudyDefinitionError(f"{named}: cannot read it ({err}).") from None
 
 
-def _consent_file(value: Any, source: str, at: str) -> str:
-    """The information and consent page's Markdown, from the file ``consent_file`` names."""
+def _text_file(key: str, value: Any, source: str, at: str) -> str:
+    """A page's Markdown, from the file the study file's ``key`` names."""
     if not isinstance(value, str) or not value:
-        raise StudyDefinitionError(f"{at}: consent_file must be a file name, got {value!r}.")
+        raise StudyDefinitionError(f"{at}: {key} must be a file name, got {value!r}.")
     path = Path(source).parent / value
     text = _read_text(
-        path, f"{at}: consent_file: {path}", "no such file. Put the text your ethics board "
-        "approved (Markdown) there, or name its file relative to the study file."
+        path, f"{at}: {key}: {path}", "no such file. Put the page's text (Markdown) there, the "
+        "text your ethics board approved, or name its file relative to the study file."
     )  # fmt: skip
     if not text.strip():
-        raise StudyDefinitionError(f"{at}: consent_file: {path} is empty.")
+        raise StudyDefinitionError(f"{at}: {key}: {path} is empty.")
     return text
 
 

@@ -28,6 +28,9 @@ _COMMENTS = {
     "consent": "the information and consent page of 'arteleop study serve' (Markdown; \\n is a "
     'new line), the text your ethics board approved; consent_file = "consent.md" reads it from '
     "that file instead; empty: a built-in one that says this file's trials and timeout",
+    "instructions": "the page on how to drive the robot, before the first trial (Markdown); "
+    'instructions_file = "instructions.md" reads it from that file instead; empty: the '
+    "built-in one (the page's controls, the grip, the timer)",
     "seed": "seed of the cohort, the orders, the practice positions and every trial",
     "modalities": "AR modalities compared: none, manipulation, embodiment, task, full",
     "order": "williams (balanced Latin square), cyclic, random (seeded) or listed (in orders)",

@@ -4,7 +4,13 @@ from __future__ import annotations
 
 from arteleop.ar_features.session_pages import AGREEMENT, EXPERIENCE, HOURS, _rated, _scale
 from arteleop.study import FamiliarizationConfig, StudyConfig
-from arteleop.study.session_words import CONSENT, consent_text
+from arteleop.study.session_words import (
+    CONSENT,
+    PRACTICE_FIRST,
+    TUTORIAL,
+    consent_text,
+    instructions_text,
+)
 
 
 def _what_you_do(text: str) -> str:
@@ -61,8 +67,8 @@ def test_a_consent_file_that_cannot_be_the_page_is_refused(tmp_path) -> None:
 
     cases = {
         'consent_file = "missing.md"\n': f"{tmp_path / 'study.toml'} line 1: consent_file: "
-        f"{tmp_path / 'missing.md'}: no such file. Put the text your ethics board approved "
-        "(Markdown) there, or name its file relative to the study file.",
+        f"{tmp_path / 'missing.md'}: no such file. Put the page's text (Markdown) there, the "
+        "text your ethics board approved, or name its file relative to the study file.",
         'consent = "x"\nconsent_file = "c.md"\n': f"{tmp_path / 'study.toml'} line 2: "
         "consent_file and consent: give the page's text once, in the study file or in a file.",
         'consent_file = "empty.md"\n': f"{tmp_path / 'study.toml'} line 1: consent_file: "
@@ -74,3 +80,28 @@ def test_a_consent_file_that_cannot_be_the_page_is_refused(tmp_path) -> None:
         with pytest.raises(StudyDefinitionError) as err:
             load_study_file(tmp_path / "study.toml")
         assert str(err.value) == message
+
+
+def test_the_instructions_are_the_study_files_own_or_say_practice_comes_first_only_if_it_does(
+    tmp_path,
+) -> None:
+    from dataclasses import replace
+
+    from arteleop.study import FamiliarizationConfig, load_study_file, study_text
+    from arteleop.study.study_file import parse_study
+
+    assert instructions_text(StudyConfig()) == TUTORIAL + "\n" + PRACTICE_FIRST
+    none = replace(StudyConfig(), familiarization=FamiliarizationConfig(trials=0))
+    assert instructions_text(none) == TUTORIAL and "practice" not in TUTORIAL
+    (tmp_path / "drive.md").write_text("Use the joystick.\n", encoding="utf-8")
+    (tmp_path / "study.toml").write_text('instructions_file = "drive.md"\n')
+    study, _ = load_study_file(tmp_path / "study.toml")
+    assert instructions_text(study) == "Use the joystick.\n"
+    assert parse_study(study_text(study)).instructions == "Use the joystick.\n"
+    (tmp_path / "study.toml").write_text('instructions = "x"\ninstructions_file = "drive.md"\n')
+    import pytest
+
+    from arteleop.errors import StudyDefinitionError
+
+    with pytest.raises(StudyDefinitionError, match="line 2: instructions_file and instructions"):
+        load_study_file(tmp_path / "study.toml")
