@@ -93,12 +93,18 @@ class ViewConfig:
         return float(2 * np.arctan(max(half_v, half_h / aspect)))
 
     @property
+    def half_fov_tan(self) -> tuple[float, float]:
+        """The tangents of the head camera's half fields of view, horizontal and vertical."""
+        return (
+            float(np.tan(np.radians(self.horizontal_fov_deg) / 2)),
+            float(np.tan(np.radians(self.vertical_fov_deg) / 2)),
+        )
+
+    @property
     def image_aspect(self) -> float:
         """The camera image's width over its height."""
-        return float(
-            np.tan(np.radians(self.horizontal_fov_deg) / 2)
-            / np.tan(np.radians(self.vertical_fov_deg) / 2)
-        )
+        horizontal, vertical = self.half_fov_tan
+        return horizontal / vertical
 
     def __post_init__(self) -> None:
         if self.public_url is not None:
@@ -143,8 +149,10 @@ class OperatorView(Closeable):
         # Docked beside the scene, the panel hides none of the camera image (floating, it
         # covered the right arm at rest and the bowl's start).
         server.gui.main_panel.dock_right()
+        self.cloud = CloudLayer(server, config.point_overlap, config.half_fov_tan)
+        """The point cloud's layer: what it has sent."""
         self.layers: list[Layer] = [
-            CloudLayer(server, config.point_overlap),
+            self.cloud,
             DepthAidsLayer(server.scene),
         ]
         if assets is not None:

@@ -250,6 +250,8 @@ class StudyServer(Closeable):
             if (live := self._live) is not None:  # a tab may go meanwhile
                 live.reset()
             self._lost.clear()
+            cloud = self.view.cloud
+            sent = (cloud.frames_drawn, cloud.payload_bytes)
             start = time.perf_counter()
             self._trial_running.set()
             try:
@@ -260,7 +262,11 @@ class StudyServer(Closeable):
                 return
             finally:
                 self._trial_running.clear()
-        record = trial_record(spec, result, time.perf_counter() - start)
+        wall_s = time.perf_counter() - start
+        frames, payload = cloud.frames_drawn - sent[0], cloud.payload_bytes - sent[1]
+        stream = {"cloud_frames": frames, "cloud_kbytes": payload / 1e3,
+                  "cloud_mbit_s": payload * 8 / 1e6 / max(wall_s, 1e-9)}  # fmt: skip
+        record = trial_record(spec, result, wall_s)
         row = record.row
         time_s, error_m = row["completion_time_s"], row["placement_error_m"]
         result_text = outcome_text(str(row["outcome"]), time_s, error_m)  # type: ignore[arg-type]
@@ -268,7 +274,7 @@ class StudyServer(Closeable):
         devices = live.take_devices() if (live := self._live) is not None else ""
         self._show(lambda p: p.message(heading, result_text, "Next", lambda: self._act("next")))
         # While the person reads the outcome.
-        self.run.keep_browser(spec, replace(self._check_browser(), input_device=devices))
+        self.run.keep_browser(spec, replace(self._check_browser(), input_device=devices, **stream))
         self._wait("next")
 
     def _check_browser(self) -> BrowserCheck:

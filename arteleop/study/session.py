@@ -65,7 +65,11 @@ from arteleop.study.study_writing import study_text
 INTERRUPTED_FILE = "interrupted.csv"
 BROWSER_FILE = "browser.csv"
 BROWSER_COLUMNS = ("participant", "trial_index", "display_round_trip_s", "scene_width_px",
-                   "scene_height_px", "input_device")  # fmt: skip
+                   "scene_height_px", "input_device", "cloud_frames", "cloud_kbytes",
+                   "cloud_mbit_s")  # fmt: skip
+BROWSER_COLUMNS_0_3 = BROWSER_COLUMNS[:6]
+"""browser.csv's columns before the stream was counted: carried on, its rows leave the counts
+empty."""
 LINKS_KEY_FILE = "links.key"
 LINKS_KEY_BYTES = 32
 GENDERS = ("female", "male", "diverse", "prefer not to say")
@@ -157,12 +161,20 @@ class BrowserCheck:
         input_device: What moved the gripper's target during the trial: ``gizmo``, ``buttons``
             or ``gizmo+buttons`` (:meth:`~arteleop.ar_features.live_input.LiveInput.take_devices`);
             empty if nothing did.
+        cloud_frames: The camera frames the view drew during the trial.
+        cloud_kbytes: The point cloud's positions and colours it sent for them (kB, before
+            compression): only what changed (:mod:`arteleop.ar_features.layers.cloud`).
+        cloud_mbit_s: That over the trial's wall time (Mbit/s): the rate the participant's
+            connection had to carry.
     """
 
     display_round_trip_s: float
     scene_width_px: int
     scene_height_px: int
     input_device: str = ""
+    cloud_frames: int = 0
+    cloud_kbytes: float = 0.0
+    cloud_mbit_s: float = 0.0
 
 
 Ratings = Mapping[tuple[str, str], int]
@@ -303,9 +315,15 @@ class ServedRun:
         after a restart replaces its earlier one)."""
         key = (spec.participant, str(spec.trial_index))
         path = self.folder.path / BROWSER_FILE
-        kept = [row for row in self._rows(path, BROWSER_COLUMNS) if tuple(row[:2]) != key]
+        rows = read_table(path, None) if path.exists() else [list(BROWSER_COLUMNS)]
+        if rows[0] == list(BROWSER_COLUMNS_0_3):
+            rows = [list(BROWSER_COLUMNS)] + [[*row, "", "", ""] for row in rows[1:]]
+        elif rows[0] != list(BROWSER_COLUMNS):
+            read_table(path, BROWSER_COLUMNS)  # the header's message
+        kept = [row for row in rows[1:] if tuple(row[:2]) != key]
         check = (browser.display_round_trip_s, browser.scene_width_px, browser.scene_height_px,
-                 browser.input_device)  # fmt: skip
+                 browser.input_device, browser.cloud_frames, round(browser.cloud_kbytes, 1),
+                 round(browser.cloud_mbit_s, 2))  # fmt: skip
         write_atomic(path, table_text(BROWSER_COLUMNS, [*kept, (*key, *check)]))
 
     def keep_interrupted(self, spec: TrialSpec) -> None:

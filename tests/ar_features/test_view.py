@@ -32,20 +32,36 @@ def _shell(rng: np.random.Generator, n: int, near_m: float, far_m: float) -> np.
     return (CAMERA_M + directions * distance).astype(np.float32)
 
 
-def test_a_connected_browser_receives_the_exact_points() -> None:
+def _patch(
+    first_ray: tuple[float, float], distance_m: float, spacing_rad: float, side: int = 10
+) -> np.ndarray:
+    """A camera's pixels ``side`` x ``side``, row by row, from the ray ``first_ray`` (the
+    tangents right and down) at ``spacing_rad``, seeing a plane ``distance_m`` ahead of the
+    test frames' camera (it looks along the base's z): (side**2, 3) points (m)."""
+    rows, cols = np.mgrid[0:side, 0:side]
+    u = first_ray[0] + cols.ravel() * spacing_rad
+    v = first_ray[1] + rows.ravel() * spacing_rad
+    camera = np.column_stack([u, v, np.ones_like(u)]) * distance_m
+    return (CAMERA_M + camera).astype(np.float32)
+
+
+def test_a_connected_browser_receives_the_points_to_a_tenth_of_a_millimetre() -> None:
     rng = np.random.default_rng(0)
-    points = _shell(rng, 5000, 1.0, 1.2)  # one band of distance: one buffer
-    colors = rng.integers(0, 256, (5000, 3), dtype=np.uint8)
+    points = _patch((0.079, 0.0104), 1.1, 0.004)  # within one tile of the view's
+    colors = rng.integers(0, 256, points.shape, dtype=np.uint8)
     with OperatorView(ViewConfig(port=0)) as view, ViewProbe(view.url) as browser:
         time.sleep(0.3)  # let the connection settle before the first update
         sent_s = time.perf_counter()
         view.show(display_frame(cloud_points_m=points, cloud_colors=colors,
                                 cloud_spacing_rad=0.004))  # fmt: skip
-        # viser sends large arrays as raw buffers beside the compressed message.
-        got = browser.wait_for(points.tobytes())
+        # Relative to the tile's corner on a centimetre grid, as 16-bit floats, sent as raw
+        # buffers beside the compressed message.
+        corner = np.floor(points.min(axis=0) * 100) / 100
+        relative = (points - corner).astype(np.float16)
+        assert np.abs(relative.astype(np.float64) + corner - points).max() < 1e-4
+        got = browser.wait_for(relative.tobytes())
         assert got is not None and got.time_s > sent_s
         assert browser.wait_for(colors.tobytes()) is not None
-        assert browser.wait_for(np.float32(7.5).tobytes() * 3, timeout_s=0.2) is None
         assert view.updates == 1
 
 
@@ -118,10 +134,12 @@ class _Server:
         self.added = 0
         self.in_atomic = False
 
-    def add_point_cloud(self, name: str, points, colors, point_size: float, **_) -> _Cloud:
+    def add_point_cloud(
+        self, name: str, points, colors, point_size: float, position=(0.0, 0.0, 0.0), **_
+    ) -> _Cloud:
         assert self.in_atomic
         self.added += 1
-        self.clouds[name] = _Cloud(self, name, points, colors, point_size)
+        self.clouds[name] = _Cloud(self, name, points, colors, point_size, position)
         return self.clouds[name]
 
     @contextlib.contextmanager
@@ -132,13 +150,16 @@ class _Server:
 
 
 class _Cloud:
-    def __init__(self, server: _Server, name: str, points, colors, point_size: float) -> None:
+    def __init__(
+        self, server: _Server, name: str, points, colors, point_size: float, position
+    ) -> None:
         self.server, self.name, self.visible = server, name, True
         self.points, self.colors, self.point_size = points, colors, point_size
+        self.position = position
 
     def __setattr__(self, name: str, value) -> None:
         if name in ("points", "colors") and hasattr(self, name):
-            assert self.server.in_atomic, "a band's points and colours must change together"
+            assert self.server.in_atomic, "a tile's points and colours must change together"
         object.__setattr__(self, name, value)
 
     def remove(self) -> None:
@@ -150,29 +171,42 @@ class _Cloud:
         return len(self.points), self.point_size
 
 
-def test_each_point_is_as_wide_as_its_footprint_at_its_distance() -> None:
-    """Points 1.01-1.05 m and 2.0-2.1 m from the camera: bands 0 (1-1.25 m) and 3 (1.95-2.44 m),
-    each drawn as wide as a point's footprint at the band's far edge times the overlap. A later
-    frame replaces a band's points in its node and removes a band it lacks."""
+def _tiles(server: _Server) -> dict[str, tuple[int, float]]:
+    return {name: cloud.drawn for name, cloud in server.clouds.items() if cloud.drawn[0]}
+
+
+def test_each_tile_is_drawn_as_wide_as_a_footprint_at_its_distance_and_sent_when_it_changes(
+) -> None:  # fmt: skip
+    """Two patches of pixels, 1.0 m and 2.0 m ahead of the camera, in two tiles: each drawn as
+    wide as a point's footprint at its far distances times the overlap. The sensor's noise resends
+    nothing; a patch moved, or gone, resends its tile alone."""
     rng = np.random.default_rng(1)
-    points = np.vstack([_shell(rng, 300, 1.01, 1.05), _shell(rng, 200, 2.0, 2.1)])
+    near, far = _patch((0.012, 0.012), 1.0, 0.004), _patch((0.2, 0.012), 2.0, 0.004, side=8)
+    points = np.vstack([near, far])
     colors = rng.integers(0, 256, points.shape, dtype=np.uint8)
     server = _Server()
-    layer = CloudLayer(server, overlap=1.5)  # type: ignore[arg-type]
-    layer.draw(display_frame(cloud_points_m=points, cloud_colors=colors, cloud_spacing_rad=0.01))
-    assert {name: cloud.drawn for name, cloud in server.clouds.items()} == {
-        "/camera/cloud/0": (300, pytest.approx(1.5 * 0.01 * 1.25)),
-        "/camera/cloud/3": (200, pytest.approx(1.5 * 0.01 * 1.25**4)),
-    }
-    far = server.clouds["/camera/cloud/3"]
-    # Each point with its own colour, whatever the order within a band.
-    got = {tuple(p) + tuple(c) for p, c in zip(far.points, far.colors, strict=True)}
-    assert got == {tuple(p) + tuple(c) for p, c in zip(points[300:], colors[300:], strict=True)}
-    layer.draw(display_frame(cloud_points_m=points[:250], cloud_colors=colors[:250],
-                             cloud_spacing_rad=0.01))  # fmt: skip
-    assert {name: cloud.drawn for name, cloud in server.clouds.items()} == {
-        "/camera/cloud/0": (250, pytest.approx(1.5 * 0.01 * 1.25)),
-    }
+    layer = CloudLayer(server, overlap=1.5, half_fov_tan=(0.5, 0.4))  # type: ignore[arg-type]
+
+    def show(p: np.ndarray, c: np.ndarray = colors) -> None:
+        layer.draw(display_frame(cloud_points_m=p, cloud_colors=c, cloud_spacing_rad=0.004))
+
+    show(points)
+    distance = np.linalg.norm(points - CAMERA_M, axis=1)
+    sizes = sorted(size for _, size in _tiles(server).values())
+    assert sorted(n for n, _ in _tiles(server).values()) == [64, 100]
+    assert sizes == pytest.approx([1.5 * 0.004 * np.quantile(distance[:100], 0.98),
+                                   1.5 * 0.004 * np.quantile(distance[100:], 0.98)])  # fmt: skip
+    for cloud in server.clouds.values():  # each point where it was, to a tenth of a millimetre
+        drawn = np.asarray(cloud.points, dtype=np.float64) + cloud.position
+        assert np.abs(drawn[:, None, :] - points[None, :, :]).sum(axis=2).min(axis=1).max() < 3e-4
+    assert layer.tiles_sent == 2
+    noise = rng.normal(0.0, 0.002, points.shape).astype(np.float32) * [0.0, 0.0, 1.0]
+    show(points + noise)
+    assert layer.tiles_sent == 2
+    show(np.vstack([near, far + [0.0, 0.0, 0.05]]).astype(np.float32))  # the far patch moved
+    assert layer.tiles_sent == 3
+    show(near, colors[:100])  # the far patch gone: its tile is sent empty
+    assert layer.tiles_sent == 4 and sorted(n for n, _ in _tiles(server).values()) == [100]
     assert server.added == 2
 
 

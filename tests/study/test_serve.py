@@ -154,11 +154,22 @@ def test_a_trial_run_again_after_a_restart_has_one_row_of_its_browser(tmp_path: 
         assert run.instructed("P01") and not run.instructed("P02")  # a trial of theirs is in
         run.keep_browser(first, BrowserCheck(0.5, 900, 800, "gizmo"))
         run.keep_browser(second, BrowserCheck(0.4, 900, 800))
-        run.keep_browser(first, BrowserCheck(0.25, 900, 800, "buttons"))
+        run.keep_browser(first, BrowserCheck(0.25, 900, 800, "buttons", 412, 9876.54, 3.21))
     shown = _rows(tmp_path / "run" / BROWSER_FILE)
     assert [(b["trial_index"], b["display_round_trip_s"], b["input_device"]) for b in shown] == [
         ("2", "0.4", ""), ("1", "0.25", "buttons")
     ]  # fmt: skip
+    assert [(b["cloud_frames"], b["cloud_kbytes"], b["cloud_mbit_s"]) for b in shown] == [
+        ("0", "0.0", "0.0"), ("412", "9876.5", "3.21")
+    ]  # fmt: skip
+    # A run served before the stream was counted carries on: its rows keep empty counts.
+    path = tmp_path / "run" / BROWSER_FILE
+    lines = path.read_text().splitlines()
+    path.write_text("\n".join(",".join(line.split(",")[:6]) for line in lines) + "\n")
+    with served_run(tmp_path / "run", STUDY) as run:
+        run.keep_browser(second, BrowserCheck(0.3, 900, 800, "gizmo", 10, 1.0, 0.5))
+    shown = _rows(path)
+    assert [(b["trial_index"], b["cloud_frames"]) for b in shown] == [("1", ""), ("2", "10")]
 
 
 def test_a_served_run_is_not_resumed_as_a_simulated_one(tmp_path: Path) -> None:
