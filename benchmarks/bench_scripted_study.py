@@ -18,9 +18,14 @@ of the 120 s (``--conditions manipulation,full`` runs it). Then, each as a resea
 4. ``arteleop analyze served simulated``: the two cohorts of the design pooled.
 
 It prints, per trial, the time and error in the browser against the simulated participant's,
-and their ratio; it exits non-zero if a step fails or a page's outcome is not the file's.
+and their ratio, and what the stream asked of the connection (``browser.csv``: the cloud's
+frames a second and Mbit/s, the display's round trip); it exits non-zero if a step fails or a
+page's outcome is not the file's. ``--camera 640x480`` serves the default head camera's image
+(320x240 by default: the page keeps its frame rate beside the server on two cores);
+``--throttle-mbit 8`` puts the browser behind a connection that carries at most 8 Mbit/s to it
+(``tests/instruments/throttle.py``: a local proxy, the page and its socket through it).
 
-    python benchmarks/bench_scripted_study.py [--out DIR]
+    python benchmarks/bench_scripted_study.py [--out DIR] [--camera WxH] [--throttle-mbit R]
 
 Needs Chromium and Tesseract (the tests' system packages). About 8 min on two cores.
 """
@@ -41,6 +46,7 @@ import threading
 import time
 from pathlib import Path
 from typing import Any
+from urllib.parse import urlsplit
 
 import pandas as pd
 from playwright.sync_api import Error as PlaywrightError
@@ -48,8 +54,11 @@ from playwright.sync_api import Error as PlaywrightError
 from arteleop.ar_features import modality_cues
 from arteleop.errors import ConfigurationError
 from arteleop.study.session_words import outcome_text
+
+sys.path.insert(0, str(Path(__file__).resolve().parent.parent))  # the checkout's tests/
 from tests.instruments.browser import chromium
 from tests.instruments.scripted_participant import TrialDone, take_part
+from tests.instruments.throttle import Throttle
 
 STUDY_TOML = """\
 name = "scripted-short"
@@ -87,12 +96,16 @@ def arteleop(*args: str) -> list[str]:
     return done.stdout.splitlines()
 
 
-def serve_to_script(study: Path, served: Path, shots: Path) -> tuple[list[TrialDone], float]:
-    """``arteleop study serve`` to the scripted participant; its trials and the session's wall
-    time (s, from the consent page to the last)."""
+def serve_to_script(
+    study: Path, served: Path, shots: Path, camera: tuple[int, int], throttle_mbit: float | None
+) -> tuple[list[TrialDone], float, float | None]:
+    """``arteleop study serve`` to the scripted participant; its trials, the session's wall
+    time (s, from the consent page to the last) and, behind a throttle, what the browser
+    received over it (Mbit/s)."""
     server = subprocess.Popen(
         [sys.executable, "-m", "arteleop.cli", "study", "serve", str(study), "--out",
-         str(served), "--port", "0", "--width-px", "320", "--height-px", "240"],
+         str(served), "--port", "0", "--width-px", str(camera[0]), "--height-px",
+         str(camera[1])],
         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
     )  # fmt: skip
     lines: queue.Queue[str] = queue.Queue()
@@ -115,7 +128,13 @@ def serve_to_script(study: Path, served: Path, shots: Path) -> tuple[list[TrialD
                 continue
             if found := SERVING.search(said[-1]):
                 url = found.group(1)
+        throttle = None
+        if throttle_mbit is not None:
+            parts = urlsplit(url)
+            throttle = Throttle(parts.port or 80, throttle_mbit)
+            url = f"http://127.0.0.1:{throttle.port}{parts.path}"
         start = time.perf_counter()
+        begun = time.monotonic()
 
         def log(line: str) -> None:
             print(f"  {time.perf_counter() - start:6.1f} s  {line}", flush=True)
@@ -128,9 +147,13 @@ def serve_to_script(study: Path, served: Path, shots: Path) -> tuple[list[TrialD
                 raise BenchmarkFailed(f"the scripted participant stopped: {err}\n"
                                       f"the pages it saw are in {shots}") from None  # fmt: skip
         session_s = time.perf_counter() - start
+        received = None
+        if throttle is not None:
+            received = throttle.mbit_s(begun, time.monotonic())
+            throttle.close()
         if server.wait(timeout=SERVE_END_S) != 0:
             raise BenchmarkFailed(f"the server exited {server.returncode}")
-        return done, session_s
+        return done, session_s, received
     finally:
         if server.poll() is None:
             server.terminate()
@@ -159,7 +182,18 @@ def main() -> int:
         help="the conditions' cue sets, comma-separated; each must draw the distance bar the "
         "script reads",
     )
+    parser.add_argument("--camera", default="320x240", help="the head camera's image, WxH (px)")
+    parser.add_argument("--throttle-mbit", type=float, default=None,
+                        help="the most the browser's connection carries to it (Mbit/s)")  # fmt: skip
     args = parser.parse_args()
+    try:
+        camera = tuple(int(v) for v in args.camera.lower().split("x"))
+        if len(camera) != 2:
+            raise ValueError
+    except ValueError:
+        parser.error(f"--camera {args.camera}: expected WIDTHxHEIGHT in pixels, e.g. 640x480")
+    if args.throttle_mbit is not None and not args.throttle_mbit > 0:
+        parser.error(f"--throttle-mbit {args.throttle_mbit}: expected a rate above 0 (Mbit/s)")
     for cues in [*args.conditions.split(","), "manipulation"]:  # and the practice's
         try:
             drawn = modality_cues(cues).distance_bar
@@ -180,7 +214,7 @@ def main() -> int:
     (shots := out / "shots").mkdir(exist_ok=True)
 
     print(f"serving {study} to the scripted participant into {served}", flush=True)
-    done, session_s = serve_to_script(study, served, shots)
+    done, session_s, received = serve_to_script(study, served, shots, camera, args.throttle_mbit)
     people = _trials(served)
     if len(done) != len(people):
         raise BenchmarkFailed(f"{len(done)} trials done on the page, {len(people)} in trials.csv")
@@ -208,6 +242,20 @@ def main() -> int:
         ratio = f"{ratios[-1]:.2f}" if a.outcome == b.outcome == "success" else "-"
         print(f"{a.trial_index:<7}{a.phase:<16}{a.modality:<40}{_outcome(a):>32}"
               f"{_outcome(b):>26}{ratio:>12}")  # fmt: skip
+    stream = pd.read_csv(served / "browser.csv")
+    behind = f", behind {args.throttle_mbit:g} Mbit/s" if args.throttle_mbit else ""
+    print(f"\nthe stream ({args.camera}{behind}):\n")
+    print(f"{'trial':<7}{'cloud frames/s':>16}{'cloud Mbit/s':>14}{'round trip (s)':>16}")
+    for row in stream.itertuples():
+        # A server before 0.4 (a baseline's, through PYTHONPATH) did not count its stream.
+        if getattr(row, "cloud_mbit_s", 0) > 0:
+            wall = row.cloud_kbytes * 8e-3 / row.cloud_mbit_s
+            rate = f"{row.cloud_frames / wall:>16.1f}{row.cloud_mbit_s:>14.2f}"
+        else:
+            rate = f"{'-':>16}{'-':>14}"
+        print(f"{row.trial_index:<7}{rate}{row.display_round_trip_s:>16.3f}")
+    if received is not None:
+        print(f"\nthe browser received {received:.2f} Mbit/s on average over the session")
     placed = [(t.outcome == "success").sum() for t in (people, model)]
     print(
         f"\nplaced: {placed[0]} of {len(people)} in the browser, {placed[1]} of {len(model)} "

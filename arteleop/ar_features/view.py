@@ -19,6 +19,7 @@ import viser
 from numpy.typing import NDArray
 
 from arteleop.ar_features.assets import ViewAssets
+from arteleop.ar_features.client_errors import quiet_client_errors
 from arteleop.ar_features.display_frame import DisplayFrame
 from arteleop.ar_features.host import check_host
 from arteleop.ar_features.layer import Layer
@@ -138,6 +139,7 @@ class OperatorView(Closeable):
         self.host = check_host(config.host)
         """Whether only this machine can connect, and where to open the view."""
         # viser prints its own banner whatever ``verbose`` says; the caller prints the address.
+        quiet_client_errors()  # a browser's bad message is its own: one line, no traceback
         with contextlib.redirect_stdout(io.StringIO()):
             self.server = server = viser.ViserServer(
                 host=config.host, port=config.port, verbose=False

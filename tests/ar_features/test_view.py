@@ -77,6 +77,34 @@ def test_a_client_answering_a_frame_request_with_anything_does_not_stop_the_view
             assert until(lambda: not view.server.get_clients())
 
 
+def test_a_browsers_bad_messages_are_one_line_each_and_the_view_serves_on(caplog) -> None:
+    # Each printed a traceback, as if the server had failed.
+    with OperatorView(ViewConfig(port=0)) as view:
+        for junk in (b"\x00\x01garbage", {"type": "NoSuchMessage"}):
+            with ViewProbe(view.url) as client:
+                client.send(junk) if isinstance(junk, dict) else client._ws.send(junk)
+                assert until(lambda: not view.server.get_clients())
+        grip = view.server.gui.add_slider("Grip", 0.0, 1.0, 0.1, 0.0)
+        with ViewProbe(view.url, render_reply=b"") as client:
+            client.send({"type": "GuiUpdateMessage", "uuid": grip._impl.uuid, "updates": {"no": 1}})
+            assert until(lambda: "ignored" in caplog.text)
+            before = len(client.sent())
+            points = _patch((0.079, 0.0104), 1.1, 0.004)
+            colors = np.zeros(points.shape, np.uint8)
+            view.show(display_frame(cloud_points_m=points, cloud_colors=colors,
+                                    cloud_spacing_rad=0.004))  # fmt: skip
+            assert until(lambda: len(client.sent()) > before)  # still serving that browser
+    lines = [r.getMessage() for r in caplog.records if r.getMessage().startswith("view: ")]
+    assert lines == [
+        "view: closed a browser's connection: it sent a message the view cannot read "
+        "(DecodeError: MessagePack data is malformed: trailing characters (byte 1))",
+        "view: closed a browser's connection: it sent a message the view cannot read "
+        "(KeyError: 'NoSuchMessage')",
+        "view: ignored a browser's update that the view cannot apply (AssertionError)",
+    ]
+    assert not any(r.exc_info for r in caplog.records)
+
+
 def test_bad_frames_are_refused_with_the_shapes() -> None:
     with pytest.raises(
         DisplayFrameError, match=r"points \(N, 3\) and colours \(N, 3\); got \(10, 2\)"
