@@ -67,11 +67,18 @@ class LiveOperator:
         calib_pos, self._rot_path = hand_from_calibration(arm, calibration, hand_pitch_rad)
         self._hand = calib_pos
         self._from = calib_pos
+        # Where the hand aligns: on the gripper at rest, where the target is as the trial
+        # begins. A target moved meanwhile (a key pressed with Start) is followed once the
+        # robot has engaged: aligned on it instead, the hand was not on the gripper, and the
+        # robot never engaged until the person moved the target back.
+        self._rest_goal = hand_for_gripper(target.get()[0])
         self._last_t: float | None = None
         self.phase = CALIBRATE
 
     def step(self, time_s: float, view: DisplayFrame) -> OperatorOutput:
-        """The hand at ``time_s`` (s); ``view`` is not needed: the person looks for themselves."""
+        """The hand at ``time_s`` (s): held for the calibration, aligned on the gripper at rest
+        until ``view`` shows the robot engaged, then following the target (the person looks
+        for themselves)."""
         gripper_m, grip = self.target.get()
         goal = self._to_hand(gripper_m)
         hold_s = self._calibration.hold_s
@@ -81,10 +88,10 @@ class LiveOperator:
                 time_s, self._hand.copy(), self._rot_path(0.0).as_matrix(), 0.0, self.phase
             )
         s = (time_s - hold_s) / ALIGN_S
-        if s < 1.0:
+        if s < 1.0 or not view.engaged:  # on the gripper until the display says engaged
             self.phase = ALIGN
-            k = float(minimum_jerk_profile(s))
-            self._hand = self._from + k * (goal - self._from)
+            k = float(minimum_jerk_profile(min(s, 1.0)))
+            self._hand = self._from + k * (self._rest_goal - self._from)
             rotation = self._rot_path(k).as_matrix()
         else:
             self.phase = FOLLOW

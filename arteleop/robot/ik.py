@@ -53,8 +53,9 @@ class IKConfig:
         solver: QP solver for mink (``daqp``: fast dense active-set).
         collision_margin_m: Clearance kept between the arm's geoms and the table.
         collision_detection_m: Distance at which collision avoidance starts acting.
-        unreachable_tolerance_m: Position error above which a target that no longer gets closer
-            is flagged unreachable.
+        unreachable_tolerance_m: Position error above which a target that a step no longer
+            brings nearer (the task's error, weighted as its cost weighs it) is flagged
+            unreachable.
     """
 
     position_cost: float = 1.0
@@ -159,6 +160,8 @@ class ArmIK:
         """Target pose of the gripper frame in the base frame (4x4)."""
         self._target = np.array(T_base_gripper, dtype=np.float64)
         self.frame_task.set_target(mink.SE3.from_matrix(self._target))
+        # A step stalls if it does not bring the gripper nearer this target than it is now.
+        self._last_error = self._task_error(self.gripper_transform())[0]
 
     def gripper_transform(self) -> NDArray[np.float64]:
         """``T_base_gripper`` at the IK's current configuration."""
@@ -263,12 +266,25 @@ class ArmIK:
         H.flat[:: H.shape[0] + 1] += _DAMPING + (mu_frame + mu_posture)
         return H, c
 
-    def _result(self, iterations: int, speed: float) -> IKResult:
-        T = self.gripper_transform()
+    def _task_error(self, T: NDArray[np.float64]) -> tuple[float, float, float]:
+        """The frame task's error at the gripper pose ``T``, weighted as its cost weighs it,
+        and its position (m) and orientation (rad) errors."""
         pos_err = float(np.linalg.norm(T[:3, 3] - self._target[:3, 3]))
         cos = (np.trace(T[:3, :3].T @ self._target[:3, :3]) - 1.0) / 2.0
         rot_err = float(np.arccos(np.clip(cos, -1.0, 1.0)))
-        stalled = speed < 1e-3 or pos_err >= self._last_error - 1e-6
+        c = self.config
+        return (
+            float(np.hypot(c.position_cost * pos_err, c.orientation_cost * rot_err)),
+            pos_err,
+            rot_err,
+        )
+
+    def _result(self, iterations: int, speed: float) -> IKResult:
+        # Stalled: the step did not bring the task nearer its target, as the QP weighs it. By
+        # the position alone, the wrist turning to the hand's orientation as the robot engaged
+        # (the position's error growing for half a second) was flagged out of reach.
+        error, pos_err, rot_err = self._task_error(self.gripper_transform())
+        stalled = speed < 1e-3 or error >= self._last_error - 1e-6
         reachable = not (pos_err > self.config.unreachable_tolerance_m and stalled)
-        self._last_error = pos_err
+        self._last_error = error
         return IKResult(self.configuration.q.copy(), pos_err, rot_err, reachable, iterations)

@@ -128,7 +128,7 @@ class TrialProgress:
     def state(self) -> str:
         """The trial's state in words, for a panel."""
         if not self.engaged:
-            return "waiting for the hand to align with the gripper"
+            return "the robot is taking your hand: it follows your moves in a moment"
         if self.motion_onset_s is None:
             return "waiting for motion onset"
         if self.released:

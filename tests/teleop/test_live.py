@@ -54,6 +54,24 @@ def test_the_gripper_follows_the_dragged_target(site: RemoteSite) -> None:
     assert seen[-1].reachable
 
 
+def test_a_target_moved_before_the_robot_engages_is_where_the_gripper_goes(
+    site: RemoteSite,
+) -> None:
+    # A key pressed as the trial began moved the target before the hand had aligned: the robot
+    # did not engage until the person moved it back, and the page said only to wait.
+    rest = site.observe().gripper_m
+    target = HandTarget(rest)
+    config = TrialConfig(timeout_s=8.0, seed=0)
+    source = live_source(target, config.controller.mapping, 0)  # as Start is pressed
+    target.set(gripper_m=rest + [0.08, 0.0, 0.0])  # the first input, at once
+    seen: list[TrialProgress] = []
+    run_trial(source, config, site, None, seen.append)
+    engaged_s = next(s.time_s for s in seen if s.engaged)
+    assert engaged_s < 4.0
+    assert not any(not s.reachable for s in seen)  # no reach warning: nothing is out of reach
+    assert np.linalg.norm(site.observe().gripper_m - (rest + [0.08, 0.0, 0.0])) < 0.015
+
+
 def test_a_target_out_of_reach_stops_the_arm_at_the_nearest_pose(site: RemoteSite) -> None:
     rest = site.observe().gripper_m
     far = np.array([1.5, 0.0, 0.0])  # 1.5 m further: beyond the arm's reach
