@@ -42,7 +42,7 @@ from arteleop.ar_features import OperatorView, ViewConfig, modality_cues
 from arteleop.ar_features.live_input import LiveInput
 from arteleop.ar_features.session_pages import SessionPages
 from arteleop.ar_features.view import drew_a_frame
-from arteleop.errors import ArteleopError
+from arteleop.errors import ArteleopError, RunFolderError
 from arteleop.lifetime import Closeable
 from arteleop.operator import HandTarget, live_source
 from arteleop.scene import HeadCameraConfig, RemoteSite
@@ -60,6 +60,7 @@ from arteleop.study.session import (
 from arteleop.study.session_words import (
     AGREE,
     AR_CLASS_TEXT,
+    CANNOT_SAVE,
     CUT_SHORT,
     IN_PROGRESS,
     ITEM_TEXT,
@@ -151,6 +152,10 @@ class StudyServer(Closeable):
                 self._session(person.id)
         except SessionStopped:
             return False
+        except RunFolderError:  # the disk is full or not writable: say so on the page too
+            self._show(lambda p: p.message(*CANNOT_SAVE))
+            self.view.deliver()
+            raise
         self.run.finish_if_done()
         self._show(lambda p: p.message("Thank you", "Every session of this study is done. The "
                                        "researcher can close this page."))  # fmt: skip

@@ -84,6 +84,10 @@ IN_PROGRESS = (
     "A session is in progress in another browser tab. This page shows the robot's view only; "
     "close the other tab to take over."
 )
+CANNOT_SAVE = ("The study has stopped", "The study's computer could not save what you just did "
+               "(its disk is full, or its files cannot be written). Please tell the researcher. "
+               "Everything before it is saved, and the study carries on from there once the "
+               "researcher has made room: the trial you just did runs again.")  # fmt: skip
 CUT_SHORT = ("Trial cut short", "The page was closed or lost during the trial: the trial starts "
              "again from its beginning in a moment.")  # fmt: skip
 AR_CLASS_TEXT = {

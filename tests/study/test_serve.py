@@ -202,6 +202,36 @@ def test_the_server_loads_the_robots_model_once(
         assert run.site.camera.config.width_px != 320  # the run's own site untouched
 
 
+def test_a_full_disk_is_said_on_the_participants_page_and_named_on_the_console(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # The page was left dead: the server ended with the error, saying nothing to the person.
+    from arteleop.ar_features import ViewConfig
+    from arteleop.errors import RunFolderError
+    from arteleop.study.session_words import CANNOT_SAVE
+
+    camera = HeadCameraConfig(width_px=320, height_px=240)
+    full = RunFolderError("Cannot add a row to run/trials.csv: No space left on device.")
+    with served_run(tmp_path / "run", STUDY) as run, StudyServer(run, ViewConfig(port=0),
+                                                                 camera) as server:  # fmt: skip
+
+        def session(participant: str) -> None:
+            raise full
+
+        monkeypatch.setattr(server, "_session", session)
+        with pytest.raises(RunFolderError) as err:
+            server.serve()
+        assert err.value is full  # the console names the file
+        shown: list[tuple[str, ...]] = []
+
+        class Pages:
+            def message(self, *args: str) -> None:
+                shown.append(args)
+
+        server._page(Pages())  # what the participant's tab shows, now or once it connects
+        assert shown == [CANNOT_SAVE]
+
+
 def _pairs() -> list[tuple[str, str]]:
     return [(c, i) for c in ("embodiment", "manipulation", "task")
             for i in ("presence", "embodiment", "ease")]  # fmt: skip
