@@ -24,6 +24,7 @@ stopped and started again on the folder carries on the same way.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import queue
 import statistics
@@ -66,6 +67,7 @@ from arteleop.study.session_words import (
     ITEM_TEXT,
     OBSERVING,
     SESSION_OVER,
+    TRY_IT,
     consent_text,
     instructions_text,
     outcome_text,
@@ -86,6 +88,14 @@ ROUND_TRIP_TIMEOUT_S = 5.0
 
 class SessionInterrupted(ArteleopError):
     """The controlling tab went during a trial: the attempt is recorded, the trial repeated."""
+
+
+TUTORIAL_S = 600.0
+"""The longest the robot runs on the page that says how to drive it (s)."""
+
+
+class _TutorialOver(Exception):
+    """The person went on from the page that says how to drive the robot."""
 
 
 class StudyServer(Closeable):
@@ -186,10 +196,7 @@ class StudyServer(Closeable):
             self._wait("agree")
             self._ask_demographics(participant)
         if not run.instructed(participant):
-            text = instructions_text(run.study)
-            self._show(lambda p: p.message("How to drive the robot", text, "Continue",
-                                           lambda: self._act("next")), driving=True)  # fmt: skip
-            self._wait("next")
+            self._tutorial(participant)
         while pending := run.pending(participant):
             self._trial(pending[0])
         if not run.answered(participant):
@@ -235,6 +242,36 @@ class StudyServer(Closeable):
                 continue
             self.run.consent(participant, answers)
             return
+
+    def _tutorial(self, participant: str) -> None:
+        """How to drive the robot, with the robot to drive: the first trial's scene, condition
+        and delay, recorded nowhere, until the person goes on (or its time is up), so that the
+        lag is felt before the practice (before, the gizmo moved and the robot did not)."""
+        text = f"{instructions_text(self.run.study)}\n\n{TRY_IT}"
+        gone_on = threading.Event()
+
+        def go_on() -> None:
+            gone_on.set()
+            self._act("next")
+
+        spec = self.run.pending(participant)[0]
+        config = replace(trial_config(self.run.study, self._site, spec), realtime=True,
+                         render_camera=True, timeout_s=TUTORIAL_S)  # fmt: skip
+        with RemoteSite(config.site) as site:
+            self.view.show(site_frame(site, modality_cues(spec.modality), True, config.depth_aids))
+            if (live := self._live) is not None:
+                live.reset()
+            self._show(lambda p: p.message("How to drive the robot", text, "Continue", go_on),
+                       driving=True)  # fmt: skip
+
+            def tick(status: TrialProgress) -> None:
+                if gone_on.is_set() or self._stopped.is_set():
+                    raise _TutorialOver
+
+            source = live_source(self._target, config.controller.mapping, config.seed)
+            with contextlib.suppress(_TutorialOver):
+                run_trial(source, config, site, self.view, tick)
+        self._wait("next")
 
     def _trial(self, spec: TrialSpec) -> None:
         trials = self.run.trials_of(spec.participant)

@@ -75,6 +75,11 @@ target.
 """How to drive the robot when the study file gives no page of its own (``instructions``),
 before :func:`instructions_text` says whether practice trials come first."""
 PRACTICE_FIRST = "The practice trials come first; they teach the controls and are not compared.\n"
+TRY_IT = (
+    "**Try it now**: the robot in the view follows you as it will in the trials, as late; "
+    "nothing is recorded. Continue when you are ready."
+)
+"""Below the page on how to drive the robot, built in or the study's own: the robot runs."""
 SESSION_OVER = "Your session is over: thank you for taking part."
 OBSERVING = (
     "The experimenter's view: the robot as the participant sees it, read-only. The "

@@ -43,7 +43,7 @@ from tests.instruments.browser import (
     text_field,
 )
 from tests.instruments.screen_reading import gizmo_red, of_hue
-from tests.instruments.view_probe import admitted, refused
+from tests.instruments.view_probe import admitted, refused, until
 
 STUDY = StudyConfig(
     name="served",
@@ -277,11 +277,15 @@ def _take_part(
     first.get_by_text("age 17: expected a whole number 18-99 (years).").wait_for()
     answer_questions(first)
     first.get_by_text("How to drive the robot").wait_for()
+    # The robot runs on this page, for the person to try (the gizmo moved, the robot did not).
+    first.get_by_text("Try it now", exact=False).wait_for()
+    drawn = server.view.cloud.frames_drawn
+    assert until(lambda: server.view.cloud.frames_drawn > drawn + 10, wait_s=30.0)
     press_button(first, "Continue")
     first.get_by_text("Trial 1 of 2").wait_for()
     press_button(first, "Start")
     # Closed as soon as the trial shows it runs (its page's heading outlives it, on the outcome).
-    first.get_by_text("waiting for the hand to align", exact=False).wait_for()
+    first.get_by_text("the robot is taking your hand", exact=False).wait_for()
     first.close()
     for k in (1, 2):
         watcher.get_by_text(f"Trial {k} of 2").wait_for(timeout=30_000)
