@@ -74,7 +74,7 @@ class Judge:
         self.lead_m = np.zeros(3) if predicted is None else predicted.gripper_m - view.gripper_m
         """How far the predictive ghost leads the frame's own arm (m), which the person sees."""
         self.cloud_grain = view.cloud_spacing_rad or 0.0  # batch frames carry no cloud
-        self.marks = marks or MarkMemory(params.memory_drift_rad, params.memory_plateau_s)
+        self.marks = marks or MarkMemory(params)
 
     def mark(
         self, name: str, drawn: float, against_m: NDArray[np.float64], judge: Callable[[], Mark]

@@ -14,11 +14,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
 
 from arteleop.operator.perceptual_errors import PerceptualErrors
+
+if TYPE_CHECKING:
+    from arteleop.operator.perception import PerceptionParams
 
 
 @dataclass
@@ -31,16 +35,14 @@ class _Remembered:
 
 
 class MarkMemory:
-    """The marks last seen, each with the drift of its memory since.
+    """The marks last seen, each with the drift of its memory since: by ``params``'
+    ``memory_drift_rad`` (the SD per axis in the table's plane, as an angle at the eye, that a
+    mark's remembered place drifts by in its first second unseen, rad) up to its
+    ``memory_plateau_s`` (how long the drift grows, s)."""
 
-    ``drift_rad`` is the SD per axis in the table's plane, as an angle at the eye, that a mark's
-    remembered place drifts by in its first second unseen (rad); ``plateau_s`` is how long the
-    drift grows (s).
-    """
-
-    def __init__(self, drift_rad: float, plateau_s: float) -> None:
-        self._drift_rad = drift_rad
-        self._plateau_s = plateau_s
+    def __init__(self, params: PerceptionParams) -> None:
+        self._drift_rad = params.memory_drift_rad
+        self._plateau_s = params.memory_plateau_s
         self._marks: dict[str, _Remembered] = {}
 
     def saw(

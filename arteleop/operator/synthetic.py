@@ -87,8 +87,7 @@ class SyntheticOperator:
         self._criterion = PhaseCriterion(task, self.traits, self.p.gross_criterion_m)
         self._tremor = Tremor(self.p.tremor_amplitude_m, self.p.tremor_hz, rng)
         self._errors = PerceptualErrors(rng, self.traits.bias_seed, self.p.perception.bias_share)
-        seeing = self.p.perception
-        self._marks = MarkMemory(seeing.memory_drift_rad, seeing.memory_plateau_s)
+        self._marks = MarkMemory(self.p.perception)
         self._watch = DisplayWatch(self.p)
         self._look = Look(self.traits, self.p.max_look_s)
         self._glancing: tuple[Perceived, Goal | None] | None = None  # a look's glance under way
@@ -118,8 +117,7 @@ class SyntheticOperator:
         return self.hand.moves[0].start_s if self.hand.moves else None
 
     def stopped(self, time_s: float) -> bool:
-        """Whether the operator has finished a task whose last phase ends the trial, its last
-        wait over at ``time_s`` (s)."""
+        """Whether the task, one that ends the trial, is done, its last wait over at ``time_s``."""
         return self.task.ends_trial and self.phase == DONE and time_s >= self._wait_until
 
     def start_phase(self, name: str, hand_m: NDArray[np.float64], time_s: float) -> None:
@@ -396,8 +394,5 @@ class SyntheticOperator:
         )
 
 
-__getattr__ = moved_names(
-    "arteleop.operator.synthetic",
-    {"TaskGeometry": "arteleop.operator.tasks:PickAndPlace"},
-    until="0.3",
-)
+_MOVED = {"TaskGeometry": "arteleop.operator.tasks:PickAndPlace"}
+__getattr__ = moved_names("arteleop.operator.synthetic", _MOVED, until="0.3")

@@ -161,7 +161,7 @@ def _target_errors(unseen_s: float, drawn: float = 0.0, cues: ArCues = MODALITIE
     later = display_frame(cues=cues, time_s=unseen_s, target_drawn=drawn)
     errors, sd = [], 0.0
     for seed in range(n):
-        noise, marks = _independent(seed), MarkMemory(P.memory_drift_rad, P.memory_plateau_s)
+        noise, marks = _independent(seed), MarkMemory(P)
         perceive(shown, P, noise, marks=marks)
         seen = perceive(later, P, noise, marks=marks)
         errors.append((seen.target_m - later.target_m)[:2])
