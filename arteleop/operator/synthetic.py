@@ -394,5 +394,6 @@ class SyntheticOperator:
         )
 
 
-_MOVED = {"TaskGeometry": "arteleop.operator.tasks:PickAndPlace"}
-__getattr__ = moved_names("arteleop.operator.synthetic", _MOVED, until="0.3")
+__getattr__ = moved_names(
+    "arteleop.operator.synthetic", {"TaskGeometry": "arteleop.operator.tasks:PickAndPlace"}, "0.3"
+)

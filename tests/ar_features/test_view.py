@@ -235,6 +235,8 @@ def test_each_tile_is_drawn_as_wide_as_a_footprint_at_its_distance_and_sent_when
     assert layer.tiles_sent == 3
     show(near, colors[:100])  # the far patch gone: its tile is sent empty
     assert layer.tiles_sent == 4 and sorted(n for n, _ in _tiles(server).values()) == [100]
+    show(np.zeros((0, 3), np.float32), np.zeros((0, 3), np.uint8))  # nothing in range
+    assert layer.tiles_sent == 5 and _tiles(server) == {}
     assert server.added == 2
 
 

@@ -137,7 +137,8 @@ class CloudLayer(Layer):
         # (the image's centre, thinned): taken off, a pixel is a pair of whole numbers.
         ray = camera[:, :2] / depth[:, None]
         steps = ray / spacing
-        grid = np.rint(steps - (steps[0] - np.rint(steps[0]))).astype(np.int64)
+        offset = steps[0] - np.rint(steps[0]) if len(steps) else 0.0
+        grid = np.rint(steps - offset).astype(np.int64)
         keys = grid[:, 1] * 100_000 + grid[:, 0]
         cells = np.asarray(TILES)
         at = np.floor((ray / self._half_fov_tan + 1) / 2 * cells).astype(np.int64)
