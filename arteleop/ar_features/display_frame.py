@@ -30,7 +30,7 @@ some of its edge (a screenshot of the view)."""
 FOOT_RADIUS_M = 0.015
 """The ring on the table under the gripper (m): about 9 px at the head camera's 1.3 m."""
 HEIGHT_LABEL_GAP_M = 0.03
-"""The height's label sits this far right of the ring, in the camera's image plane (m)."""
+"""The height's label sits this far beside the ring, in the camera's image plane (m)."""
 DISTANCE_BAR_OFFSET_M = (-0.16, -0.03)
 """Where the distance bar's left end is drawn relative to the gripper, in the camera's image
 plane (m; x right, y down), so it stays beside the gripper on screen; its label is left of it."""
@@ -235,9 +235,20 @@ class DisplayFrame:
         return top + float(np.clip(share, 0.0, 1.0)) * (foot - top)
 
     def height_label_m(self) -> NDArray[np.float64]:
-        """Where the depth aids' label is drawn (base frame, m), its left end: right of the
-        ring in the camera's image plane."""
-        return self.ring_m() + self.T_base_camera[:3, 0] * (FOOT_RADIUS_M + HEIGHT_LABEL_GAP_M)
+        """Where the depth aids' label is drawn (base frame, m): beside the ring in the
+        camera's image plane, on the side towards the image's middle (its end nearest the ring
+        there, :meth:`height_label_leftward`), so that near the image's edge it stays in the
+        view (right of a ring at rest, at the right edge, it went under the side panel)."""
+        side = -1.0 if self.height_label_leftward else 1.0
+        right = self.T_base_camera[:3, 0]
+        return self.ring_m() + side * right * (FOOT_RADIUS_M + HEIGHT_LABEL_GAP_M)
+
+    @property
+    def height_label_leftward(self) -> bool:
+        """The height's label is drawn left of the ring: the ring is right of the image's
+        middle."""
+        offset = self.ring_m() - self.viewpoint_m
+        return bool(offset @ self.T_base_camera[:3, 0] > 0.0)
 
     def distance_label_m(self) -> NDArray[np.float64]:
         """Where the distance bar's label is drawn (base frame, m), its right end."""

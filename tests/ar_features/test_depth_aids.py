@@ -61,8 +61,13 @@ def test_the_aids_hang_from_the_gripper_to_the_table_and_read_its_height() -> No
     halfway = frame.drop_line_at_m((GRIPPER_M[2] + foot[2]) / 2)
     np.testing.assert_allclose(halfway, (top + foot) / 2, atol=1e-6)
     np.testing.assert_allclose(frame.drop_line_at_m(GRIPPER_M[2]), top, atol=1e-6)
-    # The label beside the ring, to the camera's right (its x is the base's x here).
-    assert label.position[0] > foot[0] + FOOT_RADIUS_M
+    # The label beside the ring, towards the image's middle (the camera's x is the base's x
+    # here): this ring is right of it, so the label is left of it, read away from it.
+    assert frame.height_label_leftward
+    assert label.position[0] < foot[0] - FOOT_RADIUS_M and label.anchor == "center-right"
+    on_the_left = display_frame(T_base_gripper=make_transform(np.eye(3), [0.1, 0.0, -0.05]))
+    assert not on_the_left.height_label_leftward
+    assert on_the_left.height_label_m()[0] > on_the_left.ring_m()[0] + FOOT_RADIUS_M
     layer.draw(display_frame(cues=MODALITIES["none"], depth_aids=False))
     assert not (line.visible or ring.visible or label.visible)
 

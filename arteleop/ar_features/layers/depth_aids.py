@@ -51,6 +51,8 @@ class DepthAidsLayer(Layer):
         self._line.points = np.stack([frame.gripper_m, foot])[None].astype(np.float32)
         self._ring.points = (self._circle + foot).astype(np.float32)
         self._label.position = frame.height_label_m()
+        # Its end nearest the ring at the label's place: it reads away from the ring.
+        self._label.anchor = "center-right" if frame.height_label_leftward else "center-left"
         self._label.text = height_text(frame)
 
     def _set_visible(self, visible: bool) -> None:
