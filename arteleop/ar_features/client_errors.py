@@ -19,26 +19,37 @@ IGNORED = "view: ignored a browser's update that the view cannot apply (%s)"
 
 
 class _OneLine(logging.Filter):
-    """Rewrites a record of a client's bad message, found by ``says`` in its message, as
-    ``line`` with the exception named, without the traceback."""
+    """Rewrites a record of a client's bad message, found by ``says`` in its message and an
+    exception raised through viser's ``raised_in``, as ``line`` with the exception named,
+    without the traceback."""
 
-    def __init__(self, says: str, line: str) -> None:
+    def __init__(self, says: str, line: str, raised_in: str) -> None:
         super().__init__()
-        self._says, self._line = says, line
+        self._says, self._line, self._raised_in = says, line, raised_in
 
     def filter(self, record: logging.LogRecord) -> bool:
         exc = record.exc_info[1] if record.exc_info else None
-        if exc is not None and self._says in record.getMessage():
+        if exc is not None and self._says in record.getMessage() and self._from_client(exc):
             record.msg, record.args = self._line, (f"{type(exc).__name__}: {exc}".rstrip(": "),)
             record.exc_info = record.exc_text = None
         return True
 
+    def _from_client(self, exc: BaseException) -> bool:
+        """The exception came through viser's handling of a browser's message: the server's
+        own failures keep their traceback."""
+        tb = exc.__traceback__
+        while tb is not None:
+            if tb.tb_frame.f_code.co_name == self._raised_in:
+                return True
+            tb = tb.tb_next
+        return False
+
 
 _FILTERS = {
     # websockets: the connection's handler, viser's, raised on a message it could not decode.
-    "websockets.server": _OneLine("connection handler failed", CLOSED),
+    "websockets.server": _OneLine("connection handler failed", CLOSED, "_message_consumer"),
     # asyncio: viser's task that applies a browser's update raised, and nothing awaited it.
-    "asyncio": _OneLine("_handle_incoming_message", IGNORED),
+    "asyncio": _OneLine("_handle_incoming_message", IGNORED, "_handle_incoming_message"),
 }
 
 

@@ -254,23 +254,26 @@ class StudyServer(Closeable):
             gone_on.set()
             self._act("next")
 
-        spec = self.run.pending(participant)[0]
-        config = replace(trial_config(self.run.study, self._site, spec), realtime=True,
-                         render_camera=True, timeout_s=TUTORIAL_S)  # fmt: skip
-        with RemoteSite(config.site) as site:
-            self.view.show(site_frame(site, modality_cues(spec.modality), True, config.depth_aids))
-            if (live := self._live) is not None:
-                live.reset()
-            self._show(lambda p: p.message("How to drive the robot", text, "Continue", go_on),
-                       driving=True)  # fmt: skip
+        self._show(lambda p: p.message("How to drive the robot", text, "Continue", go_on),
+                   driving=True)  # fmt: skip
 
-            def tick(status: TrialProgress) -> None:
-                if gone_on.is_set() or self._stopped.is_set():
-                    raise _TutorialOver
+        def tick(status: TrialProgress) -> None:
+            if gone_on.is_set() or self._stopped.is_set():
+                raise _TutorialOver
 
-            source = live_source(self._target, config.controller.mapping, config.seed)
-            with contextlib.suppress(_TutorialOver):
-                run_trial(source, config, site, self.view, tick)
+        pending = self.run.pending(participant)
+        # A try that ends (the bowl placed, or its time up) begins again from the start.
+        while pending and not (gone_on.is_set() or self._stopped.is_set()):
+            config = replace(trial_config(self.run.study, self._site, pending[0]), realtime=True,
+                             render_camera=True, timeout_s=TUTORIAL_S)  # fmt: skip
+            with RemoteSite(config.site) as site:
+                cues = modality_cues(pending[0].modality)
+                self.view.show(site_frame(site, cues, True, config.depth_aids))
+                if (live := self._live) is not None:
+                    live.reset()
+                source = live_source(self._target, config.controller.mapping, config.seed)
+                with contextlib.suppress(_TutorialOver):
+                    run_trial(source, config, site, self.view, tick)
         self._wait("next")
 
     def _trial(self, spec: TrialSpec) -> None:

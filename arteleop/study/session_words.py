@@ -91,8 +91,7 @@ IN_PROGRESS = (
 )
 CANNOT_SAVE = ("The study has stopped", "The study's computer could not save what you just did "
                "(its disk is full, or its files cannot be written). Please tell the researcher. "
-               "Everything before it is saved, and the study carries on from there once the "
-               "researcher has made room: the trial you just did runs again.")  # fmt: skip
+               "What was saved before it is kept; the study can carry on from there.")  # fmt: skip
 CUT_SHORT = ("Trial cut short", "The page was closed or lost during the trial: the trial starts "
              "again from its beginning in a moment.")  # fmt: skip
 AR_CLASS_TEXT = {

@@ -137,6 +137,8 @@ class CloudLayer(Layer):
         # (the image's centre, thinned): taken off, a pixel is a pair of whole numbers.
         ray = camera[:, :2] / depth[:, None]
         steps = ray / spacing
+        # (Where that fraction is a half, an image W px wide, W = 3 mod 4, thinned by two,
+        # the rounding may take either side from frame to frame: every tile is then sent.)
         offset = steps[0] - np.rint(steps[0]) if len(steps) else 0.0
         grid = np.rint(steps - offset).astype(np.int64)
         keys = grid[:, 1] * 100_000 + grid[:, 0]
@@ -147,6 +149,9 @@ class CloudLayer(Layer):
         return at[:, 1] * TILES[0] + at[:, 0], keys, distance
 
     def _send(self, k: int, tile: _Sent, spacing: float) -> None:
+        # Copies: slices would keep the whole frame they came from alive, tile by tile.
+        tile = _Sent(tile.keys.copy(), tile.points_m.copy(), tile.colors.copy(),
+                     tile.distance_m.copy())  # fmt: skip
         self._sent[k] = tile
         self.tiles_sent += 1
         self.payload_bytes += POINT_BYTES * len(tile.keys)
