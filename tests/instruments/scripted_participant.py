@@ -111,9 +111,6 @@ TRIAL_END_WAIT_S = 130.0
 trial runs out of time, if its timeout is shorter)."""
 LINE_UP_GOES = 2
 """Goes at lining the bowl up with the target, each from a fresh look."""
-MAX_GO_STEPS = 5
-"""The most steps one go takes before looking again: a bowl misread in the fingers once sent it
-36 cm past the target in one go (the coarse line-up takes four of its 5 cm steps)."""
 QUESTIONNAIRE_RATING = "5"
 """Its answer to every item of the questionnaire (1-7)."""
 PAGE_WAIT_S = 60.0
@@ -388,7 +385,6 @@ class ScriptedParticipant:
             per_step_px = now - before
         for _ in range(LINE_UP_GOES):
             n = round((coordinate(target) - now) / per_step_px) if abs(per_step_px) >= 1 else 0
-            n = max(-MAX_GO_STEPS, min(MAX_GO_STEPS, n))  # then look again
             self.log(f"bowl {now:.0f} px, target {coordinate(target):.0f} px, "
                      f"{per_step_px:+.0f} px a step: {n:+d}")  # fmt: skip
             if not n:
