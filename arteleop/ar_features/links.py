@@ -3,16 +3,21 @@
 A browser that opens :func:`link_url` connects its socket to ``ws://HOST:PORT/TOKEN`` (viser's
 client takes the socket's address from the page's ``websocket`` parameter). :class:`LinkGate`
 looks at that path as the socket opens, before the server has sent it anything, and closes
-every socket whose token is not allowed: such a browser gets the page's empty frame, never the
-robot's view, a page of the study or a control.
+every socket whose token is not allowed: such a browser never gets the robot's view, a page of
+the study or a control. The page itself is not sent to such a link either: its address says
+which socket it will open, and a link without an allowed token is answered with
+:data:`BAD_LINK_PAGE`, a page that says so, where viser's own would retry the socket for ever
+("Connecting...") beside its developer panel.
 """
 
 from __future__ import annotations
 
+import gc
+import http
 import threading
-from collections.abc import Collection, Iterable
-from typing import TYPE_CHECKING
-from urllib.parse import urlsplit
+from collections.abc import Callable, Collection, Iterable
+from typing import TYPE_CHECKING, Any
+from urllib.parse import parse_qs, urlsplit
 
 from arteleop.errors import ConfigurationError
 
@@ -21,6 +26,18 @@ if TYPE_CHECKING:
 
 TOKEN_BYTES = 16
 """A token's length: 128 random bits, beyond guessing."""
+BAD_LINK_PAGE = """<!doctype html>
+<html lang="en"><head><meta charset="utf-8"><title>This link does not open a session</title>
+<meta name="viewport" content="width=device-width, initial-scale=1"></head>
+<body style="font-family: sans-serif; max-width: 36em; margin: 4em auto; line-height: 1.5">
+<h1>This link does not open a session</h1>
+<p>It may have been copied in part, or the session it opened may be over.</p>
+<p>Please ask the researcher for your link.</p>
+</body></html>
+"""
+"""What a browser is sent for a link without an allowed token (HTTP 403)."""
+PAGE_PATHS = ("", "/", "/index.html")
+"""The page's addresses; its scripts and styles, at others, carry no token and are served."""
 
 
 def link_url(url: str, token: str) -> str:
@@ -66,6 +83,7 @@ class LinkGate:
         """Sockets closed so far for want of an allowed token."""
         self._sockets.on_client_connect(self._check)
         self._sockets.on_client_disconnect(self._forget)
+        self._answer_pages()
         self.expel()  # a socket that opened before the gate was set up
 
     def allow(self, tokens: Iterable[str]) -> None:
@@ -103,6 +121,44 @@ class LinkGate:
                 return
             self.refused += 1
         socket.transport.abort()  # nothing sent, nothing more can be
+
+    def admits_page(self, path: str) -> bool:
+        """Whether the page at ``path`` (an HTTP request's path and query) may be sent: not
+        the page (a script, a style), or the page for a socket with an allowed token."""
+        parts = urlsplit(path)
+        if parts.path not in PAGE_PATHS:
+            return True
+        sockets = parse_qs(parts.query).get("websocket", [])
+        token = urlsplit(sockets[0]).path.lstrip("/") if sockets else ""
+        with self._lock:
+            return token in self._allowed
+
+    def _answer_pages(self) -> None:
+        """Answer the page's requests for links without an allowed token with
+        :data:`BAD_LINK_PAGE`. viser (pinned) passes its HTTP handler to websockets' server
+        and keeps no reference to it: the server is found among the objects on viser's event
+        loop."""
+        from websockets.asyncio.server import Server
+
+        loop = self._sockets._background_event_loop
+        (server,) = [o for o in gc.get_objects() if isinstance(o, Server) and o.loop is loop]
+        server.process_request = self._page_check(server.process_request)
+
+    def _page_check(self, serve_files: Callable[..., Any] | None) -> Callable[..., Any]:
+        from websockets.datastructures import Headers
+        from websockets.http11 import Response
+
+        body = BAD_LINK_PAGE.encode()
+        headers = {"Content-Type": "text/html; charset=utf-8", "Cache-Control": "no-store",
+                   "Content-Length": str(len(body))}  # fmt: skip
+
+        def check(connection: Any, request: Any) -> Any:
+            if request.headers.get("Upgrade") != "websocket" and not self.admits_page(request.path):
+                forbidden = http.HTTPStatus.FORBIDDEN
+                return Response(forbidden, forbidden.phrase, Headers(headers), body)
+            return None if serve_files is None else serve_files(connection, request)
+
+        return check
 
     def _forget(self, client: viser.infra.WebsockClientConnection) -> None:
         with self._lock:

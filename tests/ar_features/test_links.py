@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from arteleop.ar_features import OperatorView, ViewConfig
-from arteleop.ar_features.links import LinkGate, link_url
+from arteleop.ar_features.links import BAD_LINK_PAGE, LinkGate, link_url
 from arteleop.errors import ConfigurationError
 from tests.instruments.view_probe import ViewProbe, admitted, refused, until
 
@@ -87,3 +87,30 @@ def test_links_name_the_public_url_and_admit_through_it() -> None:
         view.gate.allow({"tok"})
         socket_url = link.split("websocket=")[1].replace(":1/", f":{view.server.get_port()}/")
         assert admitted(socket_url)
+
+
+def _get(url: str) -> tuple[int, str]:
+    import urllib.error
+    import urllib.request
+
+    try:
+        with urllib.request.urlopen(url, timeout=10) as answer:
+            return answer.status, answer.read().decode()
+    except urllib.error.HTTPError as refused_page:
+        return refused_page.code, refused_page.read().decode()
+
+
+def test_a_link_without_an_allowed_token_gets_a_page_that_says_so(served) -> None:
+    """Not viser's page, which retries its socket for ever beside a developer panel: a page
+    that says the link opens no session; the page's own files are served to any address."""
+    url, gate = served
+    gate.allow({"good"})
+    socket = "ws" + url.removeprefix("http")
+    status, page = _get(link_url(url, "good"))
+    assert status == 200 and "viser" in page.lower()
+    for bad in (link_url(url, "stale"), f"{url}/", f"{url}/index.html?websocket={socket}/goodish"):
+        status, page = _get(bad)
+        assert (status, page) == (403, BAD_LINK_PAGE), bad
+    assert _get(f"{url}/robots.txt")[0] == 404  # viser's answer to any other path stands
+    gate.allow({"stale"})
+    assert _get(link_url(url, "stale"))[0] == 200
