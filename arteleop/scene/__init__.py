@@ -26,7 +26,9 @@ from arteleop.scene.depth_noise import DepthNoiseConfig, apply_depth_noise
 from arteleop.scene.mark_sight import MarksSight, start_line_m, target_line_m
 from arteleop.scene.marker_body import MarkerBody, PrintedSquare
 from arteleop.scene.pointcloud import PointCloud, depth_to_camera_points, frame_to_point_cloud
-from arteleop.scene.site import RemoteSite, SiteConfig, reach_problem
+from arteleop.scene.site import RemoteSite
+from arteleop.scene.site_checks import reach_problem
+from arteleop.scene.site_config import SiteConfig
 from arteleop.scene.site_frames import (
     BASE_FRAME,
     BOWL_FRAME,

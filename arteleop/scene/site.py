@@ -7,133 +7,51 @@ of the configuration runs in the constructor, so a bad setting stops the program
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 
 import numpy as np
 import pybullet as p
 from numpy.typing import ArrayLike, NDArray
 from scipy.spatial.transform import Rotation
 
-from arteleop.errors import CameraConfigError, ConfigurationError, WorkspaceError
+from arteleop.errors import CameraConfigError, WorkspaceError
 from arteleop.lifetime import Closeable
 from arteleop.robot import (
     GRIPPER_FRAME,
     HEAD_PAN_JOINT,
-    REST_POSE,
     RIGHT_ARM_JOINTS,
     RIGHT_FINGER_JOINTS,
     ArmCommand,
-    ArmPose,
     Baxter,
-    BaxterDescriptionConfig,
     BaxterKinematics,
-    GripperConfig,
     TopDownReach,
     load_baxter_description,
 )
 from arteleop.robot.bullet_client import KeptBulletClient
 from arteleop.robot.native_output import native_stdout_silenced
 from arteleop.scene.bodies import add_bowl, add_start_cross, add_table, add_target_circle
-from arteleop.scene.bowl_sight import BowlSight, BowlSightConfig
+from arteleop.scene.bowl_sight import BowlSight
 from arteleop.scene.bowl_tracking import BowlTrack
 from arteleop.scene.camera import HeadCamera, RGBDFrame
-from arteleop.scene.camera_config import HeadCameraConfig
 from arteleop.scene.camera_geometry import colocation_errors, landmark_problem
 from arteleop.scene.gl_renderer import resolve_renderer
 from arteleop.scene.mark_sight import MARK_HIT_TOLERANCE_M, MarksSight, start_line_m, target_line_m
 from arteleop.scene.render_process import RenderProcess
 from arteleop.scene.render_world import RenderWorld, SceneState
+from arteleop.scene.sight_rays import first_hits
+from arteleop.scene.site_checks import gripper_gap_range_m, gripper_span_problem, reach_problem
+from arteleop.scene.site_config import SiteConfig
 from arteleop.scene.site_frames import BASE_FRAME, BOWL_FRAME, SiteFrames
 from arteleop.scene.site_state import SiteState
-from arteleop.scene.workspace import Workspace
 from arteleop.transforms import (
     invert_transform,
     make_transform,
     pybullet_pose_to_transform,
 )
 
-RAY_OVERSHOOT_M = 0.02
-""":meth:`RemoteSite.sight_bowl`'s and :meth:`RemoteSite.sight_marks`'s rays run this far past
-their surface point (m)."""
-
-
 MOVING_JOINTS = (*RIGHT_ARM_JOINTS, *RIGHT_FINGER_JOINTS)
 """The joints a trial moves: the camera redraws the links they carry, and the bowl, each frame
 (:class:`RenderWorld`); the rest of the scene it draws once."""
-
-
-@dataclass(frozen=True)
-class SiteConfig:
-    """Everything that defines the simulated remote site.
-
-    Attributes:
-        workspace: Table, bowl and markers.
-        camera: The head RGB-D camera.
-        physics_rate_hz: Physics steps per simulated second (>= 240).
-        solver_iterations: Iterations of PyBullet's constraint solver per step (its default,
-            50). Fewer make a step cheaper, most of all while the pads hold the bowl, and change
-            the grasp's dynamics: benchmarks/bench_physics.py compares outcomes and placement
-            errors over the study's trials.
-        reach_margin: Fraction of the arm's maximum reach kept free at start and target.
-        robot: How the robot's URDF is prepared.
-        gripper: Electric gripper settings.
-        rest_pose: Arm pose before each trial.
-        freeze_idle_joints: Simulate only the right arm and its fingers; the left arm (at
-            ``rest_pose.left``) and the head become rigid, for about four times cheaper physics.
-            False simulates every joint of the URDF (see :class:`arteleop.robot.Baxter`).
-        seed: Seed of every random source of the site (depth noise).
-        bowl_sight: The model of the bowl tracker for frames that are not rendered.
-    """
-
-    workspace: Workspace = field(default_factory=Workspace)
-    camera: HeadCameraConfig = field(default_factory=HeadCameraConfig)
-    physics_rate_hz: float = 240.0
-    solver_iterations: int = 50
-    reach_margin: float = 0.05
-    robot: BaxterDescriptionConfig = field(default_factory=BaxterDescriptionConfig)
-    gripper: GripperConfig = field(default_factory=GripperConfig)
-    rest_pose: ArmPose = REST_POSE
-    freeze_idle_joints: bool = True
-    seed: int = 0
-    bowl_sight: BowlSightConfig = field(default_factory=BowlSightConfig)
-
-    def __post_init__(self) -> None:
-        if self.physics_rate_hz < 240:
-            raise ConfigurationError(
-                f"physics_rate_hz={self.physics_rate_hz}: use at least 240 Hz for stable grasps"
-            )
-        if isinstance(self.solver_iterations, bool) or not (
-            isinstance(self.solver_iterations, int) and self.solver_iterations >= 1
-        ):
-            raise ConfigurationError(
-                f"solver_iterations={self.solver_iterations!r}: use a whole number >= 1 "
-                "(PyBullet's default is 50)"
-            )
-        if not 0 <= self.reach_margin < 0.5:
-            raise ConfigurationError(f"reach_margin={self.reach_margin} must be in [0, 0.5)")
-
-
-def reach_problem(ws: Workspace, reach: TopDownReach, margin: float) -> str | None:
-    """Why the right gripper cannot grasp the bowl's rim from above, on any of its four sides,
-    at the workspace's start, target or the bowl's own start (keeping ``margin`` of the arm's
-    reach free); None if it can."""
-    points = {"start": ws.start_m, "target": ws.target_m}
-    if ws.bowl_xy_m is not None:
-        points["bowl"] = ws.on_table(ws.bowl_xy_m)
-    for name, point in points.items():
-        for side in ((1.0, 0.0), (-1.0, 0.0), (0.0, 1.0), (0.0, -1.0)):
-            tool = point + ws.bowl.grasp_offset_m(side)
-            if not reach.is_reachable(tool, margin):
-                xy = tuple(np.round(point[:2], 3).tolist())
-                return (
-                    f"The {name} point {xy} m is out of the right "
-                    f"arm's reach from above: grasping the rim at {np.round(tool, 3).tolist()} "
-                    f"needs {reach.reach_fraction(tool):.0%} of the arm's reach, the limit is "
-                    f"{1 - margin:.0%} (and at least "
-                    f"{reach.min_reach_m / reach.max_reach_m:.0%}). Move Workspace.{name}_xy_m "
-                    f"closer to the shoulder at {np.round(reach.shoulder_m[:2], 3).tolist()}."
-                )
-    return None
 
 
 class RemoteSite(Closeable):
@@ -153,7 +71,10 @@ class RemoteSite(Closeable):
         ws = config.workspace
         self.description = description = load_baxter_description(config.robot)
         self.kinematics = BaxterKinematics(description.urdf_path)
-        self._check_reach(ws)
+        problem = reach_problem(ws, TopDownReach.from_kinematics(self.kinematics),
+                                config.reach_margin)  # fmt: skip
+        if problem is not None:
+            raise WorkspaceError(problem)
 
         with native_stdout_silenced():
             self._client = KeptBulletClient(connection_mode=p.DIRECT)
@@ -170,8 +91,12 @@ class RemoteSite(Closeable):
                     freeze_idle_joints=config.freeze_idle_joints,
                 )
             self.robot.reset(config.rest_pose)
-            self.gripper_gap_range_m = self._measure_gripper_gap()
-            self._check_gripper_spans_bowl(ws)
+            self.gripper_gap_range_m = gripper_gap_range_m(
+                self.robot.gripper, config.rest_pose.gripper_closure
+            )
+            problem = gripper_span_problem(self.gripper_gap_range_m, ws.bowl.wall_thickness_m)
+            if problem is not None:
+                raise WorkspaceError(problem)
             # PyBullet body ids, for the segmentation masks of tests: name -> id.
             self._bodies = {
                 "robot": self.robot.body_id,
@@ -319,7 +244,9 @@ class RemoteSite(Closeable):
         (:class:`~arteleop.scene.BowlSight`): found when the camera sees enough of the bowl,
         at its true position."""
         T_base_bowl = self._bowl_transform()
-        hits = self._first_hits(self._sight.surface_points_m(T_base_bowl))
+        hits = first_hits(
+            self._client, self.camera.geometry.position_m, self._sight.surface_points_m(T_base_bowl)
+        )
         track = self._sight.look(T_base_bowl, self.camera.geometry, hits, self.time_s)
         if track.position_m is None:
             return track
@@ -334,21 +261,12 @@ class RemoteSite(Closeable):
         of a rendered frame (:mod:`~arteleop.scene.mark_sight`)."""
         points = self._mark_points_m
         seen = self.camera.geometry.sees_points(points)
-        miss = np.linalg.norm(self._first_hits(points) - points, axis=1)
+        miss = np.linalg.norm(
+            first_hits(self._client, self.camera.geometry.position_m, points) - points, axis=1
+        )
         seen &= np.nan_to_num(miss, nan=np.inf) <= MARK_HIT_TOLERANCE_M
         n = self._target_points
         return MarksSight(float(seen[:n].mean()), float(seen[n:].mean()))
-
-    def _first_hits(self, points_m: NDArray[np.float64]) -> NDArray[np.float64]:
-        """Where the rays from the camera to (N, 3) points first hit anything (N, 3; nan: no
-        hit), base frame, m."""
-        eye = self.camera.geometry.position_m
-        rays = points_m - eye
-        # Past the point: a ray that ends at the drawn surface may stop short of the collision
-        # shape, which stands off it by a few millimetres.
-        ends = points_m + RAY_OVERSHOOT_M * rays / np.linalg.norm(rays, axis=1, keepdims=True)
-        results = self._client.rayTestBatch([eye.tolist()] * len(points_m), ends.tolist())
-        return np.array([r[3] if r[0] >= 0 else (np.nan,) * 3 for r in results])
 
     @property
     def T_cloud_true(self) -> NDArray[np.float64] | None:
@@ -422,34 +340,6 @@ class RemoteSite(Closeable):
         """The requested frame if it is ready (stamped with the time it was requested)."""
         raw = self._renderer.poll() if self._renderer is not None else None
         return None if raw is None else self.camera.frame(raw, self._requested_s)
-
-    # -- start-up checks ------------------------------------------------------------------------
-    def _check_reach(self, ws: Workspace) -> None:
-        problem = reach_problem(ws, TopDownReach.from_kinematics(self.kinematics),
-                                self.config.reach_margin)  # fmt: skip
-        if problem is not None:
-            raise WorkspaceError(problem)
-
-    def _measure_gripper_gap(self) -> tuple[float, float]:
-        """(closed, open) gap between the finger pads (m), measured on the collision shapes."""
-        g = self.robot.gripper
-        gaps = []
-        for closure in (1.0, 0.0):
-            g.reset(closure)
-            gaps.append(g.pad_gap_m())
-        g.reset(self.config.rest_pose.gripper_closure)
-        return gaps[0], gaps[1]
-
-    def _check_gripper_spans_bowl(self, ws: Workspace) -> None:
-        closed, opened = self.gripper_gap_range_m
-        t = ws.bowl.wall_thickness_m
-        if not closed < t < 0.8 * opened:
-            raise WorkspaceError(
-                f"The gripper can't pinch a bowl wall {t * 1000:.1f} mm thick: its pads close to "
-                f"{closed * 1000:.1f} mm and open to {opened * 1000:.1f} mm. Choose "
-                f"BowlSpec.wall_thickness_m between {closed * 1000:.1f} and "
-                f"{0.8 * opened * 1000:.1f} mm (80 % of the opening, to leave room to aim)."
-            )
 
     # -- lifetime -------------------------------------------------------------------------------
     def close(self) -> None:
