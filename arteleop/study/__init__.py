@@ -15,11 +15,10 @@ from arteleop.study.counterbalancing import (
 from arteleop.study.definition import (
     MODALITY_NAMES,
     ORDER_SCHEMES,
-    CohortConfig,
     FamiliarizationConfig,
-    ParticipantSpec,
     StudyConfig,
 )
+from arteleop.study.participants import CohortConfig, ParticipantSpec
 from arteleop.study.plan import PracticePoints, TrialSpec, plan_study, trial_seed
 from arteleop.study.protocol import TrialRecord, operator_traits, run_planned_trial
 from arteleop.study.questionnaire import classes_shown, simulated_answers

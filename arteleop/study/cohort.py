@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from arteleop.study.definition import ParticipantSpec, StudyConfig
+from arteleop.study.definition import StudyConfig
+from arteleop.study.participants import ParticipantSpec
 
 EXPERT_BUCKETS = (2, 3)
 """Weekly-hours buckets of an expert (at least two hours a week, docs/study.md §5)."""

@@ -15,7 +15,8 @@ import numpy as np
 from arteleop.errors import StudyDefinitionError
 from arteleop.study.cohort import participants
 from arteleop.study.counterbalancing import participant_orders
-from arteleop.study.definition import ParticipantSpec, StudyConfig
+from arteleop.study.definition import StudyConfig
+from arteleop.study.participants import ParticipantSpec
 
 FAMILIARIZATION = "familiarization"
 EXPERIMENTAL = "experimental"

@@ -17,7 +17,8 @@ from numpy.typing import NDArray
 from arteleop.errors import SimulationError
 from arteleop.operator import Expertise, OperatorParams, OperatorTraits
 from arteleop.scene import RemoteSite
-from arteleop.study.definition import ParticipantSpec, StudyConfig
+from arteleop.study.definition import StudyConfig
+from arteleop.study.participants import ParticipantSpec
 from arteleop.study.plan import TrialSpec
 from arteleop.study.sites import StudySite
 from arteleop.teleop import (

@@ -15,7 +15,8 @@ from arteleop.blas_kernel import blas_description
 from arteleop.errors import RunFolderError, StudyDefinitionError
 from arteleop.scene.gl_renderer import renderer_description, resolve_renderer
 from arteleop.study.cohort import participants
-from arteleop.study.definition import ParticipantSpec, StudyConfig
+from arteleop.study.definition import StudyConfig
+from arteleop.study.participants import ParticipantSpec
 from arteleop.study.plan import TrialSpec, plan_study
 from arteleop.study.run_folder import FORMAT_VERSION, STUDY_FILE, RunFolder
 from arteleop.study.sites import StudySite

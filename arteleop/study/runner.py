@@ -26,7 +26,8 @@ import pandas as pd
 
 from arteleop.analysis.data import PARTICIPANT_COLUMNS, QUESTIONNAIRE_COLUMNS, TRIAL_COLUMNS
 from arteleop.errors import RunFolderError
-from arteleop.study.definition import ParticipantSpec, StudyConfig
+from arteleop.study.definition import StudyConfig
+from arteleop.study.participants import ParticipantSpec
 from arteleop.study.plan import EXPERIMENTAL, TrialSpec
 from arteleop.study.protocol import TrialRecord, run_planned_trial
 from arteleop.study.questionnaire import classes_shown, simulated_answers

@@ -42,7 +42,8 @@ from arteleop.analysis.data import (
 )
 from arteleop.ar_features.links import TOKEN_BYTES
 from arteleop.errors import ArteleopError, RunFolderError
-from arteleop.study.definition import ParticipantSpec, StudyConfig
+from arteleop.study.definition import StudyConfig
+from arteleop.study.participants import ParticipantSpec
 from arteleop.study.plan import TrialSpec
 from arteleop.study.protocol import TrialRecord, trial_row
 from arteleop.study.questionnaire import classes_shown
