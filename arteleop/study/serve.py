@@ -26,22 +26,14 @@ from __future__ import annotations
 
 import contextlib
 import math
-import queue
 import statistics
 import threading
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import replace
-from typing import Any
-
-import numpy as np
-import viser
-from numpy.typing import NDArray
 
 from arteleop.analysis.data import QUESTIONNAIRE_ITEMS
 from arteleop.ar_features import OperatorView, ViewConfig, modality_cues
-from arteleop.ar_features.live_input import LiveInput
-from arteleop.ar_features.session_pages import SessionPages
 from arteleop.ar_features.view import drew_a_frame
 from arteleop.errors import ArteleopError, RunFolderError
 from arteleop.lifetime import Closeable
@@ -58,14 +50,12 @@ from arteleop.study.session import (
     ServedRun,
     SessionInputError,
 )
+from arteleop.study.session_tabs import SessionStopped, SessionTabs
 from arteleop.study.session_words import (
     AGREE,
     AR_CLASS_TEXT,
     CANNOT_SAVE,
-    CUT_SHORT,
-    IN_PROGRESS,
     ITEM_TEXT,
-    OBSERVING,
     SESSION_OVER,
     TRY_IT,
     consent_text,
@@ -73,7 +63,6 @@ from arteleop.study.session_words import (
     outcome_text,
 )
 from arteleop.teleop import (
-    ControllerConfig,
     TrialProgress,
     run_trial,
     site_frame,
@@ -117,7 +106,6 @@ class StudyServer(Closeable):
     ) -> None:
         self.run = run
         self._on_link = on_link
-        self._token: str | None = None
         self._observer: str | None = None
         self._site = run.site if camera is None else run.site.with_camera(camera)
         with RemoteSite(self._site.base) as site:
@@ -128,22 +116,11 @@ class StudyServer(Closeable):
             # The robot's view, plain: no AR layers, the depth aids if the study has them.
             self.view.show(site_frame(site, modality_cues("none"), False, run.study.depth_aids))
         self._target = HandTarget(self._rest_gripper_m)
-        self._actions: queue.Queue[tuple[str, Any]] = queue.Queue()
-        self._lock = threading.Lock()
-        self._controller: viser.ClientHandle | None = None
-        self._watching: dict[int, tuple[viser.ClientHandle, viser.GuiMarkdownHandle]] = {}
-        self._pages: SessionPages | None = None
-        self._live: LiveInput | None = None
-        self._page: Callable[[SessionPages], None] = lambda pages: None
-        self._driving = False
-        self._trial_running = threading.Event()
-        self._lost = threading.Event()
-        self._stopped = threading.Event()
         if self.view.gate is not None:
             self._observer = run.observer_token()
-        server = self.view.server
-        server.on_client_connect(self._connect)
-        server.on_client_disconnect(self._disconnect)
+        self.tabs = SessionTabs(self.view, self._target, self._rest_gripper_m,
+                                self._T_base_camera, self._observer)  # fmt: skip
+        """The browsers' tabs: which controls the session, and what it is shown."""
 
     @property
     def url(self) -> str:
@@ -163,17 +140,16 @@ class StudyServer(Closeable):
         except SessionStopped:
             return False
         except RunFolderError:  # the disk is full or not writable: say so on the page too
-            self._show(lambda p: p.message(*CANNOT_SAVE))
+            self.tabs.show(lambda p: p.message(*CANNOT_SAVE))
             self.view.deliver()
             raise
         self.run.finish_if_done()
-        self._show(lambda p: p.message("Thank you", "Every session of this study is done. The "
+        self.tabs.show(lambda p: p.message("Thank you", "Every session of this study is done. The "
                                        "researcher can close this page."))  # fmt: skip
         return True
 
     def stop(self) -> None:
-        self._stopped.set()
-        self._actions.put(("stop", None))
+        self.tabs.stop()
 
     def close(self) -> None:
         self.stop()
@@ -186,14 +162,13 @@ class StudyServer(Closeable):
         run = self.run
         if (gate := self.view.gate) is not None:
             token = run.token(participant)
-            with self._lock:
-                self._token = token
+            self.tabs.begin_session(token)
             gate.allow({token, self._observer})
             self._on_link(participant, self.view.link(token))
         if not run.consented(participant):
             text = consent_text(run.study)
-            self._show(lambda p: p.consent(text, AGREE, lambda: self._act("agree")))
-            self._wait("agree")
+            self.tabs.show(lambda p: p.consent(text, AGREE, lambda: self.tabs.act("agree")))
+            self.tabs.wait("agree")
             self._ask_demographics(participant)
         if not run.instructed(participant):
             self._tutorial(participant)
@@ -202,19 +177,20 @@ class StudyServer(Closeable):
         if not run.answered(participant):
             classes = [(c, AR_CLASS_TEXT[c]) for c in classes_shown(run.study)]
             items = [(i, ITEM_TEXT[i]) for i in QUESTIONNAIRE_ITEMS]
-            self._show(lambda p: p.questionnaire(classes, items, lambda r: self._act("rate", r)))
+            self.tabs.show(
+                lambda p: p.questionnaire(classes, items, lambda r: self.tabs.act("rate", r))
+            )
             run.answer(participant, self._wait_for_ratings(classes, items))
         if self.view.gate is not None:  # the next participant comes by their own link
-            self._show(lambda p: p.message("Thank you", f"{SESSION_OVER} You can close this "
+            self.tabs.show(lambda p: p.message("Thank you", f"{SESSION_OVER} You can close this "
                                            "page."))  # fmt: skip
-            with self._lock:  # the tab keeps its page and controls nothing more
-                self._controller = self._pages = self._live = None
+            self.tabs.release()
         elif run.current() is not None:
-            self._show(lambda p: p.message("Thank you", f"{SESSION_OVER} Please tell the "
+            self.tabs.show(lambda p: p.message("Thank you", f"{SESSION_OVER} Please tell the "
                                            "researcher.",
                                            "Next participant (researcher)",
-                                           lambda: self._act("next")))  # fmt: skip
-            self._wait("next")
+                                           lambda: self.tabs.act("next")))  # fmt: skip
+            self.tabs.wait("next")
 
     def _wait_for_ratings(
         self, classes: list[tuple[str, str]], items: list[tuple[str, str]]
@@ -222,23 +198,25 @@ class StudyServer(Closeable):
         """The questionnaire's ratings once every item has one; until then the page names the
         first without."""
         while True:
-            ratings = self._wait("rate")
+            ratings = self.tabs.wait("rate")
             unrated = ((c, i) for c in classes for i in items if not ratings.get((c[0], i[0])))
             first = next(unrated, None)
             if first is None:
                 return ratings
             (_, class_text), (_, item_text) = first
             message = f'"{item_text}", under "{class_text}": choose a rating, 1 to 7.'
-            self._on_pages(lambda p, message=message: p.error(message))
+            self.tabs.on_pages(lambda p, message=message: p.error(message))
 
     def _ask_demographics(self, participant: str) -> None:
-        self._show(lambda p: p.demographics(lambda f: self._act("about", f), GENDERS, HANDEDNESS))
+        self.tabs.show(
+            lambda p: p.demographics(lambda f: self.tabs.act("about", f), GENDERS, HANDEDNESS)
+        )
         while True:
-            form = self._wait("about")
+            form = self.tabs.wait("about")
             try:
                 answers = Demographics.from_form(form)
             except SessionInputError as err:
-                self._on_pages(lambda p, message=str(err): p.error(message))
+                self.tabs.on_pages(lambda p, message=str(err): p.error(message))
                 continue
             self.run.consent(participant, answers)
             return
@@ -252,29 +230,29 @@ class StudyServer(Closeable):
 
         def go_on() -> None:
             gone_on.set()
-            self._act("next")
+            self.tabs.act("next")
 
-        self._show(lambda p: p.message("How to drive the robot", text, "Continue", go_on),
+        self.tabs.show(lambda p: p.message("How to drive the robot", text, "Continue", go_on),
                    driving=True)  # fmt: skip
 
         def tick(status: TrialProgress) -> None:
-            if gone_on.is_set() or self._stopped.is_set():
+            if gone_on.is_set() or self.tabs.stopped.is_set():
                 raise _TutorialOver
 
         pending = self.run.pending(participant)
         # A try that ends (the bowl placed, or its time up) begins again from the start.
-        while pending and not (gone_on.is_set() or self._stopped.is_set()):
+        while pending and not (gone_on.is_set() or self.tabs.stopped.is_set()):
             config = replace(trial_config(self.run.study, self._site, pending[0]), realtime=True,
                              render_camera=True, timeout_s=TUTORIAL_S)  # fmt: skip
             with RemoteSite(config.site) as site:
                 cues = modality_cues(pending[0].modality)
                 self.view.show(site_frame(site, cues, True, config.depth_aids))
-                if (live := self._live) is not None:
+                if (live := self.tabs.live) is not None:
                     live.reset()
                 source = live_source(self._target, config.controller.mapping, config.seed)
                 with contextlib.suppress(_TutorialOver):
                     run_trial(source, config, site, self.view, tick)
-        self._wait("next")
+        self.tabs.wait("next")
 
     def _trial(self, spec: TrialSpec) -> None:
         trials = self.run.trials_of(spec.participant)
@@ -288,17 +266,19 @@ class StudyServer(Closeable):
             # The scene as the trial will begin, its layers on, while the person gets ready.
             cues = modality_cues(spec.modality)
             self.view.show(site_frame(site, cues, True, config.depth_aids))
-            if (live := self._live) is not None:  # the gizmo where the last trial left it
+            if (live := self.tabs.live) is not None:  # the gizmo where the last trial left it
                 live.reset()
-            self._show(lambda p: p.trial(heading, text, lambda: self._act("start")), driving=True)
-            self._wait("start")
-            if (live := self._live) is not None:  # a tab may go meanwhile
+            self.tabs.show(
+                lambda p: p.trial(heading, text, lambda: self.tabs.act("start")), driving=True
+            )
+            self.tabs.wait("start")
+            if (live := self.tabs.live) is not None:  # a tab may go meanwhile
                 live.reset()
-            self._lost.clear()
+            self.tabs.lost.clear()
             cloud = self.view.cloud
             sent = (cloud.frames_drawn, cloud.payload_bytes)
             start = time.perf_counter()
-            self._trial_running.set()
+            self.tabs.trial_running.set()
             try:
                 source = live_source(self._target, config.controller.mapping, config.seed)
                 result = run_trial(source, config, site, self.view, self._tick)
@@ -306,7 +286,7 @@ class StudyServer(Closeable):
                 self.run.keep_interrupted(spec)
                 return
             finally:
-                self._trial_running.clear()
+                self.tabs.trial_running.clear()
         wall_s = time.perf_counter() - start
         frames, payload = cloud.frames_drawn - sent[0], cloud.payload_bytes - sent[1]
         stream = {"cloud_frames": frames, "cloud_kbytes": payload / 1e3,
@@ -316,22 +296,23 @@ class StudyServer(Closeable):
         time_s, error_m = row["completion_time_s"], row["placement_error_m"]
         result_text = outcome_text(str(row["outcome"]), time_s, error_m)  # type: ignore[arg-type]
         self.run.keep(record)
-        devices = live.take_devices() if (live := self._live) is not None else ""
-        self._show(lambda p: p.message(heading, result_text, "Next", lambda: self._act("next")))
+        devices = live.take_devices() if (live := self.tabs.live) is not None else ""
+        self.tabs.show(
+            lambda p: p.message(heading, result_text, "Next", lambda: self.tabs.act("next"))
+        )
         # While the person reads the outcome.
         self.run.keep_browser(spec, replace(self._check_browser(), input_device=devices, **stream))
-        self._wait("next")
+        self.tabs.wait("next")
 
     def _check_browser(self) -> BrowserCheck:
         """The controlling browser's display round trip (NaN if it did not answer, or without
         a tab, or once the server is stopping) and scene size (0 without a tab)."""
-        with self._lock:
-            client = self._controller
+        client = self.tabs.controller
         if client is None:
             return BrowserCheck(math.nan, 0, 0)
         times = []
         for _ in range(ROUND_TRIPS):
-            if self._stopped.is_set():
+            if self.tabs.stopped.is_set():
                 break
             begun = time.perf_counter()
             if not drew_a_frame(client, ROUND_TRIP_TIMEOUT_S):
@@ -342,100 +323,8 @@ class StudyServer(Closeable):
         return BrowserCheck(round_trip_s, camera.image_width, camera.image_height)
 
     def _tick(self, status: TrialProgress) -> None:
-        if self._lost.is_set() or self._stopped.is_set():
+        if self.tabs.lost.is_set() or self.tabs.stopped.is_set():
             raise SessionInterrupted("the controlling tab went during the trial")
-        self._on_pages(lambda p: p.running(status.elapsed_s, status.state))
-        if (live := self._live) is not None:
+        self.tabs.on_pages(lambda p: p.running(status.elapsed_s, status.state))
+        if (live := self.tabs.live) is not None:
             live.show_reach(status.reachable)
-
-    # Pages and clients: callbacks come on viser's threads.
-
-    def _show(self, page: Callable[[SessionPages], None], driving: bool = False) -> None:
-        """Show ``page`` now and to any tab that takes control later, with the gizmo and the
-        Grip slider if ``driving``; clicks on the pages before it are dropped (a double click
-        must not answer the next page)."""
-        while not self._actions.empty():
-            kind, _ = self._actions.get_nowait()
-            if kind == "stop":
-                self._actions.put((kind, None))
-                break
-        with self._lock:
-            self._page, self._driving = page, driving
-            if self._pages is not None and self._live is not None:
-                page(self._pages)
-                self._live.show(driving)
-
-    def _on_pages(self, change: Callable[[SessionPages], None]) -> None:
-        with self._lock:
-            if self._pages is not None:
-                change(self._pages)
-
-    def _act(self, kind: str, value: Any = None) -> None:
-        self._actions.put((kind, value))
-
-    def _wait(self, kind: str) -> Any:
-        """The next answer of ``kind`` (others are stale clicks: dropped)."""
-        while True:
-            got, value = self._actions.get()
-            if got == "stop" or self._stopped.is_set():
-                self._stopped.set()
-                raise SessionStopped("the server was stopped")
-            if got == kind:
-                return value
-
-    def _connect(self, client: viser.ClientHandle) -> None:
-        with self._lock:
-            if (gate := self.view.gate) is not None:
-                token = gate.token_of(client.client_id)
-                # The ended sessions' tabs go with this one's arrival (or the experimenter's).
-                gate.expel(keep={self._token, self._observer})
-                if token == self._observer:  # sees the robot, never controls
-                    client.gui.add_markdown(OBSERVING)
-                    return
-                if token != self._token:
-                    return
-            if self._controller is None:
-                self._take_control(client)
-            else:
-                self._watching[client.client_id] = (client, client.gui.add_markdown(IN_PROGRESS))
-
-    def _disconnect(self, client: viser.ClientHandle) -> None:
-        with self._lock:
-            self._watching.pop(client.client_id, None)
-            if self._controller is None or client.client_id != self._controller.client_id:
-                return
-            self._controller = self._pages = self._live = None
-            if self._trial_running.is_set():
-                self._lost.set()
-                # Not the trial's page again: its Start belongs to the attempt that went.
-                self._page = lambda p: p.message(CUT_SHORT[0], CUT_SHORT[1])
-                self._driving = False
-            gate = self.view.gate
-            for client_id in list(self._watching):  # the longest-waiting tab of this session
-                watcher, notice = self._watching.pop(client_id)
-                if gate is None or gate.token_of(client_id) == self._token:
-                    notice.remove()
-                    self._take_control(watcher)
-                    break
-
-    def _drive(
-        self, client: viser.ClientHandle, gripper_m: NDArray[np.float64] | None, grip: float | None
-    ) -> None:
-        """A move from ``client``'s gizmo, buttons or slider: heeded while it controls."""
-        if self._controller is client:
-            self._target.set(gripper_m, grip)
-
-    def _take_control(self, client: viser.ClientHandle) -> None:
-        """``client``'s tab controls the session from now on (the caller holds the lock)."""
-        self._controller = client
-        self._pages = SessionPages(client.gui)
-        grip = ControllerConfig().grip
-        self._live = LiveInput(client, self._rest_gripper_m,
-                               lambda gripper_m, grip: self._drive(client, gripper_m, grip),
-                               grip.close_at, grip.open_at, self._T_base_camera)  # fmt: skip
-        self._page(self._pages)
-        self._live.show(self._driving)
-
-
-class SessionStopped(ArteleopError):
-    """The server was stopped while it waited for a participant."""

@@ -228,7 +228,7 @@ def test_a_full_disk_is_said_on_the_participants_page_and_named_on_the_console(
             def message(self, *args: str) -> None:
                 shown.append(args)
 
-        server._page(Pages())  # what the participant's tab shows, now or once it connects
+        server.tabs._page(Pages())  # what the participant's tab shows, now or once it connects
         assert shown == [CANNOT_SAVE]
 
 
