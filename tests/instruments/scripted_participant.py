@@ -383,6 +383,7 @@ class ScriptedParticipant:
             self.press(AXES[axis][0])
             before, now = now, coordinate(self.bowl())
             per_step_px = now - before
+        expected = per_step_px
         for _ in range(LINE_UP_GOES):
             n = round((coordinate(target) - now) / per_step_px) if abs(per_step_px) >= 1 else 0
             self.log(f"bowl {now:.0f} px, target {coordinate(target):.0f} px, "
@@ -391,8 +392,12 @@ class ScriptedParticipant:
                 break
             self.press(AXES[axis][0] if n > 0 else AXES[axis][1], abs(n))
             before, now = now, coordinate(self.bowl())
-            if abs(now - before) >= abs(n):  # as the steps went, not as assumed: a bowl that
-                per_step_px = (now - before) / n  # turned in the fingers moves otherwise
+            # As the steps went, not as assumed (a bowl that turned in the fingers moves
+            # otherwise), but within a factor of two of what was expected: a bowl that barely
+            # moved (held back, or misread) read as 1 px a step sent it 45 cm in one go.
+            seen = (now - before) / n
+            if abs(now - before) >= abs(n) and 0.5 <= seen / expected <= 2.0:
+                per_step_px = seen
         return per_step_px
 
     def do_trial(self) -> str:
