@@ -36,12 +36,14 @@ import os
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 import argparse
+import math
 from dataclasses import replace
 
 import numpy as np
 import pandas as pd
 
 from arteleop.ar_features import DisplayFrame
+from arteleop.errors import ConfigurationError
 from arteleop.operator import MovementScatter, OperatorParams, PerceptionParams
 from arteleop.operator.perception import Perceived
 from arteleop.operator.tasks import pick_and_place
@@ -231,7 +233,10 @@ def main() -> None:
         drift_rad = np.radians(args.memory_drift_deg)
         params = replace(params, perception=PerceptionParams(memory_drift_rad=drift_rad))
     if args.direction_sd_deg is not None:
-        scatter = MovementScatter(direction_sd_rad=np.radians(args.direction_sd_deg))
+        try:
+            scatter = MovementScatter(direction_sd_rad=math.radians(args.direction_sd_deg))
+        except ConfigurationError as err:
+            parser.error(f"--direction-sd-deg {args.direction_sd_deg}: {err}")
         params = replace(params, scatter=scatter)
     table = read(study, args.people, args.modalities.split(","), args.ring, params)
     print()
