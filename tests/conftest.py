@@ -22,7 +22,8 @@ LONGEST_FIRST = (
     "tests/test_cli_input.py",
 )
 """The files that take longest (``pytest --durations``), run first: over both cores (a file to a
-worker), one begun last would run on alone at the end."""
+worker), one begun last would run on alone at the end. xdist's ``loadfile`` would otherwise
+order files by their number of tests (the README's command says ``--no-loadscope-reorder``)."""
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:

@@ -17,7 +17,7 @@ import http
 import threading
 from collections.abc import Callable, Collection, Iterable
 from typing import TYPE_CHECKING, Any
-from urllib.parse import parse_qs, urlsplit
+from urllib.parse import parse_qs, unquote, urlsplit
 
 from arteleop.errors import ConfigurationError
 
@@ -28,16 +28,17 @@ TOKEN_BYTES = 16
 """A token's length: 128 random bits, beyond guessing."""
 BAD_LINK_PAGE = """<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><title>This link does not open a session</title>
-<meta name="viewport" content="width=device-width, initial-scale=1"></head>
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<meta http-equiv="refresh" content="10"></head>
 <body style="font-family: sans-serif; max-width: 36em; margin: 4em auto; line-height: 1.5">
 <h1>This link does not open a session</h1>
 <p>It may have been copied in part, or the session it opened may be over.</p>
 <p>Please ask the researcher for your link.</p>
 </body></html>
 """
-"""What a browser is sent for a link without an allowed token (HTTP 403)."""
-PAGE_PATHS = ("", "/", "/index.html")
-"""The page's addresses; its scripts and styles, at others, carry no token and are served."""
+"""What a browser is sent for a link without an allowed token (HTTP 403). It asks again every
+10 s: a link opened while the server starts (its sessions' tokens not yet allowed) opens the
+session once they are."""
 
 
 def link_url(url: str, token: str) -> str:
@@ -83,7 +84,7 @@ class LinkGate:
         """Sockets closed so far for want of an allowed token."""
         self._sockets.on_client_connect(self._check)
         self._sockets.on_client_disconnect(self._forget)
-        self._answer_pages()
+        self._answer_pages(server.get_port())
         self.expel()  # a socket that opened before the gate was set up
 
     def allow(self, tokens: Iterable[str]) -> None:
@@ -126,22 +127,28 @@ class LinkGate:
         """Whether the page at ``path`` (an HTTP request's path and query) may be sent: not
         the page (a script, a style), or the page for a socket with an allowed token."""
         parts = urlsplit(path)
-        if parts.path not in PAGE_PATHS:
+        # As viser resolves a path to a file (unquoted, "." segments dropped): "/./" and
+        # "/%69ndex.html" are the page too.
+        segments = [
+            s for s in unquote(parts.path).replace("\\", "/").split("/") if s not in ("", ".")
+        ]
+        if segments not in ([], ["index.html"]):
             return True
         sockets = parse_qs(parts.query).get("websocket", [])
         token = urlsplit(sockets[0]).path.lstrip("/") if sockets else ""
         with self._lock:
             return token in self._allowed
 
-    def _answer_pages(self) -> None:
+    def _answer_pages(self, port: int) -> None:
         """Answer the page's requests for links without an allowed token with
         :data:`BAD_LINK_PAGE`. viser (pinned) passes its HTTP handler to websockets' server
         and keeps no reference to it: the server is found among the objects on viser's event
-        loop."""
+        loop, by the ``port`` it listens on."""
         from websockets.asyncio.server import Server
 
         loop = self._sockets._background_event_loop
-        (server,) = [o for o in gc.get_objects() if isinstance(o, Server) and o.loop is loop]
+        (server,) = [o for o in gc.get_objects() if isinstance(o, Server) and o.loop is loop
+                     and any(s.getsockname()[1] == port for s in o.sockets)]  # fmt: skip
         server.process_request = self._page_check(server.process_request)
 
     def _page_check(self, serve_files: Callable[..., Any] | None) -> Callable[..., Any]:

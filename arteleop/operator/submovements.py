@@ -17,11 +17,16 @@ every distance and criterion; it is solved once per look cost (rounded to ``LOOK
 and scatter law, and cached. Fitts' law is not put in: movement time grows with the index of
 difficulty because the optimum does.
 
-The durations are the best that rise with ``x``: a longer movement, or a smaller tolerance, is
-never given a faster submovement. People's movement times and primary submovements lengthen
-with the amplitude over the tolerance (Fitts 1954; Meyer et al. 1988), whereas the unconstrained
-optimum has two near-equal choices (end in one submovement, or plan on correcting) and jumps
-between them.
+The durations are the best that never fall as ``x`` rises: a longer movement, or a smaller
+tolerance, is never given a faster submovement. People's movement times and primary
+submovements lengthen with the amplitude over the tolerance (Fitts 1954; Meyer et al. 1988),
+whereas the unconstrained optimum has two near-equal choices (end in one submovement, or plan
+on correcting) and jumps between them. With the scatter proportional to the amplitude the
+optimum is flat beyond ``x`` of about 10 (0.17-0.44 s for look costs of 0.3-1.5 s): a longer
+movement is slower only through the hand's peak speed (:func:`planned_submovement`).
+
+The quadrature's 12 quantiles along the way reach 2.04 SD: below ``x y(D)`` of 0.49 it sees no
+chance of ending outside the criterion where the law gives up to about 1 %.
 """
 
 from __future__ import annotations

@@ -108,7 +108,8 @@ def test_a_link_without_an_allowed_token_gets_a_page_that_says_so(served) -> Non
     socket = "ws" + url.removeprefix("http")
     status, page = _get(link_url(url, "good"))
     assert status == 200 and "viser" in page.lower()
-    for bad in (link_url(url, "stale"), f"{url}/", f"{url}/index.html?websocket={socket}/goodish"):
+    for bad in (link_url(url, "stale"), f"{url}/", f"{url}/index.html?websocket={socket}/goodish",
+                f"{url}/./", f"{url}/%69ndex.html"):  # fmt: skip
         status, page = _get(bad)
         assert (status, page) == (403, BAD_LINK_PAGE), bad
     assert _get(f"{url}/robots.txt")[0] == 404  # viser's answer to any other path stands

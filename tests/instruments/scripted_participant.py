@@ -111,6 +111,9 @@ TRIAL_END_WAIT_S = 130.0
 trial runs out of time, if its timeout is shorter)."""
 LINE_UP_GOES = 2
 """Goes at lining the bowl up with the target, each from a fresh look."""
+MOST_STEPS_A_GO = 10
+"""Steps pressed at most before looking again (a person does not press 45 times blind): more
+says the pixels a step were misread."""
 QUESTIONNAIRE_RATING = "5"
 """Its answer to every item of the questionnaire (1-7)."""
 PAGE_WAIT_S = 60.0
@@ -386,6 +389,7 @@ class ScriptedParticipant:
         expected = per_step_px
         for _ in range(LINE_UP_GOES):
             n = round((coordinate(target) - now) / per_step_px) if abs(per_step_px) >= 1 else 0
+            n = int(np.clip(n, -MOST_STEPS_A_GO, MOST_STEPS_A_GO))
             self.log(f"bowl {now:.0f} px, target {coordinate(target):.0f} px, "
                      f"{per_step_px:+.0f} px a step: {n:+d}")  # fmt: skip
             if not n:
