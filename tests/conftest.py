@@ -13,26 +13,6 @@ from arteleop.robot import BaxterDescription, BaxterDescriptionConfig, load_baxt
 from arteleop.scene import RemoteSite, SiteConfig
 from tests.helpers import unavailable
 
-LONGEST_FIRST = (
-    "tests/study/test_scripted_participant.py",
-    "tests/study/test_serve.py",
-    "tests/teleop/test_pointing.py",
-    "tests/scene/test_bowl_sight.py",
-    "tests/teleop/test_trial.py",
-    "tests/test_cli_input.py",
-)
-"""The files that take longest (``pytest --durations``), run first: over both cores (a file to a
-worker), one begun last would run on alone at the end. xdist's ``loadfile`` would otherwise
-order files by their number of tests (the README's command says ``--no-loadscope-reorder``)."""
-
-
-def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
-    def rank(item: pytest.Item) -> int:
-        path = item.nodeid.split("::")[0]
-        return LONGEST_FIRST.index(path) if path in LONGEST_FIRST else len(LONGEST_FIRST)
-
-    items.sort(key=rank)  # stable: the rest keep their order
-
 
 @pytest.fixture(scope="session")
 def description_config(tmp_path_factory: pytest.TempPathFactory) -> BaxterDescriptionConfig:
