@@ -23,8 +23,8 @@ class ParticipantSpec:
         gender: As the participant gives it.
         movement_time_factor: The participant's own speed, for a simulated participant: a
             factor on every submovement's duration (below 1: faster), and so, through the
-            endpoint scatter's growth with speed (Schmidt et al., Psychol. Rev. 1979), on its
-            accuracy. See :class:`CohortConfig` for how a cohort draws it; the simulated
+            endpoint scatter's growth with speed (:class:`~arteleop.operator.MovementScatter`),
+            on its accuracy. See :class:`CohortConfig` for how a cohort draws it; the simulated
             participant's other traits come from the study's seed and the id
             (docs/operator-model.md).
     """
