@@ -114,6 +114,9 @@ LINE_UP_GOES = 2
 MOST_STEPS_A_GO = 10
 """Steps pressed at most before looking again (a person does not press 45 times blind): more
 says the pixels a step were misread."""
+MOVE_WAIT_S = 5.0
+"""Steps pressed, the bowl is seen to move within this (s), or it was held back (a bowl that
+moved half as far as expected, seen between frames, sent it 10 cm past the target)."""
 QUESTIONNAIRE_RATING = "5"
 """Its answer to every item of the questionnaire (1-7)."""
 PAGE_WAIT_S = 60.0
@@ -384,7 +387,7 @@ class ScriptedParticipant:
         now = coordinate(self.bowl())
         if not per_step_px:
             self.press(AXES[axis][0])
-            before, now = now, coordinate(self.bowl())
+            before, now = now, self._bowl_moved(coordinate, now, 4 * STILL_PX)
             per_step_px = now - before
         expected = per_step_px
         for _ in range(LINE_UP_GOES):
@@ -395,7 +398,7 @@ class ScriptedParticipant:
             if not n:
                 break
             self.press(AXES[axis][0] if n > 0 else AXES[axis][1], abs(n))
-            before, now = now, coordinate(self.bowl())
+            before, now = now, self._bowl_moved(coordinate, now, n * per_step_px)
             # As the steps went, not as assumed (a bowl that turned in the fingers moves
             # otherwise), but within a factor of two of what was expected: a bowl that barely
             # moved (held back, or misread) read as 1 px a step sent it 45 cm in one go.
@@ -403,6 +406,18 @@ class ScriptedParticipant:
             if abs(now - before) >= abs(n) and 0.5 <= seen / expected <= 2.0:
                 per_step_px = seen
         return per_step_px
+
+    def _bowl_moved(
+        self, coordinate: Callable[[Spot], float], before: float, expected_px: float
+    ) -> float:
+        """Where the bowl stands (``coordinate`` of :meth:`bowl`) once it has moved at least
+        half of ``expected_px`` from ``before``, or after :data:`MOVE_WAIT_S`: on a busy machine
+        the arm lags the presses and the page the arm, and two looks at a stale frame agree."""
+        end = time.monotonic() + MOVE_WAIT_S
+        now = coordinate(self.bowl())
+        while abs(now - before) < abs(expected_px) / 2 and time.monotonic() < end:
+            now = coordinate(self.bowl())
+        return now
 
     def do_trial(self) -> str:
         """Start, reach, grasp, carry, set down, let go; the outcome the page then shows, also
