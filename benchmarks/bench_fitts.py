@@ -9,8 +9,10 @@ lag, in one block per lag: each repetition's cells in an order shuffled for the 
 orders and the same seeds at every lag (paired). Through a block the person carries the lag it
 has learnt from one trial to the next (its belief at a trial's end is its belief at the next
 one's start), as people practise the lag of a block; the first trial of a block meets the lag
-with the belief from practice on the system (``familiar_lag_s``). ``--fresh`` makes every trial
-the block's first. ``--depth-aids`` draws the depth aids in every trial.
+with the belief from practice on the system (``familiar_lag_s``). It also carries what it saw of
+its outcomes: told of a miss, as Fitts experiments tell it, it trusts its judgement less and is
+more careful (``arteleop.operator.own_errors``). ``--fresh`` makes every trial the block's
+first. ``--depth-aids`` draws the depth aids in every trial.
 
 Measured as ISO 9241-9 asks (Soukoreff & MacKenzie 2004): the selection is the closure the
 operator decided (an earlier closure, the fingers pushed by the table, is a slip, counted); per
@@ -26,6 +28,7 @@ settle, looking and waiting, with its corrections and looks.
 
     python benchmarks/bench_fitts.py [--people 16] [--reps 5] [--lags 0,75,150,225,450]
                                      [--quick] [--fresh] [--depth-aids] [--workers 2]
+                                     [--own-error-prior-sd SD]
                                      [--json OUT.json]
 
 What it prints is what the model predicts: no constant of the operator is fitted to it.
@@ -68,6 +71,8 @@ class Block:
     trials: tuple[Trial, ...]
     fresh: bool = False
     depth_aids: bool = False
+    own_error_prior_sd: float | None = None
+    """The operator's ``own_error_prior_sd``, if not its own (a sensitivity run)."""
 
 
 def block_trials(person: int, reps: int) -> tuple[Trial, ...]:
@@ -85,21 +90,34 @@ def block_trials(person: int, reps: int) -> tuple[Trial, ...]:
 
 def run(block: Block) -> list[dict[str, float]]:
     """A block's pointing trials, one after the other, the person carrying its belief of the lag
-    from each to the next (unless the block is fresh): each trial's movement time, the
-    selection's endpoint, hit and slips."""
-    from arteleop.operator import ACTIVITIES, Expertise, OperatorParams, TraitDistribution
+    and the outcomes it has seen (a miss told, as Fitts experiments tell it) from each to the
+    next (unless the block is fresh): each trial's movement time, the selection's endpoint, hit
+    and slips, and the error scale it began with."""
+    from arteleop.operator import (
+        ACTIVITIES,
+        Expertise,
+        OperatorParams,
+        TraitDistribution,
+        believed_error_scale,
+    )
     from arteleop.teleop.pointing import run_pointing_trial
 
     traits = TraitDistribution().draw(0, f"F{block.person:02d}", Expertise())
     practice = OperatorParams()
+    if block.own_error_prior_sd is not None:
+        practice = replace(practice, own_error_prior_sd=block.own_error_prior_sd)
     rows = []
     for trial in block.trials:
         r = run_pointing_trial(trial.distance_m, trial.width_m, traits, trial.seed,
                                block.lag_ms / 1000, params=practice,
                                depth_aids=block.depth_aids)  # fmt: skip
+        scale = believed_error_scale(practice.seen_outcomes, traits.confidence,
+                                     practice.own_error_prior_sd)  # fmt: skip
         if not block.fresh:
-            practice = replace(practice, familiar_lag_s=r.believed_lag_s)
+            practice = replace(practice, familiar_lag_s=r.believed_lag_s,
+                               seen_outcomes=practice.seen_outcomes.after(not r.hit))  # fmt: skip
         rows.append({"person": block.person, "lag_ms": block.lag_ms, **vars(trial),
+                     "error_scale": scale,
                      "selected": float(r.selected), "movement_time_s": r.movement_time_s,
                      "along_m": r.along_m, "across_m": r.across_m, "hit": float(r.hit),
                      "slips": float(r.slips), "believed_lag_s": r.believed_lag_s,
@@ -156,6 +174,9 @@ def main() -> None:
                         help="every trial meets its lag anew: no practice within a block")  # fmt: skip
     parser.add_argument("--depth-aids", action="store_true",
                         help="draw the depth aids (drop line, ring, height label) in every trial")  # fmt: skip
+    parser.add_argument("--own-error-prior-sd", type=float, metavar="SD",
+                        help="the operator's prior SD on the log of its error scale, in place "
+                             "of its own (a sensitivity run; above 0)")  # fmt: skip
     parser.add_argument("--workers", type=int, default=len(os.sched_getaffinity(0)))
     parser.add_argument("--json", help="write the lag table, the fits and the cells to this file")
     args = parser.parse_args()
@@ -163,10 +184,13 @@ def main() -> None:
         parser.error(f"--people {args.people}: give 1 or more")
     if args.reps < 2:
         parser.error(f"--reps {args.reps}: give 2 or more (an effective width needs a spread)")
+    sd = args.own_error_prior_sd
+    if sd is not None and not (np.isfinite(sd) and sd > 0):
+        parser.error(f"--own-error-prior-sd {sd}: give a number above 0 (the SD of a log)")
     if args.workers < 1:
         parser.error(f"--workers {args.workers}: give 1 or more")
     people, reps, lags = (4, 3, [0.0, 225.0]) if args.quick else (args.people, args.reps, args.lags)
-    blocks = [Block(p, lag, block_trials(p, reps), args.fresh, args.depth_aids)
+    blocks = [Block(p, lag, block_trials(p, reps), args.fresh, args.depth_aids, sd)
               for lag in lags for p in range(people)]  # fmt: skip
     t0 = time.perf_counter()
     # A fresh worker for each block: a worker's memory grew about 13 MB a trial, to 12 GB
@@ -332,11 +356,41 @@ def report(rows: list[dict], lags: list[float], json_path: str | None) -> None:
             print(f"\n{name}: a = {m['a_s']:.2f} s, b = {m['b_s_per_bit']:.2f} s/bit, "
                   f"c = {m['c']:.2f}, R^2 = {m['r2']:.3f}")  # fmt: skip
     breakdown = time_breakdown(rows, lags)
+    through = through_blocks(rows, lags)
     if json_path:
         with open(json_path, "w", encoding="utf-8") as f:
             json.dump({**per_lag, "fits": fits, "cells": cells, "people": people,
-                       "breakdown": breakdown}, f, indent=1)  # fmt: skip
+                       "breakdown": breakdown, "through_blocks": through}, f, indent=1)  # fmt: skip
         print(f"\nwrote {json_path}")
+
+
+def through_blocks(rows: list[dict], lags: list[float]) -> list[dict]:
+    """Per lag and third of the block (in the order the trials ran), the error rate, the median
+    movement time of the selected trials and the mean error scale the person began them with
+    (what its misses so far taught it); printed as a table."""
+    out = []
+    print("\n## Through a block (trials in the order they ran)\n")
+    print("| lag (ms) | third | trials | errors | MT (s) | error scale |")
+    print("| ---: " * 6 + "|")
+    for lag in lags:
+        blocks: dict[int, list[dict]] = {}
+        for r in rows:  # in each block's order
+            if r["lag_ms"] == lag:
+                blocks.setdefault(r["person"], []).append(r)
+        for third in range(3):
+            part = [r for block in blocks.values()
+                    for r in np.array_split(np.array(block, dtype=object), 3)[third]]  # fmt: skip
+            if not part:
+                continue
+            done = [r["movement_time_s"] for r in part if r["selected"]]
+            entry = {"lag_ms": lag, "third": third + 1, "trials": len(part),
+                     "error_rate": float(1 - np.mean([r["hit"] for r in part])),
+                     "mt_s": float(np.median(done)) if done else float("nan"),
+                     "error_scale": float(np.mean([r["error_scale"] for r in part]))}  # fmt: skip
+            out.append(entry)
+            print(f"| {lag:g} | {third + 1} | {len(part)} | {100 * entry['error_rate']:.0f} % | "
+                  f"{entry['mt_s']:.2f} | {entry['error_scale']:.2f} |")  # fmt: skip
+    return out
 
 
 def time_breakdown(rows: list[dict], lags: list[float]) -> list[dict]:

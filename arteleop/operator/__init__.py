@@ -30,6 +30,7 @@ from arteleop.operator.live import HandTarget, LiveOperator
 from arteleop.operator.mark_memory import MarkMemory
 from arteleop.operator.minimum_jerk import minimum_jerk, minimum_jerk_profile
 from arteleop.operator.output import OperatorOutput
+from arteleop.operator.own_errors import SeenOutcomes, believed_error_scale
 from arteleop.operator.params import OperatorParams
 from arteleop.operator.perception import Perceived, PerceptionParams, perceive
 from arteleop.operator.perceptual_errors import PerceptualErrors
@@ -109,6 +110,7 @@ __all__ = [
     "Recording",
     "RecordingInfo",
     "RecordingSource",
+    "SeenOutcomes",
     "SynthesizedRecording",
     "SyntheticOperator",
     "SyntheticSource",
@@ -119,6 +121,7 @@ __all__ = [
     "WearableSample",
     "WearableSignals",
     "WornSource",
+    "believed_error_scale",
     "check_operator",
     "expected_time_s",
     "fixations",

@@ -6,6 +6,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from arteleop.operator.belief import probability_within
+from arteleop.operator.own_errors import believed_error_scale
+from arteleop.operator.params import OperatorParams
 from arteleop.operator.tasks import Goal, Task, TaskPhase
 from arteleop.operator.traits import OperatorTraits
 
@@ -13,12 +15,18 @@ from arteleop.operator.traits import OperatorTraits
 class PhaseCriterion:
     """The criterion (m) of the task's phase under way: the task's for the phase, or
     ``gross_criterion_m`` for a movement without a precision demand (and outside the task),
-    loosened by the effort spent correcting since the phase's primary movement arrived."""
+    loosened by the effort spent correcting since the phase's primary movement arrived; its
+    judgement's covariance believed short by :attr:`error_scale`."""
 
-    def __init__(self, task: Task, traits: OperatorTraits, gross_criterion_m: float) -> None:
+    def __init__(self, task: Task, traits: OperatorTraits, params: OperatorParams) -> None:
         self._task = task
         self._traits = traits
-        self._gross_m = gross_criterion_m
+        self._gross_m = params.gross_criterion_m
+        self.error_scale = believed_error_scale(
+            params.seen_outcomes, traits.confidence, params.own_error_prior_sd
+        )
+        """What the misses of its earlier trials taught the operator of its judgement: the
+        factor (at least 1) its covariance falls short by, the same all trial."""
         self._phase: TaskPhase | None = None
         self._correcting_from_s: float | None = None  # the primary's arrival in this phase
 
@@ -57,10 +65,10 @@ class PhaseCriterion:
         cov_m2: NDArray[np.float64] | None = None,
     ) -> float:
         """How sure the operator is that ``error`` (m) is within the criterion at ``t``,
-        believing it has the covariance ``cov_m2`` (m^2; the goal's judgement's by default).
-        Judged in the table's plane, the height must first be reached, as any movement without
-        a precision demand (within ``gross_criterion_m``)."""
+        believing it has the covariance ``cov_m2`` (m^2; the goal's judgement's by default)
+        times its error scale. Judged in the table's plane, the height must first be reached, as
+        any movement without a precision demand (within ``gross_criterion_m``)."""
         if goal.axes == "xy" and abs(error[2]) > self._gross_m:
             return 0.0
-        cov = goal.cov_m2 if cov_m2 is None else cov_m2
+        cov = self.error_scale * (goal.cov_m2 if cov_m2 is None else cov_m2)
         return probability_within(error, cov, self.at(t), goal.axes)

@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from arteleop.checks import Bounds, check_fields
+from arteleop.operator.own_errors import SeenOutcomes
 from arteleop.operator.perception import PerceptionParams
 from arteleop.operator.scatter import MovementScatter
 
@@ -27,6 +28,11 @@ class OperatorParams:
         arrival_timeout_s: After the hand stops, the operator looks anyway after this (s).
         familiar_lag_s: The display's lag the operator knows from practice on the system
             (s): its first estimate of the lag, before a trial shows it another.
+        seen_outcomes: The outcomes of its earlier trials the operator has seen (none, for
+            its first): how often it missed tells it how far to trust its judgement.
+        own_error_prior_sd: SD of the operator's prior on the log of the factor its
+            judgement's covariance falls short by, half-normal about 0
+            (:mod:`arteleop.operator.own_errors`).
         lag_learning_rate: How much of the difference between a movement's observed lag and
             the believed one the belief takes on (per movement): adapting to a delay is slow.
         timing_weber: The SD of a timed interval as a share of its mean (scalar timing): the
@@ -56,6 +62,8 @@ class OperatorParams:
     arrival_speed_m_s: float = 0.02
     arrival_timeout_s: float = 3.0
     familiar_lag_s: float = 0.245
+    seen_outcomes: SeenOutcomes = field(default_factory=SeenOutcomes)
+    own_error_prior_sd: float = 0.69
     lag_learning_rate: float = 0.03
     timing_weber: float = 0.15
     motion_threshold_m: float = 0.005
@@ -73,7 +81,7 @@ class OperatorParams:
         check_fields(self, {
             **dict.fromkeys(("peak_speed_m_s", "arrival_window_s",
                              "arrival_speed_m_s", "arrival_timeout_s", "gross_criterion_m",
-                             "max_look_s", "grip_ramp_s"), positive),
+                             "max_look_s", "grip_ramp_s", "own_error_prior_sd"), positive),
             **dict.fromkeys(("motor_delay_s", "visuomotor_delay_s",
                              "familiar_lag_s", "max_setbacks"), non_negative),
             "lag_learning_rate": Bounds(0, 1, "a share"),

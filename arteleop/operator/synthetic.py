@@ -84,7 +84,7 @@ class SyntheticOperator:
         self._wait_until = calibration.hold_s + 0.2
         self.hand = Hand(calib_pos)
         self._grip = 0.0
-        self._criterion = PhaseCriterion(task, self.traits, self.p.gross_criterion_m)
+        self._criterion = PhaseCriterion(task, self.traits, self.p)
         self._tremor = Tremor(self.p.tremor_amplitude_m, self.p.tremor_hz, rng)
         self._errors = PerceptualErrors(rng, self.traits.bias_seed, self.p.perception.bias_share)
         self._marks = MarkMemory(self.p.perception)
