@@ -4,9 +4,10 @@ The operator stops correcting once it is sure enough (its ``confidence``, c) tha
 within its criterion, believing the error ``N(e_hat, Sigma)``: ``Sigma`` is its judgement's
 precision, and it does not know its lasting errors (a depth scale, a stale frame). A person who
 sees it misses more often than it meant to infers that its errors are larger than it believed,
-by a factor ``lambda`` on ``Sigma``, and from then on demands more before it stops: people keep
-their error rate low by slowing down once they see their misses (the speed-accuracy trade-off
-set by feedback; Zhai, Kong & Ren 2004).
+by a factor ``lambda`` on ``Sigma``, and from then on demands more before it stops: people told
+to be fast and accurate keep their error rate near 4 % (Soukoreff & MacKenzie 2004), and take
+their own motor variability into account when they aim (Trommershäuser, Maloney & Landy
+2003); docs/operator-model.md says what is assumed.
 
 Stopping at the criterion's edge of certainty, centred in the table's plane, an operator whose
 true covariance is ``lambda Sigma`` misses with probability ``q(lambda) = (1 - c)^(1 / lambda)``
