@@ -6,9 +6,9 @@ added lag) for its first ``--people`` people and ``--reps`` repetitions (the ben
 seeds), the person having seen ``--seen MISSES/TRIALS`` outcomes before (what knowing one's
 misses carries; ``0/0``: none). For each trial it prints whether the selection hit, how far off
 it landed along and across the task axis (mm), the movement time, the corrections and looks,
-and each look's verdict: ``sure`` (sure enough of being within: accept), ``unsure`` (sure
-enough of being outside: correct), ``gained-nothing`` (looking longer gained nothing: accept if
-judged within, else correct) or ``too-long`` (``max_look_s`` reached), with how sure it was.
+and each look's verdict: ``sure`` (sure enough of being within), ``gained-nothing`` (looking
+longer gained nothing: accept if judged within), ``unsure`` (sure enough of being outside) or
+``too-long`` (``max_look_s`` reached), whether it accepted or corrected, and how sure it was.
 
     python benchmarks/read_pointing.py [--people 4] [--reps 2] [--distance-m 0.4]
         [--width-m 0.01] [--seen 5/20]
@@ -33,6 +33,7 @@ from arteleop.operator import (
     believed_error_scale,
 )
 from arteleop.operator import look as look_module
+from arteleop.operator.belief import averaging_saturated
 from arteleop.teleop.pointing import run_pointing_trial
 
 VERDICTS: list[tuple[str, float]] = []
@@ -45,10 +46,15 @@ def _logging_verdict(verdict):  # type: ignore[no-untyped-def]
         looked_too_long = time_s - self.start_s >= self.max_look_s
         result = verdict(self, time_s, sure, variance_m2, judged_within)
         if result is not None:
+            # As Look.verdict decides: sure enough accepts; a look that gains nothing accepts
+            # an error judged within, whatever else holds; else unsure or too long corrects.
             confidence = self.traits.confidence
-            reason = ("sure" if sure >= confidence else "unsure" if sure <= 1 - confidence
-                      else "too-long" if looked_too_long else "gained-nothing")  # fmt: skip
-            VERDICTS.append((reason, sure))
+            saturated = averaging_saturated(self._first_variance_m2, variance_m2, self._glances)
+            reason = ("sure" if sure >= confidence
+                      else "gained-nothing" if saturated
+                      else "unsure" if sure <= 1 - confidence
+                      else "too-long" if looked_too_long else "?")  # fmt: skip
+            VERDICTS.append((f"{reason} ({'accept' if result else 'correct'})", sure))
         return result
 
     return logged

@@ -18,8 +18,11 @@ about 0 (it believes its own judgement until shown otherwise):
     ln p(lambda | m, n) = -(ln lambda)^2 / (2 s^2) + m ln q + (n - m) ln (1 - q) + const
 
 Hits alone keep ``lambda`` at 1: its care does not drift without a miss. Misses at the rate it
-meant (``1 - c``) move ``lambda`` little; a miss rate four times that, by about 1.9 once many
-outcomes are seen.
+meant (``1 - c``) move ``lambda`` little; at c = 0.95 a miss rate four times that, to about 1.9
+once many outcomes are seen (at c = 0.8, to 7; at 0.995, to 1.35). The scale is sought up to 64:
+misses on every trial for long reach that bound. It scales all the operator believes of its
+error, the prediction in flight too: less sure that a predicted miss is one, it corrects fewer
+in flight, and more after a look.
 """
 
 from __future__ import annotations
@@ -42,7 +45,8 @@ class SeenOutcomes:
 
     Attributes:
         trials: Trials whose outcome it saw.
-        misses: Of those, the ones it saw missed (a selection outside the circle).
+        misses: Of those, the ones it saw missed (in pointing: a selection outside the
+            circle, or none in time).
     """
 
     trials: int = 0
