@@ -88,6 +88,14 @@ def block_trials(person: int, reps: int) -> tuple[Trial, ...]:
     return tuple(trials)
 
 
+def person_traits(person: int):  # type: ignore[no-untyped-def]
+    """The traits of the bench's simulated person ``person`` (F00, F01, ...), drawn as a study
+    draws a novice's."""
+    from arteleop.operator import Expertise, TraitDistribution
+
+    return TraitDistribution().draw(0, f"F{person:02d}", Expertise())
+
+
 def run(block: Block) -> list[dict[str, float]]:
     """A block's pointing trials, one after the other, the person carrying its belief of the lag
     and the outcomes it has seen (a miss told, as Fitts experiments tell it) from each to the
@@ -95,14 +103,12 @@ def run(block: Block) -> list[dict[str, float]]:
     and slips, and the error scale it began with."""
     from arteleop.operator import (
         ACTIVITIES,
-        Expertise,
         OperatorParams,
-        TraitDistribution,
         believed_error_scale,
     )
     from arteleop.teleop.pointing import run_pointing_trial
 
-    traits = TraitDistribution().draw(0, f"F{block.person:02d}", Expertise())
+    traits = person_traits(block.person)
     practice = OperatorParams()
     if block.own_error_prior_sd is not None:
         practice = replace(practice, own_error_prior_sd=block.own_error_prior_sd)

@@ -22,14 +22,12 @@ from arteleop import blas_kernel  # noqa: F401  (first: it picks numpy's BLAS ke
 import argparse
 from dataclasses import replace
 
-from bench_fitts import DISTANCES_M, WIDTHS_M  # benchmarks/, the script's folder
+from bench_fitts import DISTANCES_M, WIDTHS_M, block_trials, person_traits  # benchmarks/
 
 from arteleop.errors import ConfigurationError
 from arteleop.operator import (
-    Expertise,
     OperatorParams,
     SeenOutcomes,
-    TraitDistribution,
     believed_error_scale,
 )
 from arteleop.operator import look as look_module
@@ -84,18 +82,20 @@ def main() -> None:
     if args.people < 1 or args.reps < 1:
         parser.error(f"--people {args.people} --reps {args.reps}: give 1 or more of each")
     look_module.Look.verdict = _logging_verdict(look_module.Look.verdict)
-    i, j = DISTANCES_M.index(args.distance_m), WIDTHS_M.index(args.width_m)
     params = replace(OperatorParams(), seen_outcomes=args.seen)
     print("| person | rep | error scale | hit | along (mm) | across (mm) | MT (s) | corrections "
           "| looks | verdicts (how sure) |")  # fmt: skip
     print("| --- " * 10 + "|")
     for person in range(args.people):
-        traits = TraitDistribution().draw(0, f"F{person:02d}", Expertise())
+        traits = person_traits(person)
         scale = believed_error_scale(args.seen, traits.confidence, params.own_error_prior_sd)
-        for rep in range(args.reps):
+        cell = [t for t in block_trials(person, args.reps)
+                if (t.distance_m, t.width_m) == (args.distance_m, args.width_m)]  # fmt: skip
+        for trial in sorted(cell, key=lambda t: t.rep):
+            rep = trial.rep
             VERDICTS.clear()
-            seed = 10000 * person + 100 * rep + 10 * i + j  # as bench_fitts.block_trials
-            r = run_pointing_trial(args.distance_m, args.width_m, traits, seed, params=params)
+            r = run_pointing_trial(trial.distance_m, trial.width_m, traits, trial.seed,
+                                   params=params)  # fmt: skip
             said = ", ".join(f"{why} {sure:.2f}" for why, sure in VERDICTS)
             print(f"| F{person:02d} | {rep} | {scale:.2f} | {'yes' if r.hit else 'no'} "
                   f"| {1000 * r.along_m:+.1f} | {1000 * r.across_m:+.1f} "
