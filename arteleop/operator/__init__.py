@@ -55,6 +55,7 @@ from arteleop.operator.sources import (
     check_operator,
     live_source,
     synthetic_source,
+    task_source,
 )
 from arteleop.operator.submovements import expected_time_s, submovement_duration_s
 from arteleop.operator.synthesis import SynthesizedRecording, record_hand_motion
@@ -143,6 +144,7 @@ __all__ = [
     "simulate_wearable",
     "submovement_duration_s",
     "synthetic_source",
+    "task_source",
     "write_recording",
 ]
 

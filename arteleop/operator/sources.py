@@ -174,13 +174,12 @@ def synthetic_source(
     wearable: WearableConfig | None = None,
     grasp_clearance_m: float = 0.019,
 ) -> SyntheticSource:
-    """A synthetic operator who knows the task from instructions and familiarisation.
+    """A synthetic operator who knows the pick-and-place from instructions and familiarisation.
 
     Args:
         bowl: The bowl; the operator grasps it at :meth:`BowlSpec.grasp_offset_m`, a rim point
             facing +y, where the open fingers straddle the wall.
-        rest_gripper_m: Where the gripper waits at rest (base frame, m), to align the hand on
-            before engaging.
+        rest_gripper_m: Where the gripper waits at rest, to align the hand on before engaging.
         mapping: The hand-to-gripper mapping the operator was taught.
         seed: Seeds the operator and its wearable (a stream apart from the network's).
         params: The operator's constants; the defaults are docs/operator-model.md's.
@@ -188,20 +187,27 @@ def synthetic_source(
         grasp_clearance_m: How far off the grasp point the open fingers still straddle the
             bowl's wall (m): the task's tolerance for the grasp.
     """
+    task = PickAndPlace(bowl.grasp_offset_m(), rest_gripper_m, grasp_clearance_m)
+    return task_source(task, mapping, seed, params, traits, wearable)
+
+
+def task_source(
+    task: Task,
+    mapping: MappingConfig,
+    seed: int,
+    params: OperatorParams | None = None,
+    traits: OperatorTraits | None = None,
+    wearable: WearableConfig | None = None,
+) -> SyntheticSource:
+    """A synthetic operator doing ``task``, taught ``mapping`` from its hand to the gripper, and
+    seeded by ``seed`` (it and its wearable: a stream apart from the network's)."""
     # Imported here: the robot package loads open3d and pinocchio, which `arteleop.operator`
     # alone (recordings, reconstruction) has no need of.
     from arteleop.robot.mapping import HandToGripper
 
-    task = PickAndPlace(bowl.grasp_offset_m(), rest_gripper_m, grasp_clearance_m)
     rng = np.random.default_rng([seed, 1])
-    return SyntheticSource(
-        task,
-        HandToGripper(mapping).hand_position_for,
-        rng,
-        wearable=wearable,
-        params=params,
-        traits=traits,
-    )
+    to_hand = HandToGripper(mapping).hand_position_for
+    return SyntheticSource(task, to_hand, rng, wearable=wearable, params=params, traits=traits)
 
 
 def live_source(target: HandTarget, mapping: MappingConfig, seed: int) -> WornSource:

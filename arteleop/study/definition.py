@@ -23,6 +23,7 @@ from arteleop.operator.traits import TraitDistribution
 from arteleop.scene.camera_config import HeadCameraConfig
 from arteleop.study.participants import CohortConfig, ParticipantSpec
 from arteleop.teleop.hand_filter import HandFilterConfig
+from arteleop.teleop.trial_task import trial_task
 
 MODALITY_NAMES: tuple[str, ...] = STUDY_MODALITIES
 """The original study's modalities, in its order: the default conditions."""
@@ -102,10 +103,13 @@ class ConditionSpec:
 
 @dataclass(frozen=True)
 class StudyConfig:
-    """A within-subject study of AR modalities on the pick-and-place task.
+    """A within-subject study of AR modalities on one task.
 
     Attributes:
         name: A name for the report.
+        task: What every trial asks and how it is scored: ``"pick-and-place"`` (the original
+            study's), or a task of one's own as ``"package.module:NAME"``
+            (:func:`~arteleop.teleop.trial_task`, docs/guides/extending.md).
         consent: The information and consent page shown to people (``arteleop study serve``),
             in Markdown (the study file's ``consent``, or the file its ``consent_file`` names);
             empty: the built-in page, which says this study's trials and timeout
@@ -161,6 +165,7 @@ class StudyConfig:
     """
 
     name: str = "arteleop default study"
+    task: str = "pick-and-place"
     consent: str = ""
     instructions: str = ""
     seed: int = 0
@@ -184,6 +189,10 @@ class StudyConfig:
     conditions: tuple[ConditionSpec, ...] = ()
 
     def __post_init__(self) -> None:
+        try:
+            trial_task(self.task)
+        except ConfigurationError as err:
+            raise StudyDefinitionError(str(err)) from None
         if self.seed < 0:
             raise StudyDefinitionError(f"seed = {self.seed}: expected a whole number, 0 or more.")
         unknown = [m for m in self.modalities if not _is_cue_set(m)]

@@ -78,6 +78,7 @@ def trial_config(study: StudyConfig, site: StudySite, spec: TrialSpec) -> TrialC
         site=site.site_config(spec, study.camera_registration()),
         record_trace=True,
         depth_aids=study.depth_aids,
+        task=study.task,
     )
 
 

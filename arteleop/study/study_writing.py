@@ -25,6 +25,8 @@ def _toml_value(value: Any) -> str:
 
 _COMMENTS = {
     "name": "a name for the report",
+    "task": "what every trial asks and how it is scored: pick-and-place, or a task of your own "
+    'as "package.module:NAME" (docs/guides/extending.md)',
     "consent": "the information and consent page of 'arteleop study serve' (Markdown; \\n is a "
     'new line), the text your ethics board approved; consent_file = "consent.md" reads it from '
     "that file instead; empty: a built-in one that says this file's trials and timeout",

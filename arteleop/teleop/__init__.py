@@ -35,6 +35,7 @@ from arteleop.teleop.task_monitor import TaskMonitor
 from arteleop.teleop.timing import StageStats, StageTimer
 from arteleop.teleop.trace import TRACE_COLUMNS, TrialTrace
 from arteleop.teleop.trial import Outcome, TrialConfig, TrialProgress, TrialResult
+from arteleop.teleop.trial_task import PICK_AND_PLACE, TASKS, TaskSite, TrialTask, trial_task
 
 if TYPE_CHECKING:
     from arteleop.teleop.live_app import TeleopApp, TeleopAppConfig, TrialInterrupted
@@ -46,6 +47,8 @@ _LAZY = {
 }
 
 __all__ = [
+    "PICK_AND_PLACE",
+    "TASKS",
     "TRACE_COLUMNS",
     "ControllerConfig",
     "ControllerState",
@@ -68,6 +71,7 @@ __all__ = [
     "StageTimer",
     "StreamingReconstructor",
     "TaskMonitor",
+    "TaskSite",
     "TeleopApp",
     "TeleopAppConfig",
     "TeleopController",
@@ -76,6 +80,7 @@ __all__ = [
     "TrialInterrupted",
     "TrialProgress",
     "TrialResult",
+    "TrialTask",
     "TrialTrace",
     "calibrate",
     "calibrate_from_hold",
@@ -87,6 +92,7 @@ __all__ = [
     "run_trial",
     "site_frame",
     "trial_operator",
+    "trial_task",
     "view_assets",
 ]
 

@@ -20,19 +20,19 @@ from numpy.typing import NDArray
 
 from arteleop.ar_features import Display, DisplayFrame, modality_cues
 from arteleop.errors import ConfigurationError
-from arteleop.operator import OperatorSource, SyntheticSource, WearableSample, synthetic_source
+from arteleop.operator import OperatorSource, SyntheticSource, WearableSample, task_source
 from arteleop.robot import RIGHT_ARM_JOINTS
-from arteleop.scene import BowlTracker, RemoteSite, SiteState
+from arteleop.scene import RemoteSite, SiteState
 from arteleop.teleop.clock import LoopClock
 from arteleop.teleop.controller import TeleopController
 from arteleop.teleop.display_feed import DisplayFeed
 from arteleop.teleop.latency import LatencyAccount
 from arteleop.teleop.network import NetworkLink
 from arteleop.teleop.predictor import CommandPredictor
-from arteleop.teleop.task_monitor import TaskMonitor
 from arteleop.teleop.timing import StageTimer
 from arteleop.teleop.trace import TrialTrace
 from arteleop.teleop.trial import Outcome, TrialConfig, TrialProgress, TrialResult
+from arteleop.teleop.trial_task import TaskSite, trial_task
 
 OUT_OF_REACH_S = 0.5
 OUT_OF_REACH_M = 0.01
@@ -68,17 +68,13 @@ def run_trial(
 
 
 def trial_operator(site: RemoteSite, config: TrialConfig, **kwargs: Any) -> SyntheticSource:
-    """The synthetic operator of a trial on ``site``, seeded from the trial's seed; it aligns its
-    hand on the gripper where it rests now, and knows how far off the rim the open fingers still
-    straddle the wall. ``kwargs`` go to :func:`~arteleop.operator.synthetic_source`
-    (``params``, ``traits``, ``wearable``)."""
-    bowl = site.config.workspace.bowl
-    rest_gripper_m = site.observe().gripper_m
-    clearance_m = (site.gripper_gap_range_m[1] - bowl.wall_thickness_m) / 2
-    return synthetic_source(
-        bowl, rest_gripper_m, config.controller.mapping, config.seed,
-        grasp_clearance_m=clearance_m, **kwargs,
-    )  # fmt: skip
+    """The synthetic operator of a trial on ``site``, doing the trial's task
+    (:attr:`TrialConfig.task`), seeded from the trial's seed; it aligns its hand on the gripper
+    where it rests now. ``kwargs`` go to :func:`~arteleop.operator.task_source` (``params``,
+    ``traits``, ``wearable``)."""
+    told = TaskSite(site.config.workspace, site.observe().gripper_m, site.gripper_gap_range_m)
+    task = trial_task(config.task).operator_task(told)
+    return task_source(task, config.controller.mapping, config.seed, **kwargs)
 
 
 def display_frame_at(
@@ -172,7 +168,7 @@ class _Loop:
             if cues.predictive_ghost or display is not None
             else None
         )
-        self.monitor = TaskMonitor(ws, BowlTracker(ws.bowl))
+        self.monitor = trial_task(config.task).monitor(ws)
         self.latency = LatencyAccount()
         self.feed = DisplayFeed(
             site,

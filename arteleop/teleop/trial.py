@@ -56,6 +56,8 @@ class TrialConfig:
             the tracker's model sees none of the bowl (:mod:`arteleop.teleop.task_monitor`);
             False renders every look, the plain path it is checked against.
         depth_aids: The display draws the depth aids (:attr:`DisplayFrame.depth_aids`).
+        task: What the trial asks and how it is scored: a name :func:`~arteleop.teleop.trial_task`
+            knows (``"pick-and-place"``, or ``"package.module:NAME"`` for a task of one's own).
     """
 
     modality: str = "full"
@@ -70,9 +72,14 @@ class TrialConfig:
     record_trace: bool = False
     skip_hidden_tracker_renders: bool = True
     depth_aids: bool = False
+    task: str = "pick-and-place"
 
     def __post_init__(self) -> None:
+        # Imported here: a task's module brings the task monitor, which needs this one's Outcome.
+        from arteleop.teleop.trial_task import trial_task
+
         modality_cues(self.modality)
+        trial_task(self.task)
         if self.network.delay_s + 3 * self.network.jitter_s >= self.timeout_s:
             raise ConfigurationError(
                 f"The network delay ({self.network.delay_s} s, jitter {self.network.jitter_s} s) "
