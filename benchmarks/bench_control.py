@@ -177,7 +177,7 @@ class _TimedDisplay:
 
 
 ORIGINAL_LATENCY_MS = 89.0
-"""End-to-end latency the original system measured (docs/study.md), the reference for this table."""
+"""End-to-end latency the original system measured (docs/explanation/study.md), the reference for this table."""
 
 
 def latency(seconds: float) -> None:

@@ -10,7 +10,7 @@ display from its own movement has to allow for. Beside it, what the operator cam
 by the trial's end (its lag learnt from the display's responses).
 
 ``OperatorParams.familiar_lag_s`` is the median at zero added delay: the lag the operator knows
-from practice on the system (docs/operator-model.md).
+from practice on the system (docs/explanation/operator-model.md).
 
     python benchmarks/bench_display_lag.py [--people 4] [--lags 0,225] [--workers 2]
 """

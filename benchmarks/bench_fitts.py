@@ -333,7 +333,7 @@ def report(rows: list[dict], lags: list[float], json_path: str | None) -> None:
     print("## Under added lag (round trip)\n")
     print(
         f"The yardstick: people's ratio on MacKenzie & Ware's line (+64 % at 225 ms), from this "
-        f"display's own lag of {own_lag_s:.3f} s (docs/operator-model.md).\n"
+        f"display's own lag of {own_lag_s:.3f} s (docs/explanation/operator-model.md).\n"
     )
     print("| lag (ms) | MT (s, median of cells) | MT / no lag, paired by person (95 % CI) | people "
           "| yardstick | errors | slips | lag believed at the end (s) |")  # fmt: skip

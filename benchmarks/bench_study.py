@@ -7,7 +7,7 @@ with ``--workers`` processes, then its analysis, and prints:
   the sum of the trials' own wall times measured in the same run;
 - each trial's batch speed (simulated s per wall s, medians per phase);
 - per modality, the median completion time and placement error, and the analysis's p-values
-  against no AR, beside the original study's directions (docs/study.md §6).
+  against no AR, beside the original study's directions (docs/explanation/study.md §6).
 
     python benchmarks/bench_study.py [--participants 22] [--workers 2] [--out DIR]
 """

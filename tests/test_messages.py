@@ -182,7 +182,7 @@ def recording(tmp_path_factory: pytest.TempPathFactory) -> Path:
     ("edit", "message"),
     [
         (lambda side: [side], "a JSON list; expected an object with format, version, rate_hz, "
-         "arm, calibration_posture, subject_id and units (docs/recording-format.md)"),
+         "arm, calibration_posture, subject_id and units (docs/reference/recording-format.md)"),
         (lambda side: side | {"rate_hz": 0}, "RecordingInfo.rate_hz = 0.0: expected 10.0-1000.0 "
          "(Hz, an IMU's sample rate)."),
         (lambda side: side | {"rate_hz": 1e6}, "RecordingInfo.rate_hz = 1000000.0: expected "

@@ -1,7 +1,7 @@
 """Analysis of study files: smoothness metrics, statistics, figures and reports.
 
 This package imports nothing else from arteleop: it works on any CSVs of the documented format
-(docs/data-format.md), from the simulator or from a real lab.
+(docs/reference/data-format.md), from the simulator or from a real lab.
 """
 
 import importlib

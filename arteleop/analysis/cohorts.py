@@ -41,7 +41,7 @@ MIN_PAIRS = 3
 def pool_cohorts(studies: Sequence[StudyData]) -> pd.DataFrame:
     """The experimental trials of every study, with its ``cohort`` (1, 2, ...), each trial's
     ``network`` profile and, where a participants table came with it, ``expert`` (at least two
-    hours a week of AR/VR or of video games, docs/study.md §5) and the participant's
+    hours a week of AR/VR or of video games, docs/explanation/study.md §5) and the participant's
     ``source`` (synthetic or real)."""
     frames = []
     for k, data in enumerate(studies, start=1):

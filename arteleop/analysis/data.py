@@ -1,4 +1,5 @@
-"""Reading and checking study files (docs/data-format.md). Every error names file, line, column."""
+"""Reading and checking study files (docs/reference/data-format.md). Every error names file, line,
+column."""
 
 from __future__ import annotations
 
@@ -13,7 +14,8 @@ import pandas as pd
 from arteleop.analysis.errors import AnalysisInputError
 
 MODALITIES: tuple[str, ...] = ("none", "manipulation", "embodiment", "task", "full")
-"""The original study's modalities, compared by the thesis's tests (docs/study.md §3)."""
+"""The original study's modalities, compared by the thesis's tests (docs/explanation/study.md
+§3)."""
 CUE_NAMES: tuple[str, ...] = (
     *MODALITIES, "predictive", "ghost", "beam", "distance_bar", "grip_bar", "target_mesh",
     "predictive_ghost",

@@ -201,7 +201,7 @@ def _method(options: AnalysisOptions) -> list[str]:
                  "normal approximation with continuity correction, as MATLAB's `ranksum`).")  # fmt: skip
     if options.method == "thesis":
         return [
-            "Method `thesis`, the original study's procedure (docs/study.md §5), to reproduce "
+            "Method `thesis`, the original study's procedure (docs/explanation/study.md §5), to reproduce "
             "it: per modality and measure, the participant with the maximum and the one with "
             f"the minimum value are removed, and the rest tested as an ordinary sample. {tests}",
             "",

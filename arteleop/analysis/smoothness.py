@@ -10,7 +10,8 @@ fit at both ends). Jerk peaks at a movement's start and end, where repeated cent
 are least accurate; the order-5 fit is exact there for minimum-jerk (quintic) movements.
 
 References:
-- Normalised jerk as in docs/study.md §5: J = sqrt(1/2 * integral(j(t)^2 dt) * D^5 / L^2).
+- Normalised jerk as in docs/explanation/study.md §5: J = sqrt(1/2 * integral(j(t)^2 dt) * D^5 /
+  L^2).
 - LDLJ and SPARC: Balasubramanian, Melendez-Calderon, Roby-Brami & Burdet, "On the analysis of
   movement smoothness", J. NeuroEng. Rehabil. 12:112 (2015); SPARC first in Balasubramanian et
   al., IEEE TBME 59(8), 2012.
@@ -38,7 +39,7 @@ SG_POLYORDER = 5
 SG_WINDOW_S = 0.1
 STILL_SPEED_M_S = 0.05
 """Below this speed (m/s) the hand is still: the speed that starts the trial's clock
-(docs/study.md §1), so that the hand before motion onset would count as still."""
+(docs/explanation/study.md §1), so that the hand before motion onset would count as still."""
 
 
 def _prepare(
@@ -97,7 +98,8 @@ def normalized_jerk(
     Args:
         time_s: (N,) sample times (s).
         positions_m: (N, 3) positions (m), or (N,) / (N, k) already projected.
-        plane: Axes to keep: "xy" (docs/study.md's main motion plane), "xyz", or indices.
+        plane: Axes to keep: "xy" (docs/explanation/study.md's main motion plane), "xyz", or
+        indices.
         cutoff_hz: Low-pass cutoff; None skips filtering.
     """
     _, p, dt = _prepare(time_s, positions_m, plane, cutoff_hz)

@@ -8,9 +8,9 @@ docs/guides/analysing-data.md describes.
 - ``yuen``: robust to outliers at its stated error rate: Yuen's (1974) test of 20 % trimmed
   means, whose standard error comes from the winsorized variance, so the trimming is accounted
   for; paired: the same trimmed-mean test on the paired differences (Tukey & McLaughlin 1963).
-- ``thesis``: the original study's procedure (docs/study.md §5), kept to reproduce it: per group
-  the largest and the smallest value are dropped, then the untrimmed method's tests treat the
-  rest as an ordinary sample. Its standard error is too small, so it rejects a true null about
+- ``thesis``: the original study's procedure (docs/explanation/study.md §5), kept to reproduce it:
+  per group the largest and the smallest value are dropped, then the untrimmed method's tests treat
+  the rest as an ordinary sample. Its standard error is too small, so it rejects a true null about
   twice as often as p <= 0.05 says (0.08-0.12 in our checks, the more the fewer participants).
 
 Options: paired tests for the within-subject design, Holm correction within each family

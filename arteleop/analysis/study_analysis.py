@@ -45,7 +45,7 @@ from arteleop.analysis.statistics import (
 )
 
 EXPERTISE_KINDS = {"avr": "avr_hours", "games": "games_hours"}
-EXPERT_MIN_BUCKET = 2  # at least two hours a week (docs/study.md §4)
+EXPERT_MIN_BUCKET = 2  # at least two hours a week (docs/explanation/study.md §4)
 
 
 @dataclass
@@ -70,8 +70,8 @@ class AnalysisResult:
 
 
 def analyse(study: StudyData, options: AnalysisOptions | None = None) -> AnalysisResult:
-    """The comparisons of docs/study.md §5 (modalities, order, expertise, questionnaire), each
-    by ``options``' method."""
+    """The comparisons of docs/explanation/study.md §5 (modalities, order, expertise,
+    questionnaire), each by ``options``' method."""
     options = options or AnalysisOptions()
     notes: list[str] = []
     trials = study.analysed_trials()

@@ -1,5 +1,6 @@
-"""The AR modalities as sets of AR layers: the five of the original study (docs/study.md §3) and
-the predictive ghost, and any other set of layers named by a cue-set label."""
+"""The AR modalities as sets of AR layers: the five of the original study
+(docs/explanation/study.md §3) and the predictive ghost, and any other set of layers named by a
+cue-set label."""
 
 from __future__ import annotations
 

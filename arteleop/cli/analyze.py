@@ -18,7 +18,7 @@ if TYPE_CHECKING:
 
 @dataclass(frozen=True)
 class AnalyzeCommand:
-    """Analyse a study's files (docs/study.md §5) and write tables,
+    """Analyse a study's files (docs/explanation/study.md §5) and write tables,
     figures and report.md; given several run folders of one design (cohorts), pool them:
     medians per cohort and each cue set's effect against none, paired by participant."""
 

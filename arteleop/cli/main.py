@@ -80,7 +80,7 @@ MOVED_OPTIONS = {
 
 
 OVERVIEW = """\
-arteleop: study Augmented Reality in robot teleoperation, in simulation (docs/study.md).
+arteleop: study Augmented Reality in robot teleoperation, in simulation (docs/explanation/study.md).
 
 commands:
   trial            one pick-and-place trial, by a synthetic operator or a recording;

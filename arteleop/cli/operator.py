@@ -53,7 +53,7 @@ class OperatorSynthCommand:
     """Run one synthetic trial headless and write the operator's wearable recording."""
 
     modality: Modality = "full"
-    """AR modality shown to the synthetic operator (docs/study.md §3)"""
+    """AR modality shown to the synthetic operator (docs/explanation/study.md §3)"""
     seed: int = 0
     """seed of every random source of the trial (0 or more)"""
     out: Path = Path("synthetic.csv")

@@ -13,7 +13,7 @@ if TYPE_CHECKING:
 
 
 Modality = Literal["none", "manipulation", "embodiment", "task", "full", "predictive"]
-"""The AR modalities (docs/study.md §3), as the command line offers them."""
+"""The AR modalities (docs/explanation/study.md §3), as the command line offers them."""
 
 Renderer = Literal["auto", "gl", "tiny"]
 """The head camera's renderers (``HeadCameraConfig.renderer``)."""

@@ -35,7 +35,7 @@ def study_init(cmd: StudyInitCommand) -> int:
         cmd.file.write_text(study_text(StudyConfig()), encoding="utf-8")
     except OSError as err:
         raise ConfigurationError(f"Cannot write {cmd.file}: {err.strerror or err}.") from err
-    print(f"wrote {cmd.file}: the default study (docs/study.md §4); edit it, then")
+    print(f"wrote {cmd.file}: the default study (docs/explanation/study.md §4); edit it, then")
     print(f"  arteleop study run {cmd.file} --out RUN_DIR")
     return 0
 
@@ -242,7 +242,7 @@ class StudyAnswerCommand:
     run_dir: Annotated[tyro.conf.Positional[Path], tyro.conf.arg(metavar="RUN_DIR")]
     """the run folder"""
     answers: Annotated[tyro.conf.Positional[Path], tyro.conf.arg(metavar="ANSWERS.csv")]
-    """CSV with participant, ar_class, item, score (docs/data-format.md); these participants' answers replace the simulated ones"""
+    """CSV with participant, ar_class, item, score (docs/reference/data-format.md); these participants' answers replace the simulated ones"""
 
 
 def study_answer(cmd: StudyAnswerCommand) -> int:

@@ -27,7 +27,7 @@ class TrialCommand(CameraSize):
     operator: str = "synthetic"
     """'synthetic' (a simulated participant), or the path of a wearable recording's CSV"""
     modality: Modality = "full"
-    """AR modality shown to the operator (docs/study.md §3)"""
+    """AR modality shown to the operator (docs/explanation/study.md §3)"""
     seed: int = 0
     """seed of every random source of the trial (0 or more)"""
     delay_ms: float = 0.0
@@ -35,7 +35,7 @@ class TrialCommand(CameraSize):
     timeout_s: float = 120.0
     """simulated time after which the trial ends as a timeout (s)"""
     confidence: float = 0.95
-    """synthetic operator: how sure it must be that the error is within its criterion to stop correcting (0.5-0.999; docs/operator-model.md)"""
+    """synthetic operator: how sure it must be that the error is within its criterion to stop correcting (0.5-0.999; docs/explanation/operator-model.md)"""
     placement_criterion_m: float = 0.010
     """synthetic operator: how close to the target it holds good enough (0.001-0.1 m)"""
     filter_min_cutoff_hz: float = 1.0
@@ -185,7 +185,7 @@ class TeleopCommand:
     operator: str = "synthetic"
     """'synthetic' (a new simulated participant each trial), 'live' (drive the gripper with a gizmo and a grip slider in the page), or the path of a wearable recording's CSV"""
     modality: Modality = "full"
-    """AR modality of the trials (docs/study.md §3; 'predictive': the predictive ghost, ahead of a delayed view); the page's panel can switch layers live"""
+    """AR modality of the trials (docs/explanation/study.md §3; 'predictive': the predictive ghost, ahead of a delayed view); the page's panel can switch layers live"""
     seed: int = 0
     """seed of the first trial (0 or more); each next trial takes the next one"""
     delay_ms: float = 0.0

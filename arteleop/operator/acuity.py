@@ -1,6 +1,6 @@
 """How precisely a person judges what a display draws: one function of the display's geometry and
-published acuities, for every judgement of every layer (docs/operator-model.md gives each value's
-source).
+published acuities, for every judgement of every layer (docs/explanation/operator-model.md gives
+each value's source).
 
 A judgement is of where one drawn thing is relative to another (the gripper against the grasp
 point, the bowl against the target mesh, the centre of a circle against its rim). Its precision

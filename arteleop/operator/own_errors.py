@@ -7,7 +7,7 @@ sees it misses more often than it meant to infers that its errors are larger tha
 by a factor ``lambda`` on ``Sigma``, and from then on demands more before it stops: people told
 to be fast and accurate keep their error rate near 4 % (Soukoreff & MacKenzie 2004), and take
 their own motor variability into account when they aim (Trommershäuser, Maloney & Landy
-2003); docs/operator-model.md says what is assumed.
+2003); docs/explanation/operator-model.md says what is assumed.
 
 Stopping at the criterion's edge of certainty, centred in the table's plane, an operator whose
 true covariance is ``lambda Sigma`` misses with probability ``q(lambda) = (1 - c)^(1 / lambda)``

@@ -12,8 +12,8 @@ from arteleop.operator.scatter import MovementScatter
 
 @dataclass(frozen=True)
 class OperatorParams:
-    """The synthetic operator's constants, the same for every person (docs/operator-model.md
-    gives each one's value and source).
+    """The synthetic operator's constants, the same for every person
+    (docs/explanation/operator-model.md gives each one's value and source).
 
     Attributes:
         scatter: Where a submovement's endpoint scatters, along its way and across it.

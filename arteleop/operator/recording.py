@@ -9,7 +9,7 @@ Quaternions are each IMU's orientation in its earth frame, (w, x, y, z), unit le
 0 (open) to 1 (pinched). Version 2: a sample the wearable lost in flight is a row with its time
 and every other cell empty, so that a replay loses it too. The sidecar gives the rate, the arm's
 segment lengths, the calibration posture held at the start, the subject id and the units. See
-docs/recording-format.md. Reading and writing the files is
+docs/reference/recording-format.md. Reading and writing the files is
 :mod:`arteleop.operator.recording_file`'s.
 """
 

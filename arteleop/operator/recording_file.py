@@ -1,5 +1,6 @@
 """Reading and writing wearable recordings: the CSV and its JSON sidecar
-(docs/recording-format.md), loaded strictly, each problem named by file, line and column."""
+(docs/reference/recording-format.md), loaded strictly, each problem named by file, line and
+column."""
 
 from __future__ import annotations
 
@@ -78,7 +79,7 @@ def load_recording(csv_path: Path, config: LoaderConfig | None = None) -> Record
     if csv_path.stat().st_size == 0:
         raise RecordingError(
             f"{csv_path} is empty: a recording has a header line and at least 2 samples "
-            "(docs/recording-format.md)."
+            "(docs/reference/recording-format.md)."
         )
     info = _load_sidecar(sidecar_path(csv_path), csv_path)
     rows: list[list[float]] = []
@@ -250,7 +251,8 @@ def _load_sidecar(path: Path, csv_path: Path) -> RecordingInfo:
     if not isinstance(data, dict):
         raise RecordingError(
             f"{path}: a JSON {type(data).__name__}; expected an object with format, version, "
-            "rate_hz, arm, calibration_posture, subject_id and units (docs/recording-format.md)"
+            "rate_hz, arm, calibration_posture, subject_id and units "
+            "(docs/reference/recording-format.md)"
         )
     if data.get("format") != FORMAT_NAME or data.get("version") not in READ_VERSIONS:
         raise RecordingError(

@@ -31,7 +31,8 @@ from arteleop.checks import Bounds, check_fields
 
 @dataclass(frozen=True)
 class MovementScatter:
-    """A submovement's endpoint scatter (docs/operator-model.md gives each value's source).
+    """A submovement's endpoint scatter (docs/explanation/operator-model.md gives each value's
+    source).
 
     Attributes:
         alpha: Guiard & Rioul's exponent (the trade-off's shape).

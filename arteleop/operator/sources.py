@@ -182,7 +182,7 @@ def synthetic_source(
         rest_gripper_m: Where the gripper waits at rest, to align the hand on before engaging.
         mapping: The hand-to-gripper mapping the operator was taught.
         seed: Seeds the operator and its wearable (a stream apart from the network's).
-        params: The operator's constants; the defaults are docs/operator-model.md's.
+        params: The operator's constants; the defaults are docs/explanation/operator-model.md's.
         traits: The person's lasting traits; the default is the median novice.
         grasp_clearance_m: How far off the grasp point the open fingers still straddle the
             bowl's wall (m): the task's tolerance for the grasp.

@@ -1,5 +1,5 @@
 """A synthetic operator who does a task through the teleoperation system: a model of a person,
-not a replayed path (docs/operator-model.md gives every constant with its source).
+not a replayed path (docs/explanation/operator-model.md gives every constant with its source).
 
 What is to be done is the task's (:mod:`arteleop.operator.tasks`: phases, goals judged from the
 display, criteria); how, the operator's, the same for every task. It **moves** in minimum-jerk

@@ -1,5 +1,5 @@
 """A simulated person's lasting traits: drawn once from stated distributions, kept across all of
-that person's trials (docs/operator-model.md gives each one's source).
+that person's trials (docs/explanation/operator-model.md gives each one's source).
 
 Nothing here depends on the display's AR layers: the traits are the person's, the same under
 every display.

@@ -24,8 +24,8 @@ class BowlSpec:
     """Size and physical properties of the bowl.
 
     Attributes:
-        diameter_m: Outer diameter at the rim (m). docs/study.md: 16 cm.
-        height_m: Height from the bottom face to the rim (m). docs/study.md: 7 cm.
+        diameter_m: Outer diameter at the rim (m). docs/explanation/study.md: 16 cm.
+        height_m: Height from the bottom face to the rim (m). docs/explanation/study.md: 7 cm.
         bottom_diameter_m: Outer diameter of the foot (m).
         wall_thickness_m: Thickness of wall and floor (m); this is what the gripper pinches.
         mass_kg: Mass (kg); a plastic bowl of this size weighs about 0.1 kg.

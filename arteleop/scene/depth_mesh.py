@@ -1,4 +1,4 @@
-"""MeshReconstructor: a triangle mesh from the depth grid (docs/study.md §7).
+"""MeshReconstructor: a triangle mesh from the depth grid (docs/explanation/study.md §7).
 
 Neighbouring pixels become triangles. Small holes in the depth image are filled by
 inpainting; triangles whose corners differ in depth by more than a threshold are dropped,

@@ -8,9 +8,9 @@ from arteleop.study.definition import StudyConfig
 from arteleop.study.participants import ParticipantSpec
 
 EXPERT_BUCKETS = (2, 3)
-"""Weekly-hours buckets of an expert (at least two hours a week, docs/study.md §5)."""
+"""Weekly-hours buckets of an expert (at least two hours a week, docs/explanation/study.md §5)."""
 MALE_FRACTION = 16 / 22
-"""The original cohort: 16 men and 6 women (docs/study.md §4)."""
+"""The original cohort: 16 men and 6 women (docs/explanation/study.md §4)."""
 AGE_RANGE = (23, 40)
 """The original cohort's ages (years)."""
 
@@ -20,7 +20,7 @@ def participants(config: StudyConfig) -> tuple[ParticipantSpec, ...]:
 
     A drawn participant is an expert of a kind with an hours bucket of 2 or 3 and a Likert
     experience of 5-7, a novice with bucket 1 and experience 1-4 (the questionnaire's scales,
-    docs/study.md §4); the movement-time factor is lognormal around 1, with
+    docs/explanation/study.md §4); the movement-time factor is lognormal around 1, with
     ``cohort.movement_time_sd``.
     """
     if config.participants:

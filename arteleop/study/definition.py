@@ -6,8 +6,8 @@ onto :class:`~arteleop.study.participants.CohortConfig` and each ``[[participant
 :class:`~arteleop.study.participants.ParticipantSpec` (who takes part has a module of its own),
 ``[operator]`` onto the simulated participants' :class:`~arteleop.operator.TraitDistribution` and
 ``[hand_filter]`` onto the robot side's :class:`~arteleop.teleop.HandFilterConfig`. The defaults
-mirror the original study (docs/study.md §4) and the operator model's frozen constants
-(docs/operator-model.md).
+mirror the original study (docs/explanation/study.md §4) and the operator model's frozen constants
+(docs/explanation/operator-model.md).
 """
 
 from __future__ import annotations
@@ -32,8 +32,8 @@ ORDER_SCHEMES: tuple[str, ...] = ("williams", "cyclic", "random", "listed")
 
 @dataclass(frozen=True)
 class FamiliarizationConfig:
-    """Practice before the experimental trials (docs/study.md §4): start and target drawn at
-    random inside the table area the arm reaches from above, under ``modality``.
+    """Practice before the experimental trials (docs/explanation/study.md §4): start and target
+    drawn at random inside the table area the arm reaches from above, under ``modality``.
 
     Attributes:
         trials: Practice trials per participant (the original: 3-4).
@@ -138,7 +138,7 @@ class StudyConfig:
             down to the table, a ring at its foot, the gripper's height in numbers), for every
             participant, simulated or real: what a flat screen lacks against the original's
             head-mounted display. Off by default, as in the original; the simulated participant
-            judges them too (docs/operator-model.md).
+            judges them too (docs/explanation/operator-model.md).
         conditions: Instead of ``modalities`` and ``delay_ms``: the conditions, each a set of
             AR layers over a network profile (``[[conditions]]`` tables), e.g. delay crossed
             with cues; numbered in this order by the order schemes. Practice runs without
@@ -237,8 +237,8 @@ class StudyConfig:
         if self.trials_per_modality != 1:
             raise StudyDefinitionError(
                 f"trials_per_modality = {self.trials_per_modality}: the study data format "
-                "(docs/data-format.md, version 2) holds one experimental trial per participant "
-                "and modality, so 1 is the only value it can record."
+                "(docs/reference/data-format.md, version 2) holds one experimental trial per "
+                "participant and modality, so 1 is the only value it can record."
             )
         _check_timeout("timeout_s", self.timeout_s)
         if not (math.isfinite(self.delay_ms) and 0 <= self.delay_ms < 500 * self.timeout_s):

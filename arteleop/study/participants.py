@@ -26,7 +26,7 @@ class ParticipantSpec:
             endpoint scatter's growth with speed (:class:`~arteleop.operator.MovementScatter`),
             on its accuracy. See :class:`CohortConfig` for how a cohort draws it; the simulated
             participant's other traits come from the study's seed and the id
-            (docs/operator-model.md).
+            (docs/explanation/operator-model.md).
     """
 
     id: str
@@ -71,8 +71,8 @@ MAX_COHORT = 10_000
 class CohortConfig:
     """A simulated cohort, drawn from the study's seed when no participants are listed.
 
-    The defaults are the original study's 22 participants (docs/study.md §4): 7 AR/VR experts
-    and 7 gamers (at least 2 h a week), 4 of them both.
+    The defaults are the original study's 22 participants (docs/explanation/study.md §4): 7 AR/VR
+    experts and 7 gamers (at least 2 h a week), 4 of them both.
 
     Attributes:
         size: Number of participants.

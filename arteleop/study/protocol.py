@@ -1,4 +1,4 @@
-"""One trial of the protocol (docs/study.md §1), run for one planned trial.
+"""One trial of the protocol (docs/explanation/study.md §1), run for one planned trial.
 
 The arm starts at the rest pose; the completion timer starts at motion onset (the hand's speed
 crosses ``START_SPEED_M_S``) and stops at the first camera frame, after the release, in which
@@ -37,7 +37,7 @@ class TrialRecord:
 
     Attributes:
         spec: The planned trial.
-        row: Its row of ``trials.csv`` (docs/data-format.md), by column name.
+        row: Its row of ``trials.csv`` (docs/reference/data-format.md), by column name.
         trace: Its trajectory file's columns (:data:`~arteleop.teleop.TRACE_COLUMNS`).
         duration_s: Simulated time of the trial (s).
         wall_s: Wall-clock time it took, site included (s); kept out of the files, which must

@@ -1,4 +1,4 @@
-"""How a simulated participant answers the post-study questionnaire (docs/study.md §4).
+"""How a simulated participant answers the post-study questionnaire (docs/explanation/study.md §4).
 
 For each AR class (embodiment, manipulation, task: the modality that shows that class alone)
 and each item (presence, embodiment, ease), on the 1-7 Likert scale:
@@ -18,11 +18,12 @@ and each item (presence, embodiment, ease), on the 1-7 Likert scale:
     else 0: the sense of embodiment needs a body to own.
 
 The gains are Likert points, chosen so that a class that halves the time moves ease by about
-1.5 points: in the original study the ratings spread over most of the scale (docs/study.md §4).
-In a study that crosses delay with cues, a participant's answers come from their trials under
-the least delay (the questionnaire asks about the cues, not the network). Only the classes the
-study's conditions draw are asked about (:func:`classes_shown`), of a simulated participant as
-of a person. Real answers replace these with ``arteleop study answer``.
+1.5 points: in the original study the ratings spread over most of the scale
+(docs/explanation/study.md §4). In a study that crosses delay with cues, a participant's answers
+come from their trials under the least delay (the questionnaire asks about the cues, not the
+network). Only the classes the study's conditions draw are asked about (:func:`classes_shown`),
+of a simulated participant as of a person. Real answers replace these with
+``arteleop study answer``.
 """
 
 from __future__ import annotations

@@ -85,7 +85,7 @@ def load_replay(run_dir: Path, participant: str, trial_index: int) -> ReplaySour
     if missing:
         raise RunFolderError(
             f"{path} line 1: a replay needs the columns {', '.join(missing)}, which "
-            "'arteleop study run' writes (docs/data-format.md, trajectory files)."
+            "'arteleop study run' writes (docs/reference/data-format.md, trajectory files)."
         )
     if len(trajectory) == 0:
         raise RunFolderError(f"{path} has no rows to replay.")

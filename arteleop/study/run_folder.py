@@ -1,4 +1,4 @@
-"""A run folder on disk (docs/data-format.md), written so that no crash corrupts it.
+"""A run folder on disk (docs/reference/data-format.md), written so that no crash corrupts it.
 
 - Whole files (``study.toml``, ``manifest.json``, ``participants.csv``, ``questionnaire.csv``,
   trajectories, the final ``trials.csv``) are written to a temporary file, synced, then renamed
@@ -31,8 +31,8 @@ from arteleop.analysis.data import TRIAL_COLUMNS
 from arteleop.errors import RunFolderError
 
 FORMAT_VERSION = 5
-"""The version of docs/data-format.md that the run folder follows; the analysis reads the same
-columns (``TRIAL_COLUMNS`` and the others come from it)."""
+"""The version of docs/reference/data-format.md that the run folder follows; the analysis reads the
+same columns (``TRIAL_COLUMNS`` and the others come from it)."""
 
 STUDY_FILE = "study.toml"
 MANIFEST_FILE = "manifest.json"

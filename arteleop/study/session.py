@@ -85,7 +85,7 @@ class SessionInputError(ArteleopError):
 
 @dataclass(frozen=True)
 class Demographics:
-    """A participant's answers to the questions before the trials (docs/study.md §4).
+    """A participant's answers to the questions before the trials (docs/explanation/study.md §4).
 
     Attributes:
         age: Years.

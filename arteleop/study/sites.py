@@ -25,7 +25,8 @@ from arteleop.study.plan import PracticePoints, TrialSpec
 
 PRACTICE_MARGIN_M = 0.10
 """Practice trials start and end around the experimental task: within this distance (m) of the
-box its start and target span, so that practice trains the same reach (docs/study.md §4)."""
+box its start and target span, so that practice trains the same reach (docs/explanation/study.md
+§4)."""
 
 
 class StudySite:

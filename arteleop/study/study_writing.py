@@ -62,8 +62,8 @@ _COMMENTS = {
     "cohort.both_experts": "of those, expert in both",
     "cohort.movement_time_sd": "between-participant SD of log movement time",
     "cohort.id_prefix": "participant ids: prefix and a two-digit number",
-    "operator.miss_rate": "simulated participants' traits (docs/operator-model.md): median "
-    "1 - confidence",
+    "operator.miss_rate": "simulated participants' traits (docs/explanation/operator-model.md): "
+    "median 1 - confidence",
     "operator.miss_rate_sd": "its SD between participants (of the log; likewise every *_sd)",
     "operator.grasp_criterion_sd": "grasp criterion: a share (median 1) of the gripper's clearance",
     "operator.placement_criterion_m": "median placement criterion: close enough to the target (m)",
@@ -81,8 +81,8 @@ _COMMENTS = {
 
 _HEADER = """\
 # An arteleop study definition. Every key is optional: a missing key takes the default shown.
-# The defaults mirror the original study (docs/study.md §4): 22 participants, five modalities,
-# a balanced Latin square, three practice trials under no AR, one trial per modality.
+# The defaults mirror the original study (docs/explanation/study.md §4): 22 participants, five
+# modalities, a balanced Latin square, three practice trials under no AR, one trial per modality.
 # Run it: arteleop study run THIS_FILE --out RUN_DIR
 """
 

@@ -1,5 +1,5 @@
-"""End-to-end latency (docs/study.md §7, for the whole loop): from an operator sample to the
-first display frame that shows it.
+"""End-to-end latency (docs/explanation/study.md §7, for the whole loop): from an operator sample
+to the first display frame that shows it.
 
 - Simulated: at each camera frame's capture, its time minus the newest sample acting on the arm
   (network, control and camera rates).

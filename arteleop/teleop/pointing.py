@@ -1,5 +1,5 @@
 """One Fitts pointing trial through the whole loop: the simulated participant's calibration task
-(docs/operator-model.md, ``benchmarks/bench_fitts.py``).
+(docs/explanation/operator-model.md, ``benchmarks/bench_fitts.py``).
 
 Targets are circles drawn on the table, ``distance_m`` along +y from a start point drawn as a
 cross, their diameter ``width_m``; the bowl waits out of the way. The trial ends when the

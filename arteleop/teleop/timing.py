@@ -1,4 +1,4 @@
-"""Per-stage performance figures (docs/study.md §7): service time and latency.
+"""Per-stage performance figures (docs/explanation/study.md §7): service time and latency.
 
 - Service time: wall-clock time between two completed rounds of a stage.
 - Latency: time from a stage's input to its output. For a stage that computes, the compute time;

@@ -25,7 +25,8 @@ TRACE_COLUMNS: tuple[str, ...] = (
     *(f"{j}_rad" for j in RIGHT_ARM_JOINTS),
     "bowl_x_m", "bowl_y_m", "bowl_z_m",
 )  # fmt: skip
-"""The trace's columns, in order: a public format (docs/data-format.md, trajectory files)."""
+"""The trace's columns, in order: a public format (docs/reference/data-format.md, trajectory
+files)."""
 
 _NAN3 = np.full(3, np.nan)
 _NAN_QUATS = np.full(4 * len(SEGMENTS), np.nan)

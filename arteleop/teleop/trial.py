@@ -215,7 +215,7 @@ class TrialResult:
         return self.hand_time_s[keep], self.hand_m[keep]
 
     def to_row(self) -> dict[str, object]:
-        """The columns of ``trials.csv`` (docs/data-format.md) that a trial knows.
+        """The columns of ``trials.csv`` (docs/reference/data-format.md) that a trial knows.
 
         Smoothness and path length are those of the timed movement (motion onset to the end),
         through the analysis's filter; empty (NaN) when the hand barely moved.

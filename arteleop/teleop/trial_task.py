@@ -67,7 +67,8 @@ def _pick_and_place(site: TaskSite) -> Task:
 PICK_AND_PLACE = TrialTask(
     "pick-and-place", _pick_and_place, lambda ws: TaskMonitor(ws, BowlTracker(ws.bowl))
 )
-"""The original study's task: the bowl from its start into the target circle (docs/study.md)."""
+"""The original study's task: the bowl from its start into the target circle
+(docs/explanation/study.md)."""
 
 TASKS: dict[str, TrialTask] = {PICK_AND_PLACE.name: PICK_AND_PLACE}
 """The platform's own tasks, by name."""

@@ -278,7 +278,7 @@ def test_real_time_trial_shows_each_camera_frame_or_counts_it_skipped(
     assert np.median(gaps) == pytest.approx(1 / config.rates.camera_hz)
     assert min(display.sizes) > 1000  # the table fills most of the 80x60 strided cloud
     stages = {s.stage: s for s in result.stages}
-    # Every stage of docs/study.md section 7 reports service time and latency.
+    # Every stage of docs/explanation/study.md section 7 reports service time and latency.
     for stage in ("operator_input", "reconstruction", "mapping", "ik", "control_tick",
                   "trajectory", "physics", "camera", "point_cloud", "display"):  # fmt: skip
         assert stages[stage].rounds > 0 and stages[stage].latency_median_ms > 0, stage

@@ -179,7 +179,7 @@ def test_the_trace_records_every_control_tick_as_the_site_saw_it(site_config: Si
     quats = np.column_stack([trace[f"hand_q{c}"] for c in "wxyz"])
     np.testing.assert_allclose(np.linalg.norm(quats[~np.isnan(quats[:, 0])], axis=1), 1.0)
     # The mapped target leads the gripper that tracks it: the arm follows it about 0.2 s late
-    # (docs/operator-model.md, familiar_lag_s), within a few cm of where it was then.
+    # (docs/explanation/operator-model.md, familiar_lag_s), within a few cm of where it was then.
     target = np.column_stack([trace[f"gripper_target_{a}_m"] for a in "xyz"])
     actual = np.column_stack([trace[f"gripper_{a}_m"] for a in "xyz"])
     late = 20  # control ticks: 0.2 s

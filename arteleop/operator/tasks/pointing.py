@@ -1,5 +1,5 @@
-"""A Fitts pointing task: the simulated participant's calibration task (docs/operator-model.md,
-``benchmarks/bench_fitts.py``).
+"""A Fitts pointing task: the simulated participant's calibration task
+(docs/explanation/operator-model.md, ``benchmarks/bench_fitts.py``).
 
 The person brings the gripper over a start point, then over a target circle drawn on the table
 (its diameter the target's width), and selects it by closing the gripper, which ends the trial.
