@@ -1,10 +1,15 @@
-"""Names that moved to another module, found at their old home for a release with a warning."""
+"""Names and modules that moved, found at their old home for a release with a warning."""
 
 from __future__ import annotations
 
 import importlib
+import importlib.abc
+import importlib.util
+import sys
 import warnings
 from collections.abc import Callable, Mapping
+from importlib.machinery import ModuleSpec
+from types import ModuleType
 from typing import Any
 
 
@@ -28,3 +33,44 @@ def moved_names(module: str, homes: Mapping[str, str], until: str) -> Callable[[
         return getattr(importlib.import_module(home), new_name or name)
 
     return __getattr__
+
+
+class _MovedModules(importlib.abc.MetaPathFinder, importlib.abc.Loader):
+    """Finds each module of ``homes`` (an old dotted name, or a package's, to its new one) at
+    its old name, warning; the module is the new one, imported once under its new name."""
+
+    def __init__(self, homes: Mapping[str, str], until: str) -> None:
+        self._homes = dict(homes)
+        self._until = until
+
+    def _new_name(self, fullname: str) -> str | None:
+        for old, new in self._homes.items():
+            if fullname == old or fullname.startswith(old + "."):
+                return new + fullname[len(old) :]
+        return None
+
+    def find_spec(self, fullname: str, path: Any, target: Any = None) -> ModuleSpec | None:
+        new = self._new_name(fullname)
+        if new is None:
+            return None
+        warnings.warn(
+            f"the module {fullname} has moved to {new}: import it from there ({fullname} is "
+            f"found through {self._until} only)",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return importlib.util.spec_from_loader(fullname, self)
+
+    def create_module(self, spec: ModuleSpec) -> ModuleType:
+        return importlib.import_module(self._new_name(spec.name) or spec.name)
+
+    def exec_module(self, module: ModuleType) -> None:
+        """The new module ran when it was imported under its new name."""
+
+
+def moved_modules(homes: Mapping[str, str], until: str) -> None:
+    """Let each old module name of ``homes`` (and, for a package, its modules') be imported,
+    with a ``DeprecationWarning`` that names its new home, through version ``until``."""
+    # First: a moved package's path would let the file finder load its modules a second time,
+    # under their old names.
+    sys.meta_path.insert(0, _MovedModules(homes, until))

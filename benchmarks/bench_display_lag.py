@@ -47,7 +47,7 @@ class WatchedSource(SyntheticSource):
         self.seen: list[tuple[float, np.ndarray, np.ndarray | None]] = []
 
     def sample(self, time_s: float, view: DisplayFrame) -> WearableSample | None:
-        from arteleop.operator.perception import shown_gripper_m
+        from arteleop.operator.simulated.perception import shown_gripper_m
 
         out = super().sample(time_s, view)
         shown = shown_gripper_m(view) if view.gripper_in_camera else None

@@ -11,7 +11,7 @@ has learnt from one trial to the next (its belief at a trial's end is its belief
 one's start), as people practise the lag of a block; the first trial of a block meets the lag
 with the belief from practice on the system (``familiar_lag_s``). It also carries what it saw of
 its outcomes: told of a miss, as Fitts experiments tell it, it trusts its judgement less and is
-more careful (``arteleop.operator.own_errors``). ``--fresh`` makes every trial the block's
+more careful (``arteleop.operator.simulated.own_errors``). ``--fresh`` makes every trial the block's
 first. ``--depth-aids`` draws the depth aids in every trial.
 
 Measured as ISO 9241-9 asks (Soukoreff & MacKenzie 2004): the selection is the closure the

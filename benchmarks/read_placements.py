@@ -45,9 +45,9 @@ import pandas as pd
 from arteleop.ar_features import DisplayFrame
 from arteleop.errors import ConfigurationError
 from arteleop.operator import MovementScatter, OperatorParams, PerceptionParams
-from arteleop.operator.perception import Perceived
-from arteleop.operator.tasks import pick_and_place
-from arteleop.operator.tasks.task import Action, TaskPhase
+from arteleop.operator.simulated.perception import Perceived
+from arteleop.operator.simulated.tasks import pick_and_place
+from arteleop.operator.simulated.tasks.task import Action, TaskPhase
 from arteleop.scene import RemoteSite, Workspace
 from arteleop.study import StudyConfig
 from arteleop.study.protocol import operator_traits, trial_config

@@ -30,8 +30,8 @@ from arteleop.operator import (
     SeenOutcomes,
     believed_error_scale,
 )
-from arteleop.operator import look as look_module
-from arteleop.operator.belief import averaging_saturated
+from arteleop.operator.simulated import look as look_module
+from arteleop.operator.simulated.belief import averaging_saturated
 from arteleop.teleop.pointing import run_pointing_trial
 
 VERDICTS: list[tuple[str, float]] = []

@@ -1,50 +1,54 @@
-"""The operator: the person and what the person wears. A model of the right arm and the posture
-held to calibrate the wearable, the wearable's IMUs and their recordings, the synthetic
-participant and what it perceives, and the sources that feed the loop.
+"""The operator: the person, in two rooms, and the sources that feed the loop.
 
-The robot side's reading of the wearable (its calibration, the hand's reconstruction) moved to
-:mod:`arteleop.teleop` in 0.3; the old names are found here, with a warning, through 0.3.
+- :mod:`arteleop.operator.simulated`: the simulated participant, what it perceives, decides and
+  does, and the tasks it is asked to do.
+- :mod:`arteleop.operator.wearable`: what a person wears and what it records: the arm's model,
+  the calibration posture, the wearable's IMUs, recordings.
+- Here: the sources (``sources``), a person's hand through the view (``live``), what the hand
+  does at each tick (``output``) and the minimum-jerk profile both rooms move by.
+
+Their modules were here before 0.4 and are found at their old names, with a warning, through
+0.4. The robot side's reading of the wearable (its calibration, the hand's reconstruction) moved
+to :mod:`arteleop.teleop` in 0.3; the old names are found here, with a warning, through 0.3.
 """
 
-from arteleop.moved import moved_names
-from arteleop.operator.acuity import (
-    Acuities,
-    DisplayGeometry,
-    Judgement,
-    fixations,
-    judgement_sd,
-    reading_sd_m,
-)
-from arteleop.operator.arm_model import (
-    SEGMENTS,
-    ArmAngles,
-    ArmModel,
-    hand_pose,
-    joint_positions,
-    segment_rotations,
-    segments_for_hand_pose,
-)
-from arteleop.operator.belief import probability_within
-from arteleop.operator.bowl_memory import BowlMemory
+from arteleop.moved import moved_modules, moved_names
 from arteleop.operator.live import HandTarget, LiveOperator
-from arteleop.operator.mark_memory import MarkMemory
 from arteleop.operator.minimum_jerk import minimum_jerk, minimum_jerk_profile
 from arteleop.operator.output import OperatorOutput
-from arteleop.operator.own_errors import SeenOutcomes, believed_error_scale
-from arteleop.operator.params import OperatorParams
-from arteleop.operator.perception import Perceived, PerceptionParams, perceive
-from arteleop.operator.perceptual_errors import PerceptualErrors
-from arteleop.operator.phase_log import ACTIVITIES, PhaseRecord
-from arteleop.operator.posture import CalibrationPosture, hand_from_calibration
-from arteleop.operator.recording import (
-    COLUMNS,
-    LoaderConfig,
-    LoadReport,
-    Recording,
-    RecordingInfo,
+from arteleop.operator.simulated import (
+    ACTIVITIES,
+    Action,
+    Acuities,
+    BowlMemory,
+    DisplayGeometry,
+    Expertise,
+    Goal,
+    Judgement,
+    MarkMemory,
+    MovementScatter,
+    OperatorParams,
+    OperatorTraits,
+    Perceived,
+    PerceptionParams,
+    PerceptualErrors,
+    PhaseRecord,
+    PickAndPlace,
+    PointingTask,
+    SeenOutcomes,
+    SyntheticOperator,
+    Task,
+    TaskPhase,
+    TraitDistribution,
+    believed_error_scale,
+    expected_time_s,
+    fixations,
+    judgement_sd,
+    perceive,
+    probability_within,
+    reading_sd_m,
+    submovement_duration_s,
 )
-from arteleop.operator.recording_file import load_recording, sidecar_path, write_recording
-from arteleop.operator.scatter import MovementScatter
 from arteleop.operator.sources import (
     HandModel,
     OperatorSource,
@@ -57,23 +61,30 @@ from arteleop.operator.sources import (
     synthetic_source,
     task_source,
 )
-from arteleop.operator.submovements import expected_time_s, submovement_duration_s
-from arteleop.operator.synthesis import SynthesizedRecording, record_hand_motion
-from arteleop.operator.synthetic import SyntheticOperator
-from arteleop.operator.tasks import (
-    Action,
-    Goal,
-    PickAndPlace,
-    PointingTask,
-    Task,
-    TaskPhase,
-)
-from arteleop.operator.traits import Expertise, OperatorTraits, TraitDistribution
 from arteleop.operator.wearable import (
+    COLUMNS,
+    SEGMENTS,
+    ArmAngles,
+    ArmModel,
+    CalibrationPosture,
     ImuErrorConfig,
+    LoaderConfig,
+    LoadReport,
+    Recording,
+    RecordingInfo,
+    SynthesizedRecording,
     WearableConfig,
     WearableSignals,
+    hand_from_calibration,
+    hand_pose,
+    joint_positions,
+    load_recording,
+    record_hand_motion,
+    segment_rotations,
+    segments_for_hand_pose,
+    sidecar_path,
     simulate_wearable,
+    write_recording,
 )
 
 __all__ = [
@@ -156,7 +167,24 @@ __getattr__ = moved_names(
              "StreamingReconstructor", "calibrate", "reconstruct"),
             "arteleop.teleop",
         ),
-        "TaskGeometry": "arteleop.operator.tasks:PickAndPlace",
+        "TaskGeometry": "arteleop.operator.simulated.tasks:PickAndPlace",
     },
     until="0.3",
+)  # fmt: skip
+
+moved_modules(
+    {
+        **{
+            f"arteleop.operator.{name}": f"arteleop.operator.simulated.{name}"
+            for name in ("acuity", "belief", "bowl_memory", "criterion", "hand", "judging",
+                         "look", "mark_memory", "own_errors", "params", "perception",
+                         "perceptual_errors", "phase_log", "scatter", "submovements",
+                         "synthetic", "tasks", "traits", "watch")
+        },
+        **{
+            f"arteleop.operator.{name}": f"arteleop.operator.wearable.{name}"
+            for name in ("arm_model", "posture", "recording", "recording_file", "synthesis")
+        },
+    },
+    until="0.4",
 )  # fmt: skip

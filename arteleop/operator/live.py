@@ -15,10 +15,10 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from arteleop.ar_features import DisplayFrame
-from arteleop.operator.arm_model import ArmModel
 from arteleop.operator.minimum_jerk import minimum_jerk_profile
 from arteleop.operator.output import ALIGN, CALIBRATE, OperatorOutput
-from arteleop.operator.posture import CalibrationPosture, hand_from_calibration
+from arteleop.operator.wearable.arm_model import ArmModel
+from arteleop.operator.wearable.posture import CalibrationPosture, hand_from_calibration
 
 ALIGN_S = 1.5
 """Time to bring the hand from the calibration posture to the target (s)."""

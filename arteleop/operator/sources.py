@@ -12,16 +12,16 @@ from numpy.typing import ArrayLike, NDArray
 
 from arteleop.ar_features import DisplayFrame
 from arteleop.errors import ConfigurationError
-from arteleop.operator.arm_model import ArmModel, segment_rotations, segments_for_hand_pose
 from arteleop.operator.live import HandTarget, LiveOperator
 from arteleop.operator.output import CALIBRATE, OperatorOutput
-from arteleop.operator.params import OperatorParams
-from arteleop.operator.posture import CalibrationPosture
-from arteleop.operator.recording import Recording, RecordingInfo
-from arteleop.operator.synthetic import SyntheticOperator
-from arteleop.operator.tasks import PickAndPlace, Task
-from arteleop.operator.traits import OperatorTraits
-from arteleop.operator.wearable import WearableConfig, WearableSimulator
+from arteleop.operator.simulated.params import OperatorParams
+from arteleop.operator.simulated.synthetic import SyntheticOperator
+from arteleop.operator.simulated.tasks import PickAndPlace, Task
+from arteleop.operator.simulated.traits import OperatorTraits
+from arteleop.operator.wearable.arm_model import ArmModel, segment_rotations, segments_for_hand_pose
+from arteleop.operator.wearable.posture import CalibrationPosture
+from arteleop.operator.wearable.recording import Recording, RecordingInfo
+from arteleop.operator.wearable.simulator import WearableConfig, WearableSimulator
 
 if TYPE_CHECKING:
     from arteleop.robot.mapping import MappingConfig

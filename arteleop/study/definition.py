@@ -19,7 +19,7 @@ from typing import Any
 from arteleop.analysis.data import network_label
 from arteleop.ar_features import LAYER_NAMES, MODALITIES, STUDY_MODALITIES, modality_cues
 from arteleop.errors import ConfigurationError, StudyDefinitionError
-from arteleop.operator.traits import TraitDistribution
+from arteleop.operator.simulated.traits import TraitDistribution
 from arteleop.scene.camera_config import HeadCameraConfig
 from arteleop.study.participants import CohortConfig, ParticipantSpec
 from arteleop.teleop.hand_filter import HandFilterConfig

@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Any, get_type_hints
 
 from arteleop.errors import ConfigurationError, FrameGraphError, StudyDefinitionError
-from arteleop.operator.traits import TraitDistribution
+from arteleop.operator.simulated.traits import TraitDistribution
 from arteleop.study.definition import (
     CohortConfig,
     ConditionSpec,

@@ -9,8 +9,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from arteleop.errors import ConfigurationError
-from arteleop.operator.arm_model import ArmModel, joint_positions
-from arteleop.operator.recording import Recording
+from arteleop.operator.wearable.arm_model import ArmModel, joint_positions
+from arteleop.operator.wearable.recording import Recording
 from arteleop.teleop.sensor_calibration import SensorMounting, calibrate
 from arteleop.transforms import matrices_to_quats
 

@@ -10,9 +10,9 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.spatial.transform import Rotation
 
 from arteleop.errors import RecordingError
-from arteleop.operator.arm_model import SEGMENTS, segment_rotations
-from arteleop.operator.posture import CalibrationPosture
-from arteleop.operator.recording import Recording
+from arteleop.operator.wearable.arm_model import SEGMENTS, segment_rotations
+from arteleop.operator.wearable.posture import CalibrationPosture
+from arteleop.operator.wearable.recording import Recording
 from arteleop.transforms import quats_to_matrices, rotations_z
 
 MAX_POSTURE_SPREAD_DEG = 10.0

@@ -3,7 +3,7 @@
 import pytest
 
 from arteleop.operator import OperatorTraits
-from arteleop.operator.look import Look
+from arteleop.operator.simulated.look import Look
 
 
 def _verdicts(variances_m2: list[float], sure: float, judged_within: bool) -> list[bool | None]:

@@ -10,10 +10,10 @@ from hypothesis import strategies as st
 
 from arteleop.errors import ConfigurationError
 from arteleop.operator import OperatorParams, OperatorTraits, PointingTask
-from arteleop.operator.criterion import PhaseCriterion
-from arteleop.operator.own_errors import SeenOutcomes, believed_error_scale
-from arteleop.operator.tasks import Goal
-from arteleop.operator.tasks.pointing import POINT
+from arteleop.operator.simulated.criterion import PhaseCriterion
+from arteleop.operator.simulated.own_errors import SeenOutcomes, believed_error_scale
+from arteleop.operator.simulated.tasks import Goal
+from arteleop.operator.simulated.tasks.pointing import POINT
 
 CONFIDENCE = OperatorTraits().confidence
 

@@ -24,7 +24,7 @@ from arteleop.operator import (
     PerceptualErrors,
     perceive,
 )
-from arteleop.operator.acuity import (
+from arteleop.operator.simulated.acuity import (
     ARCMIN_RAD,
     Acuities,
     DisplayGeometry,

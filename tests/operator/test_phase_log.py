@@ -6,8 +6,8 @@ from __future__ import annotations
 import pytest
 
 from arteleop.operator import ACTIVITIES
-from arteleop.operator.phase_log import PhaseLog
-from arteleop.operator.synthetic import _Mode
+from arteleop.operator.simulated.phase_log import PhaseLog
+from arteleop.operator.simulated.synthetic import _Mode
 
 
 def test_a_phase_counts_its_activities_from_its_first_movement() -> None:

@@ -24,7 +24,7 @@ from arteleop.operator import (
     probability_within,
     submovement_duration_s,
 )
-from arteleop.operator.submovements import planned_submovement
+from arteleop.operator.simulated.submovements import planned_submovement
 from tests.operator.small_scene import descend
 
 # -- the decision mechanism ----------------------------------------------------------------------
@@ -161,7 +161,7 @@ def test_a_participants_traits_last_across_their_trials_and_differ_between_peopl
 def test_no_modality_name_appears_in_the_operators_decision_code() -> None:
     """Cues differ only in what the display frame shows: the operator reads its layers' flags,
     never which modality a trial runs under."""
-    folder = Path(arteleop.operator.__file__).parent
+    folder = Path(arteleop.operator.__file__).parent / "simulated"
     names = "|".join(MODALITIES)
     for module in ("synthetic", "hand", "watch", "params", "perception", "belief",
                    "submovements", "traits", "tasks/task", "tasks/pick_and_place",
@@ -257,7 +257,14 @@ def test_submovement_policy_is_the_plain_dynamic_programme_to_the_bit(
     """The planner keeps what does not change across its iterations; its table must equal the
     programme written out plainly (the module docstring's formula, durations rising with the
     amplitude over criterion), value for value."""
-    from arteleop.operator.submovements import _ACROSS_Q, _ALONG_Q, _D, _X, _policy, _rising_argmin
+    from arteleop.operator.simulated.submovements import (
+        _ACROSS_Q,
+        _ALONG_Q,
+        _D,
+        _X,
+        _policy,
+        _rising_argmin,
+    )
 
     durations = _D[None, :]
     value = np.zeros_like(_X)
@@ -283,7 +290,7 @@ def test_the_rising_choice_is_the_cheapest_of_all_rising_ones() -> None:
     """Against every rising path through a small table of costs, enumerated."""
     import itertools
 
-    from arteleop.operator.submovements import _rising_argmin
+    from arteleop.operator.simulated.submovements import _rising_argmin
 
     rng = np.random.default_rng(42)
     for _ in range(20):

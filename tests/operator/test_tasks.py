@@ -26,12 +26,13 @@ from arteleop.operator import (
     TaskPhase,
     perceive,
 )
-from arteleop.operator.tasks import relative_goal
-from arteleop.operator.tasks.pointing import TO_START
+from arteleop.operator.simulated.tasks import relative_goal
+from arteleop.operator.simulated.tasks.pointing import TO_START
 from arteleop.transforms import make_transform
 from tests.ar_features.frames import display_frame
 
-MECHANISM = ("synthetic", "hand", "watch", "params", "criterion", "output", "perceptual_errors")
+MECHANISM = ("simulated/synthetic", "simulated/hand", "simulated/watch", "simulated/params",
+             "simulated/criterion", "output", "simulated/perceptual_errors")  # fmt: skip
 """The operator's mechanism: the same for every task."""
 TASK_WORDS = ("bowl", "grasp", "place", "transport", "reach", "descend", "lift", "lower",
               "retract", "target", "point", "select")  # fmt: skip

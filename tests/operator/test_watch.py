@@ -15,9 +15,9 @@ from arteleop.operator import (
     PickAndPlace,
     SyntheticOperator,
 )
-from arteleop.operator.hand import Hand, Submovement
 from arteleop.operator.minimum_jerk import minimum_jerk_profile
-from arteleop.operator.watch import DisplayWatch
+from arteleop.operator.simulated.hand import Hand, Submovement
+from arteleop.operator.simulated.watch import DisplayWatch
 from arteleop.transforms import make_transform
 from tests.ar_features.frames import display_frame
 from tests.operator.small_scene import BOWL_M, GRASP_M, GRASP_OFFSET_M

@@ -10,7 +10,7 @@ from arteleop.operator import (
     segment_rotations,
     simulate_wearable,
 )
-from arteleop.operator.wearable import WearableSimulator
+from arteleop.operator.wearable.simulator import WearableSimulator
 
 
 def test_orientation_error_is_gauss_markov_with_the_stated_correlation() -> None:

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from arteleop.operator import Action, Goal, OperatorTraits, Perceived, TaskPhase
-from arteleop.operator.tasks import relative_goal
+from arteleop.operator.simulated.tasks import relative_goal
 from arteleop.scene import BowlTracker
 from arteleop.teleop import Outcome, TaskMonitor, TaskSite, TrialTask
 

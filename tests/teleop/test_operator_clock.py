@@ -20,7 +20,7 @@ from arteleop.operator import (
     SyntheticOperator,
     WearableSample,
 )
-from arteleop.operator.synthetic import CALIBRATE
+from arteleop.operator.simulated.synthetic import CALIBRATE
 from arteleop.scene import RemoteSite, SiteConfig
 from arteleop.teleop import LoopRates, NetworkConfig, TrialConfig, run_trial, trial_operator
 from tests.ar_features.frames import display_frame

@@ -8,7 +8,7 @@ from scipy.spatial.transform import Rotation
 
 from arteleop.errors import RecordingError
 from arteleop.operator import ImuErrorConfig, load_recording, write_recording
-from arteleop.operator.wearable import WearableConfig
+from arteleop.operator.wearable.simulator import WearableConfig
 from arteleop.teleop import SampleStatus, StreamingReconstructor, calibrate, reconstruct
 from tests.operator.motions import reach_and_return
 

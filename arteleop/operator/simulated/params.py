@@ -5,9 +5,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from arteleop.checks import Bounds, check_fields
-from arteleop.operator.own_errors import SeenOutcomes
-from arteleop.operator.perception import PerceptionParams
-from arteleop.operator.scatter import MovementScatter
+from arteleop.operator.simulated.own_errors import SeenOutcomes
+from arteleop.operator.simulated.perception import PerceptionParams
+from arteleop.operator.simulated.scatter import MovementScatter
 
 
 @dataclass(frozen=True)
@@ -32,7 +32,7 @@ class OperatorParams:
             its first): how often it missed tells it how far to trust its judgement.
         own_error_prior_sd: SD of the operator's prior on the log of the factor its
             judgement's covariance falls short by, half-normal about 0
-            (:mod:`arteleop.operator.own_errors`).
+            (:mod:`arteleop.operator.simulated.own_errors`).
         lag_learning_rate: How much of the difference between a movement's observed lag and
             the believed one the belief takes on (per movement): adapting to a delay is slow.
         timing_weber: The SD of a timed interval as a share of its mean (scalar timing): the

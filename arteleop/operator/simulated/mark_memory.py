@@ -19,10 +19,10 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
-from arteleop.operator.perceptual_errors import PerceptualErrors
+from arteleop.operator.simulated.perceptual_errors import PerceptualErrors
 
 if TYPE_CHECKING:
-    from arteleop.operator.perception import PerceptionParams
+    from arteleop.operator.simulated.perception import PerceptionParams
 
 
 @dataclass

@@ -9,7 +9,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 if TYPE_CHECKING:
-    from arteleop.operator.perception import Perceived
+    from arteleop.operator.simulated.perception import Perceived
 
 
 class BowlMemory:

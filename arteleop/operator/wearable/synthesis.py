@@ -14,15 +14,15 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.spatial.transform import Rotation, Slerp
 
 from arteleop.errors import ConfigurationError
-from arteleop.operator.arm_model import (
+from arteleop.operator.minimum_jerk import minimum_jerk_profile
+from arteleop.operator.wearable.arm_model import (
     hand_pose,
     joint_positions,
     segment_rotations,
     segments_for_hand_pose,
 )
-from arteleop.operator.minimum_jerk import minimum_jerk_profile
-from arteleop.operator.recording import Recording, RecordingInfo
-from arteleop.operator.wearable import WearableConfig, simulate_wearable
+from arteleop.operator.wearable.recording import Recording, RecordingInfo
+from arteleop.operator.wearable.simulator import WearableConfig, simulate_wearable
 
 TRANSITION_S = 1.0
 """Time to move from the calibration posture to the motion's first pose (s)."""

@@ -18,9 +18,9 @@ from scipy.spatial.transform import Rotation, Slerp
 
 from arteleop.errors import ConfigurationError, RecordingError
 from arteleop.files import write_atomic
-from arteleop.operator.arm_model import SEGMENTS, ArmAngles, ArmModel
-from arteleop.operator.posture import CalibrationPosture
-from arteleop.operator.recording import (
+from arteleop.operator.wearable.arm_model import SEGMENTS, ArmAngles, ArmModel
+from arteleop.operator.wearable.posture import CalibrationPosture
+from arteleop.operator.wearable.recording import (
     COLUMNS,
     FORMAT_NAME,
     FORMAT_VERSION,

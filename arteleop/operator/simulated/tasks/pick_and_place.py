@@ -5,16 +5,16 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from arteleop.operator.bowl_memory import BowlMemory
-from arteleop.operator.perception import Perceived
-from arteleop.operator.tasks.task import (
+from arteleop.operator.simulated.bowl_memory import BowlMemory
+from arteleop.operator.simulated.perception import Perceived
+from arteleop.operator.simulated.tasks.task import (
     Action,
     Goal,
     TaskPhase,
     planar_goal,
     relative_goal,
 )
-from arteleop.operator.traits import OperatorTraits
+from arteleop.operator.simulated.traits import OperatorTraits
 
 REACH = TaskPhase("reach")  # above the grasp point
 DESCEND = TaskPhase("descend")  # onto it, the open fingers either side of the wall

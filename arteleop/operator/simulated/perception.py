@@ -3,9 +3,9 @@
 The operator never reads the simulator's state. At each glance it judges the gripper, the bowl
 and the target from what the display frame shows. Every judgement is of a drawn thing's place
 relative to another, and its precision is one function of what is drawn
-(:func:`~arteleop.operator.acuity.judgement_sd`: the interval judged, the grain it is drawn at,
-the display's stereo; no layer has a precision of its own). What each layer changes is what
-there is to judge:
+(:func:`~arteleop.operator.simulated.acuity.judgement_sd`: the interval judged, the grain it is
+drawn at, the display's stereo; no layer has a precision of its own). What each layer changes is
+what there is to judge:
 
 - the bowl is seen only when the camera shows it (``DisplayFrame.bowl_m``); hidden by the arm,
   it is not seen, and the operator relies on memory (:class:`BowlMemory`);
@@ -44,10 +44,10 @@ from numpy.typing import NDArray
 
 from arteleop.ar_features import DISTANCE_LABEL_STEP_M, DisplayFrame
 from arteleop.checks import Bounds, check_fields
-from arteleop.operator.acuity import Acuities, DisplayGeometry, reading_sd_m
-from arteleop.operator.judging import Judge, Mark, combined, shown_gripper_m
-from arteleop.operator.mark_memory import MarkMemory
-from arteleop.operator.perceptual_errors import PerceptualErrors
+from arteleop.operator.simulated.acuity import Acuities, DisplayGeometry, reading_sd_m
+from arteleop.operator.simulated.judging import Judge, Mark, combined, shown_gripper_m
+from arteleop.operator.simulated.mark_memory import MarkMemory
+from arteleop.operator.simulated.perceptual_errors import PerceptualErrors
 
 __all__ = [
     "GraspJudgement",
@@ -70,7 +70,7 @@ class PerceptionParams:
     Attributes:
         display: The display the operator looks through.
         acuities: Published acuities; every judgement of what the display draws takes its
-            precision from :func:`~arteleop.operator.acuity.judgement_sd` of these two.
+            precision from :func:`~arteleop.operator.simulated.acuity.judgement_sd` of these two.
         proprioception_sd_m: Estimating an unseen gripper from one's own arm, per axis (m):
             not a judgement of the display.
         bias_share: Share of a proprioceptive judgement's variance that lasts (the person's
@@ -79,12 +79,12 @@ class PerceptionParams:
         parafovea_rad: How far from a fixation where a thing is can be seen (rad).
         fovea_rad: How far from a fixation a label can be read (rad). A judgement needs a
             fixation for each label and each thing no other fixation covers
-            (:func:`~arteleop.operator.acuity.fixations`).
+            (:func:`~arteleop.operator.simulated.acuity.fixations`).
         eye_movement_s: What each fixation after a glance's first adds to its time (s): an
             eye movement and the fixation it ends in.
         mark_drawn_min: The share of a mark's line (the target circle, the start cross) the
             display must draw for the mark to be judged where it is; less, and it is placed
-            from memory (:class:`~arteleop.operator.mark_memory.MarkMemory`).
+            from memory (:class:`~arteleop.operator.simulated.mark_memory.MarkMemory`).
         memory_drift_rad: How far a remembered mark's place drifts in its first second
             unseen, SD per axis in the table's plane, as an angle at the eye (rad); the drift's
             variance grows in proportion to the time unseen.
@@ -140,7 +140,7 @@ class Perceived:
             bowl carried by the hand is that much behind where the judged gripper carries it.
         grasp_fixations: The fixations the gripper's judgement against the bowl took: one
             per label read and per drawn thing no other fixation covers
-            (:func:`~arteleop.operator.acuity.fixations`).
+            (:func:`~arteleop.operator.simulated.acuity.fixations`).
         placement_fixations: ...and the placement's judgement.
         start_m: Where the start is judged, at the centre of its cross; None unless the task
             aims the gripper and the display gives the start.

@@ -1,9 +1,9 @@
 """One glance's judgements of what a display frame draws: a drawn thing's place against another,
-with the precision of what is drawn (:func:`~arteleop.operator.acuity.judgement_sd`), combined
-with the depth aids' judgements where they are drawn, and the fixations each takes.
+with the precision of what is drawn (:func:`~arteleop.operator.simulated.acuity.judgement_sd`),
+combined with the depth aids' judgements where they are drawn, and the fixations each takes.
 
 :class:`Judge` holds what every judgement of one glance shares (the frame, the person, their
-errors); :mod:`arteleop.operator.perception` says which judgements a glance makes.
+errors); :mod:`arteleop.operator.simulated.perception` says which judgements a glance makes.
 """
 
 from __future__ import annotations
@@ -16,12 +16,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from arteleop.ar_features import HEIGHT_LABEL_STEP_M, DisplayFrame
-from arteleop.operator.acuity import Judgement, fixations, judgement_sd, reading_sd_m
-from arteleop.operator.mark_memory import MarkMemory
-from arteleop.operator.perceptual_errors import PerceptualErrors
+from arteleop.operator.simulated.acuity import Judgement, fixations, judgement_sd, reading_sd_m
+from arteleop.operator.simulated.mark_memory import MarkMemory
+from arteleop.operator.simulated.perceptual_errors import PerceptualErrors
 
 if TYPE_CHECKING:
-    from arteleop.operator.perception import PerceptionParams
+    from arteleop.operator.simulated.perception import PerceptionParams
 
 Estimate = tuple[NDArray[np.float64], NDArray[np.float64]]
 """A judged point or interval (m) and the covariance the person believes it has (m^2)."""

@@ -1,15 +1,15 @@
 """A synthetic operator who does a task through the teleoperation system: a model of a person,
 not a replayed path (docs/explanation/operator-model.md gives every constant with its source).
 
-What is to be done is the task's (:mod:`arteleop.operator.tasks`: phases, goals judged from the
-display, criteria); how, the operator's, the same for every task. It **moves** in minimum-jerk
-submovements timed to minimise the expected time to the criterion (:mod:`.submovements`),
-**watches** the display until the gripper it shows is still (:mod:`.watch`), **looks**, glance
-after glance, until it is sure either way (:mod:`.look`, :mod:`.perception`, :mod:`.belief`),
-and **homes in** during a movement where the display shows the gripper and the goal, with
-corrections spaced so that each one's effect is on the display before the next (intermittent
-control), acting on what it sees, a round trip old, and predicting from its efference copy over
-the lag it believes. Before the task it holds the calibration
+What is to be done is the task's (:mod:`arteleop.operator.simulated.tasks`: phases, goals judged
+from the display, criteria); how, the operator's, the same for every task. It **moves** in
+minimum-jerk submovements timed to minimise the expected time to the criterion
+(:mod:`.submovements`), **watches** the display until the gripper it shows is still
+(:mod:`.watch`), **looks**, glance after glance, until it is sure either way (:mod:`.look`,
+:mod:`.perception`, :mod:`.belief`), and **homes in** during a movement where the display shows the
+gripper and the goal, with corrections spaced so that each one's effect is on the display before
+the next (intermittent control), acting on what it sees, a round trip old, and predicting from its
+efference copy over the lag it believes. Before the task it holds the calibration
 posture, aligns its hand on the resting gripper and waits for the display to show the robot
 engaged. A cue changes it only through what the display lets it see. Its output is a hand pose
 in the torso frame and a grip value; the loop turns them into IMU signals.
@@ -26,22 +26,22 @@ from scipy.spatial.transform import Rotation
 
 from arteleop.ar_features import DisplayFrame
 from arteleop.moved import moved_names
-from arteleop.operator.arm_model import ArmModel
-from arteleop.operator.criterion import PhaseCriterion
-from arteleop.operator.hand import Hand, Tremor
-from arteleop.operator.look import Look
-from arteleop.operator.mark_memory import MarkMemory
 from arteleop.operator.minimum_jerk import minimum_jerk_profile
 from arteleop.operator.output import ALIGN, CALIBRATE, DONE, ENGAGE, OperatorOutput
-from arteleop.operator.params import OperatorParams
-from arteleop.operator.perception import Perceived, perceive
-from arteleop.operator.perceptual_errors import PerceptualErrors
-from arteleop.operator.phase_log import PhaseLog, PhaseRecord
-from arteleop.operator.posture import CalibrationPosture, hand_from_calibration
-from arteleop.operator.submovements import planned_submovement
-from arteleop.operator.tasks import Action, Goal, Task, TaskPhase, phase_named
-from arteleop.operator.traits import OperatorTraits
-from arteleop.operator.watch import DisplayWatch
+from arteleop.operator.simulated.criterion import PhaseCriterion
+from arteleop.operator.simulated.hand import Hand, Tremor
+from arteleop.operator.simulated.look import Look
+from arteleop.operator.simulated.mark_memory import MarkMemory
+from arteleop.operator.simulated.params import OperatorParams
+from arteleop.operator.simulated.perception import Perceived, perceive
+from arteleop.operator.simulated.perceptual_errors import PerceptualErrors
+from arteleop.operator.simulated.phase_log import PhaseLog, PhaseRecord
+from arteleop.operator.simulated.submovements import planned_submovement
+from arteleop.operator.simulated.tasks import Action, Goal, Task, TaskPhase, phase_named
+from arteleop.operator.simulated.traits import OperatorTraits
+from arteleop.operator.simulated.watch import DisplayWatch
+from arteleop.operator.wearable.arm_model import ArmModel
+from arteleop.operator.wearable.posture import CalibrationPosture, hand_from_calibration
 
 
 class _Mode(Enum):
@@ -395,5 +395,7 @@ class SyntheticOperator:
 
 
 __getattr__ = moved_names(
-    "arteleop.operator.synthetic", {"TaskGeometry": "arteleop.operator.tasks:PickAndPlace"}, "0.3"
+    "arteleop.operator.synthetic",
+    {"TaskGeometry": "arteleop.operator.simulated.tasks:PickAndPlace"},
+    "0.3",
 )

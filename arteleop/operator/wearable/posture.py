@@ -11,7 +11,7 @@ from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation, Slerp
 
 from arteleop.errors import ConfigurationError
-from arteleop.operator.arm_model import ArmAngles, ArmModel, hand_pose, segment_rotations
+from arteleop.operator.wearable.arm_model import ArmAngles, ArmModel, hand_pose, segment_rotations
 
 
 @dataclass(frozen=True)

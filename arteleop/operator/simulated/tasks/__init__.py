@@ -1,8 +1,8 @@
 """Tasks for the synthetic operator: what each asks of it, apart from how it does it."""
 
-from arteleop.operator.tasks.pick_and_place import PickAndPlace
-from arteleop.operator.tasks.pointing import PointingTask
-from arteleop.operator.tasks.task import (
+from arteleop.operator.simulated.tasks.pick_and_place import PickAndPlace
+from arteleop.operator.simulated.tasks.pointing import PointingTask
+from arteleop.operator.simulated.tasks.task import (
     Action,
     Goal,
     Task,

@@ -10,7 +10,7 @@ Quaternions are each IMU's orientation in its earth frame, (w, x, y, z), unit le
 and every other cell empty, so that a replay loses it too. The sidecar gives the rate, the arm's
 segment lengths, the calibration posture held at the start, the subject id and the units. See
 docs/reference/recording-format.md. Reading and writing the files is
-:mod:`arteleop.operator.recording_file`'s.
+:mod:`arteleop.operator.wearable.recording_file`'s.
 """
 
 from __future__ import annotations
@@ -24,8 +24,8 @@ from scipy.spatial.transform import Rotation, Slerp
 from arteleop.checks import Bounds, check_fields
 from arteleop.errors import ConfigurationError, RecordingError
 from arteleop.moved import moved_names
-from arteleop.operator.arm_model import SEGMENTS, ArmModel
-from arteleop.operator.posture import CalibrationPosture
+from arteleop.operator.wearable.arm_model import SEGMENTS, ArmModel
+from arteleop.operator.wearable.posture import CalibrationPosture
 
 COLUMNS: tuple[str, ...] = (
     "time_s",
@@ -187,7 +187,8 @@ def fill_lost(
 __getattr__ = moved_names(
     "arteleop.operator.recording",
     dict.fromkeys(
-        ("load_recording", "sidecar_path", "write_recording"), "arteleop.operator.recording_file"
+        ("load_recording", "sidecar_path", "write_recording"),
+        "arteleop.operator.wearable.recording_file",
     ),
     until="0.3",
 )

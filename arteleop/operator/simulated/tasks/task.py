@@ -23,8 +23,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from arteleop.errors import ConfigurationError
-from arteleop.operator.perception import Perceived
-from arteleop.operator.traits import OperatorTraits
+from arteleop.operator.simulated.perception import Perceived
+from arteleop.operator.simulated.traits import OperatorTraits
 
 
 class Action(Enum):

@@ -5,11 +5,11 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from arteleop.operator.belief import probability_within
-from arteleop.operator.own_errors import believed_error_scale
-from arteleop.operator.params import OperatorParams
-from arteleop.operator.tasks import Goal, Task, TaskPhase
-from arteleop.operator.traits import OperatorTraits
+from arteleop.operator.simulated.belief import probability_within
+from arteleop.operator.simulated.own_errors import believed_error_scale
+from arteleop.operator.simulated.params import OperatorParams
+from arteleop.operator.simulated.tasks import Goal, Task, TaskPhase
+from arteleop.operator.simulated.traits import OperatorTraits
 
 
 class PhaseCriterion:

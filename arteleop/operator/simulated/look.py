@@ -1,10 +1,10 @@
 """One look of the synthetic operator: glance after glance at an error until it is sure either
-way (:mod:`arteleop.operator.belief`)."""
+way (:mod:`arteleop.operator.simulated.belief`)."""
 
 from __future__ import annotations
 
-from arteleop.operator.belief import averaging_saturated
-from arteleop.operator.traits import OperatorTraits
+from arteleop.operator.simulated.belief import averaging_saturated
+from arteleop.operator.simulated.traits import OperatorTraits
 
 
 class Look:

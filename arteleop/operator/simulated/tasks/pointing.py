@@ -13,14 +13,14 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from arteleop.operator.perception import Perceived
-from arteleop.operator.tasks.task import (
+from arteleop.operator.simulated.perception import Perceived
+from arteleop.operator.simulated.tasks.task import (
     Action,
     Goal,
     TaskPhase,
     planar_goal,
 )
-from arteleop.operator.traits import OperatorTraits
+from arteleop.operator.simulated.traits import OperatorTraits
 
 TO_START = TaskPhase("reach")  # over the start point
 POINT = TaskPhase("point")  # the pointing movement, over the target

@@ -23,8 +23,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from arteleop.ar_features import DisplayFrame
-from arteleop.operator.params import OperatorParams
-from arteleop.operator.perception import shown_gripper_m
+from arteleop.operator.simulated.params import OperatorParams
+from arteleop.operator.simulated.perception import shown_gripper_m
 
 
 class DisplayWatch:

@@ -4,8 +4,8 @@ Psychological Review 1988).
 A movement is a primary submovement and as many corrective ones as it takes to end within the
 operator's criterion. Each submovement's endpoint scatters in proportion to its amplitude: along
 its way by a share that falls with its duration, across it by a constant angle
-(:mod:`arteleop.operator.scatter`). Each one that ends outside the criterion costs a look and a
-correction. The operator picks every duration to minimise the expected time to the end: a fast
+(:mod:`arteleop.operator.simulated.scatter`). Each one that ends outside the criterion costs a look
+and a correction. The operator picks every duration to minimise the expected time to the end: a fast
 primary saves time now and costs corrections later.
 
 That trade-off is a dynamic programme over the amplitude left relative to the criterion,
@@ -37,9 +37,9 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.stats import chi2
 
-from arteleop.operator.hand import MIN_JERK_PEAK, Submovement
-from arteleop.operator.params import OperatorParams
-from arteleop.operator.scatter import MovementScatter
+from arteleop.operator.simulated.hand import MIN_JERK_PEAK, Submovement
+from arteleop.operator.simulated.params import OperatorParams
+from arteleop.operator.simulated.scatter import MovementScatter
 
 LOOK_COST_STEP_S = 0.05
 """Resolution of the look cost's tables (s)."""
