@@ -4,6 +4,7 @@ column."""
 from __future__ import annotations
 
 import difflib
+import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -35,6 +36,10 @@ OUTCOMES = (
 """How a trial may end: success, or a failure (``failure`` for a lab's own reason)."""
 AR_CLASSES = ("embodiment", "manipulation", "task")
 QUESTIONNAIRE_ITEMS = ("presence", "embodiment", "ease")
+"""The original study's questionnaire items; a study may ask its own."""
+ITEM_ID = re.compile(r"[a-z][a-z0-9_]{0,31}")
+"""A questionnaire item's id: lower-case letters, digits and underscores, a letter first, at
+most 32."""
 
 TRIAL_COLUMNS = (
     "participant", "phase", "trial_index", "modality", "position", "seed", "outcome",
@@ -146,9 +151,17 @@ def load_study(path: Path, participants_path: Path | None = None) -> StudyData:
     if questionnaire_path is not None:
         questionnaire = read_table(
             questionnaire_path, QUESTIONNAIRE_COLUMNS, QUESTIONNAIRE_COLUMNS, ("score",),
-            {"ar_class": AR_CLASSES, "item": QUESTIONNAIRE_ITEMS},
+            {"ar_class": AR_CLASSES},
         )  # fmt: skip
         _check_range(questionnaire_path, questionnaire, "score", 1, 7)
+        bad = ~questionnaire["item"].map(ITEM_ID.fullmatch).astype(bool)
+        if bad.any():
+            i = int(np.flatnonzero(bad.to_numpy())[0])
+            raise AnalysisInputError(
+                f"{questionnaire_path}, line {i + 2}, column item: "
+                f"'{questionnaire['item'].iloc[i]}' is not an item id: expected lower-case "
+                "letters, digits and _, a letter first, at most 32"
+            )
     return StudyData(trials, participants, questionnaire, base, trials_path)
 
 
@@ -307,3 +320,8 @@ def _check_range(path: Path, df: pd.DataFrame, column: str, lo: float, hi: float
             f"{path}, line {i + 2}, column {column}: {df[column].iloc[i]:g}; "
             f"expected {lo:g} to {hi:g}"
         )
+
+
+def questionnaire_items(questionnaire: pd.DataFrame) -> list[str]:
+    """The items a questionnaire table rates, in the order they first appear."""
+    return list(dict.fromkeys(questionnaire["item"]))

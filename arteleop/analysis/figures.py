@@ -11,7 +11,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
-from arteleop.analysis.data import AR_CLASSES, MODALITIES, QUESTIONNAIRE_ITEMS
+from arteleop.analysis.data import AR_CLASSES, MODALITIES, questionnaire_items
 
 LABELS = {
     "completion_time_s": "completion time (s)",
@@ -50,8 +50,10 @@ def measure_boxplot(
 
 def questionnaire_boxplot(questionnaire: pd.DataFrame, path: Path) -> None:
     """Likert scores per AR class, one panel per item."""
-    fig, axes = plt.subplots(1, len(QUESTIONNAIRE_ITEMS), figsize=(11, 3.8), sharey=True)
-    for ax, item in zip(axes, QUESTIONNAIRE_ITEMS, strict=True):
+    items = questionnaire_items(questionnaire)
+    fig, axes = plt.subplots(1, len(items), figsize=(11, 3.8), sharey=True, squeeze=False)
+    axes = axes[0]
+    for ax, item in zip(axes, items, strict=True):
         q = questionnaire[questionnaire["item"] == item]
         ax.boxplot(
             [q[q["ar_class"] == c]["score"].dropna().to_numpy() for c in AR_CLASSES],

@@ -74,7 +74,7 @@ def _figures(
         path = figures / f"boxplot_{m}.png"
         measure_boxplot(values, all_tests, m, path)
         files[path.name] = path
-    if study.questionnaire is not None:
+    if study.questionnaire is not None and not study.questionnaire.empty:
         path = figures / "questionnaire.png"
         questionnaire_boxplot(study.questionnaire, path)
         files[path.name] = path

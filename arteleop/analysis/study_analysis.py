@@ -11,9 +11,9 @@ from arteleop.analysis.data import (
     AR_CLASSES,
     MEASURES,
     MODALITIES,
-    QUESTIONNAIRE_ITEMS,
     StudyData,
     load_trajectory,
+    questionnaire_items,
 )
 from arteleop.analysis.delay import (
     CELL_MEASURES,
@@ -136,7 +136,7 @@ def analyse(study: StudyData, options: AnalysisOptions | None = None) -> Analysi
         # Ratings 1-7 are compared untrimmed under every method: the thesis did not trim
         # them, and trimmed means of a few tied levels say little.
         ratings = replace(options, method="untrimmed")
-        for item in QUESTIONNAIRE_ITEMS:
+        for item in questionnaire_items(study.questionnaire):
             q = study.questionnaire[study.questionnaire["item"] == item]
             if q.empty:
                 continue

@@ -116,20 +116,19 @@ class SessionPages:
     def questionnaire(
         self,
         classes: Sequence[tuple[str, str]],
-        items: Sequence[tuple[str, str]],
+        items: Sequence[tuple[str, str, tuple[str, str]]],
         on_submit: Callable[[Mapping[tuple[str, str], int]], None],
     ) -> None:
-        """A 1-7 rating of each item for each class: ``classes`` and ``items`` are (key, what
-        the participant reads); ``on_submit`` gets the ratings, 0 where none was chosen."""
+        """A 1-7 rating of each item for each class: ``classes`` are (key, what the participant
+        reads), ``items`` (key, what the participant reads, what 1 and 7 mean); ``on_submit``
+        gets the ratings, 0 where none was chosen."""
         with self._new("Questionnaire"):
-            self._gui.add_markdown(
-                "Rate each kind of display aid you saw, from 1 (not at all) to 7 (very much)."
-            )
+            self._gui.add_markdown("Rate each kind of display aid you saw, from 1 to 7.")
             ratings = {}
             for class_key, class_text in classes:
                 self._gui.add_markdown(f"**{class_text}**")
-                for item_key, item_text in items:
-                    ratings[class_key, item_key] = self._rating(item_text, AGREEMENT)
+                for item_key, item_text, ends in items:
+                    ratings[class_key, item_key] = self._rating(item_text, ends)
             self._error = self._gui.add_markdown("")
             self._button(
                 "Submit", lambda: on_submit({k: _rated(r.value) for k, r in ratings.items()})
@@ -161,8 +160,6 @@ def _status(elapsed_s: float, state: str) -> str:
 
 EXPERIENCE = ("none", "a great deal")
 """The experience scales' ends."""
-AGREEMENT = ("not at all", "very much")
-"""The questionnaire's ends."""
 
 
 def _scale(ends: tuple[str, str]) -> tuple[str, ...]:

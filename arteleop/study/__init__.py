@@ -22,6 +22,7 @@ from arteleop.study.participants import CohortConfig, ParticipantSpec
 from arteleop.study.plan import PracticePoints, TrialSpec, plan_study, trial_seed
 from arteleop.study.protocol import TrialRecord, operator_traits, run_planned_trial
 from arteleop.study.questionnaire import classes_shown, simulated_answers
+from arteleop.study.questionnaire_items import ORIGINAL_QUESTIONNAIRE, QuestionnaireItem
 from arteleop.study.run_folder import FORMAT_VERSION, TRIAL_COLUMNS, RunFolder
 from arteleop.study.run_lock import run_lock
 from arteleop.study.runner import RunComplete, StudyRun, resume_study, run_study
@@ -43,6 +44,7 @@ __all__ = [
     "FORMAT_VERSION",
     "MODALITY_NAMES",
     "ORDER_SCHEMES",
+    "ORIGINAL_QUESTIONNAIRE",
     "TRIAL_COLUMNS",
     "BrowserCheck",
     "CohortConfig",
@@ -50,6 +52,7 @@ __all__ = [
     "FamiliarizationConfig",
     "ParticipantSpec",
     "PracticePoints",
+    "QuestionnaireItem",
     "RunComplete",
     "RunFolder",
     "ServedRun",

@@ -22,6 +22,11 @@ from arteleop.errors import ConfigurationError, StudyDefinitionError
 from arteleop.operator.simulated.traits import TraitDistribution
 from arteleop.scene.camera_config import HeadCameraConfig
 from arteleop.study.participants import CohortConfig, ParticipantSpec
+from arteleop.study.questionnaire_items import (
+    ORIGINAL_QUESTIONNAIRE,
+    QuestionnaireItem,
+    check_items,
+)
 from arteleop.teleop.hand_filter import HandFilterConfig
 from arteleop.teleop.trial_task import trial_task
 
@@ -114,6 +119,10 @@ class StudyConfig:
             in Markdown (the study file's ``consent``, or the file its ``consent_file`` names);
             empty: the built-in page, which says this study's trials and timeout
             (:func:`arteleop.study.session_words.consent_text`).
+        questionnaire: The statements each AR class a participant saw is rated on, 1-7, after
+            the last trial (``[[questionnaire]]`` tables, or ``questionnaire_file``): the
+            original study's three by default. Simulated participants answer the original's
+            items only.
         instructions: The page on how to drive the robot, shown once before the first trial,
             in Markdown (the study file's ``instructions``, or the file its
             ``instructions_file`` names); empty: the built-in page
@@ -168,6 +177,7 @@ class StudyConfig:
     task: str = "pick-and-place"
     consent: str = ""
     instructions: str = ""
+    questionnaire: tuple[QuestionnaireItem, ...] = ORIGINAL_QUESTIONNAIRE
     seed: int = 0
     modalities: tuple[str, ...] = MODALITY_NAMES
     order: str = "williams"
@@ -195,6 +205,7 @@ class StudyConfig:
             raise StudyDefinitionError(str(err)) from None
         if self.seed < 0:
             raise StudyDefinitionError(f"seed = {self.seed}: expected a whole number, 0 or more.")
+        check_items(self.questionnaire)
         unknown = [m for m in self.modalities if not _is_cue_set(m)]
         if unknown or not self.modalities:
             raise StudyDefinitionError(

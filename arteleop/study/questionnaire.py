@@ -70,10 +70,12 @@ def simulated_answers(
     experimental: pd.DataFrame,
     timeout_s: float,
     classes: Sequence[str] = AR_CLASSES,
+    items: Sequence[str] = ITEMS,
 ) -> list[tuple[str, str, str, int]]:
     """(participant, ar_class, item, score) rows for one participant, from their experimental
     trials (``modality``, ``outcome``, ``completion_time_s``, ``placement_error_m``), for the
-    AR classes in ``classes`` (each class's answers the same whichever others are asked)."""
+    AR classes in ``classes`` and the items in ``items`` of the original study's (each answer
+    the same whichever others are asked; the model answers no other item)."""
     rng = np.random.default_rng(seed)
     network = [c for c in NETWORK_COLUMNS if c in experimental]
     least_delay = experimental.sort_values(network, kind="stable").drop_duplicates("modality")
@@ -89,7 +91,7 @@ def simulated_answers(
         }  # fmt: skip
         for item in ITEMS:
             raw = 4.0 + leniency + effects[item] + rng.normal(0.0, ANSWER_SD)
-            if ar_class in classes:
+            if ar_class in classes and item in items:
                 rows.append((participant, ar_class, item, int(np.clip(round(raw), 1, 7))))
     return rows
 

@@ -337,5 +337,6 @@ def _questionnaire_text(
     classes = classes_shown(study)
     for k, person in enumerate(people):
         own = experimental[experimental["participant"] == person.id]
-        rows += simulated_answers(person.id, (study.seed, 4, k), own, study.timeout_s, classes)
+        rows += simulated_answers(person.id, (study.seed, 4, k), own, study.timeout_s, classes,
+                                  [item.id for item in study.questionnaire])  # fmt: skip
     return table_text(QUESTIONNAIRE_COLUMNS, rows)

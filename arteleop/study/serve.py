@@ -32,7 +32,6 @@ import time
 from collections.abc import Callable, Mapping
 from dataclasses import replace
 
-from arteleop.analysis.data import QUESTIONNAIRE_ITEMS
 from arteleop.ar_features import OperatorView, ViewConfig, modality_cues
 from arteleop.ar_features.view import drew_a_frame
 from arteleop.errors import ArteleopError, RunFolderError
@@ -55,7 +54,6 @@ from arteleop.study.session_words import (
     AGREE,
     AR_CLASS_TEXT,
     CANNOT_SAVE,
-    ITEM_TEXT,
     SESSION_OVER,
     TRY_IT,
     consent_text,
@@ -176,7 +174,7 @@ class StudyServer(Closeable):
             self._trial(pending[0])
         if not run.answered(participant):
             classes = [(c, AR_CLASS_TEXT[c]) for c in classes_shown(run.study)]
-            items = [(i, ITEM_TEXT[i]) for i in QUESTIONNAIRE_ITEMS]
+            items = [(i.id, i.text, (i.low, i.high)) for i in run.study.questionnaire]
             self.tabs.show(
                 lambda p: p.questionnaire(classes, items, lambda r: self.tabs.act("rate", r))
             )
@@ -193,7 +191,7 @@ class StudyServer(Closeable):
             self.tabs.wait("next")
 
     def _wait_for_ratings(
-        self, classes: list[tuple[str, str]], items: list[tuple[str, str]]
+        self, classes: list[tuple[str, str]], items: list[tuple[str, str, tuple[str, str]]]
     ) -> Mapping[tuple[str, str], int]:
         """The questionnaire's ratings once every item has one; until then the page names the
         first without."""
@@ -203,7 +201,7 @@ class StudyServer(Closeable):
             first = next(unrated, None)
             if first is None:
                 return ratings
-            (_, class_text), (_, item_text) = first
+            (_, class_text), (_, item_text, _) = first
             message = f'"{item_text}", under "{class_text}": choose a rating, 1 to 7.'
             self.tabs.on_pages(lambda p, message=message: p.error(message))
 

@@ -37,7 +37,6 @@ from pathlib import Path
 from arteleop.analysis.data import (
     PARTICIPANT_COLUMNS,
     QUESTIONNAIRE_COLUMNS,
-    QUESTIONNAIRE_ITEMS,
     TRIAL_COLUMNS,
 )
 from arteleop.ar_features.links import TOKEN_BYTES
@@ -343,7 +342,7 @@ class ServedRun:
         draw (:func:`classes_shown`) rated 1-7."""
         rows = []
         for ar_class in classes_shown(self.study):
-            for item in QUESTIONNAIRE_ITEMS:
+            for item in (i.id for i in self.study.questionnaire):
                 score = ratings.get((ar_class, item))
                 _whole(f"{item} of {ar_class}", score, 1, 7, "on the 1-7 scale")
                 rows.append((participant, ar_class, item, score))

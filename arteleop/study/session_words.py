@@ -100,11 +100,6 @@ AR_CLASS_TEXT = {
     "and grip)",
     "task": "The green bowl drawn at the target",
 }
-ITEM_TEXT = {
-    "presence": "I felt present at the robot's place",
-    "embodiment": "The robot arm felt like my own arm",
-    "ease": "The task was easy to do",
-}
 
 
 def outcome_text(outcome: str, completion_time_s: float, placement_error_m: float) -> str:

@@ -21,6 +21,7 @@ from arteleop.study.definition import (
     ParticipantSpec,
     StudyConfig,
 )
+from arteleop.study.questionnaire_items import QuestionnaireItem
 from arteleop.teleop.hand_filter import HandFilterConfig
 
 TABLES: dict[str, type] = {
@@ -30,6 +31,8 @@ TABLES: dict[str, type] = {
     "hand_filter": HandFilterConfig,
 }
 """The study file's tables and what each is read into."""
+QUESTIONNAIRE_FILE_KEY = "questionnaire_file"
+"""Not a field: a TOML file of ``[[questionnaire]]`` tables, read into ``questionnaire``."""
 CAMERA_GRAPH_KEY = "camera_graph"
 """Not a field: a graph file whose camera edge becomes ``camera_pose``."""
 TEXT_FILE_KEYS = {"consent_file": "consent", "instructions_file": "instructions"}
@@ -120,6 +123,15 @@ def parse_study(text: str, source: str = "<study>") -> StudyConfig:
                         f"{where.at('participants', 'id', index)}: participant id {pid!r} is "
                         "used twice; each participant needs an id of their own."
                     )
+        elif key == "questionnaire":
+            top[key] = _items(value, where)
+        elif key == QUESTIONNAIRE_FILE_KEY:
+            if "questionnaire" in data:
+                raise StudyDefinitionError(
+                    f"{where.at('', key)}: {key} and [[questionnaire]]: give the items once, in "
+                    "the study file or in a file."
+                )
+            top["questionnaire"] = _items_file(value, source, where.at("", key))
         elif key in TEXT_FILE_KEYS:
             field_name = TEXT_FILE_KEYS[key]
             if field_name in data:
@@ -166,6 +178,57 @@ def _text_file(key: str, value: Any, source: str, at: str) -> str:
     return text
 
 
+def _items(value: Any, where: _Locator) -> tuple[QuestionnaireItem, ...]:
+    """The questionnaire's items from its ``[[questionnaire]]`` tables."""
+    if not isinstance(value, list):
+        raise StudyDefinitionError(
+            f"{where.at('', 'questionnaire')}: questionnaire must be [[questionnaire]] tables "
+            "(id, text, low, high)."
+        )
+    if not value:
+        raise StudyDefinitionError(
+            f"{where.at('', 'questionnaire')}: questionnaire = [] asks nothing; give "
+            "[[questionnaire]] tables, or remove the key for the original study's three items."
+        )
+    items = tuple(
+        _build(QuestionnaireItem, item, "questionnaire", where, index)
+        for index, item in enumerate(value)
+    )
+    ids = [item.id for item in items]
+    for index, item_id in enumerate(ids):
+        if item_id in ids[:index]:
+            raise StudyDefinitionError(
+                f"{where.at('questionnaire', 'id', index)}: questionnaire item id {item_id!r} is "
+                "used twice; each item needs an id of its own."
+            )
+    return items
+
+
+def _items_file(value: Any, source: str, at: str) -> tuple[QuestionnaireItem, ...]:
+    """The items of the file the study file's ``questionnaire_file`` names: its
+    ``[[questionnaire]]`` tables, each problem named by that file's line."""
+    key = QUESTIONNAIRE_FILE_KEY
+    if not isinstance(value, str) or not value:
+        raise StudyDefinitionError(f"{at}: {key} must be a file name, got {value!r}.")
+    path = Path(source).parent / value
+    text = _read_text(
+        path, f"{at}: {key}: {path}", "no such file. Put the items there as [[questionnaire]] "
+        "tables (id, text, low, high), or name its file relative to the study file."
+    )  # fmt: skip
+    try:
+        data = tomllib.loads(text.removeprefix("\ufeff"))
+    except tomllib.TOMLDecodeError as err:
+        raise StudyDefinitionError(f"{path}: not valid TOML: {err}.") from None
+    where = _Locator(text, str(path))
+    extra = [k for k in data if k != "questionnaire"]
+    if extra or not data:
+        raise StudyDefinitionError(
+            f"{where.at('', extra[0]) if extra else path}: expected [[questionnaire]] tables "
+            f"only (id, text, low, high){f', not {extra[0]!r}' if extra else ''}."
+        )
+    return _items(data["questionnaire"], where)
+
+
 def _graph_camera_pose(value: Any, source: str, at: str) -> list[list[float]]:
     """The camera's pose in a transform graph file named by the ``camera_graph`` key."""
     from arteleop.frames import TransformGraph
@@ -196,6 +259,14 @@ def _build(cls: type, values: Any, table: str, where: _Locator, index: int | Non
                 f"keys{' in [' + table + ']' if table else ''}: {', '.join(names)}."
             )
         kwargs[key] = _convert(value, hints[key], where.at(table, key, index), table, key)
+    required = [f.name for f in dataclasses.fields(cls) if f.default is dataclasses.MISSING
+                and f.default_factory is dataclasses.MISSING]  # fmt: skip
+    missing = [name for name in required if name not in kwargs]
+    if missing:
+        raise StudyDefinitionError(
+            f"{where.at(table, '', index)}: [{'[' + table + ']' if index is not None else table}]"
+            f" has no {missing[0]!r}; give {', '.join(required)}."
+        )
     try:
         return cls(**kwargs)
     except ConfigurationError as err:

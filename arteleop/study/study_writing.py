@@ -96,6 +96,12 @@ _CONDITIONS_HELP = """\
 
 """
 
+_QUESTIONNAIRE_HELP = """\
+# The questionnaire after the last trial: each item rated 1 (low) to 7 (high) for each AR class
+# the study's conditions draw. questionnaire_file = "items.toml" reads [[questionnaire]] tables
+# from that file instead. Simulated participants answer the original's three items only.
+"""
+
 _PARTICIPANTS_HELP = """\
 # Named participants replace the simulated cohort, e.g. (ids name folders of the run):
 # [[participants]]
@@ -113,7 +119,7 @@ _PARTICIPANTS_HELP = """\
 def study_text(config: StudyConfig) -> str:
     """The definition as commented TOML, every key written out."""
     out = [_HEADER]
-    nested = {"participants", "conditions", *TABLES}
+    nested = {"participants", "conditions", "questionnaire", *TABLES}
     if config.conditions:  # they replace the modalities and the delay
         nested |= {"modalities", "delay_ms"}
     for f in dataclasses.fields(config):
@@ -134,6 +140,12 @@ def study_text(config: StudyConfig) -> str:
             out.append("\n")
     else:
         out.append(_CONDITIONS_HELP)
+    out.append(_QUESTIONNAIRE_HELP)
+    for item in config.questionnaire:
+        out.append("[[questionnaire]]\n")
+        for f in dataclasses.fields(item):
+            out.append(f"{f.name} = {_toml_value(getattr(item, f.name))}\n")
+        out.append("\n")
     if config.participants:
         for person in config.participants:
             out.append("[[participants]]\n")

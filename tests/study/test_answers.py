@@ -46,7 +46,8 @@ def test_answers_replace_those_participants_rows_in_order(tmp_path: Path, capsys
         ("P09,task,ease,7", "line 3: participant 'P09' is not in participants.csv"),
         ("P01,tasks,ease,7", "line 3: ar_class 'tasks'; expected one of embodiment, "
                              "manipulation, task"),
-        ("P01,task,joy,7", "line 3: item 'joy'; expected one of presence, embodiment, ease"),
+        ("P01,task,joy,7", "line 3: item 'joy'; expected one of the study's presence, "
+                            "embodiment, ease"),
         ("P01,task,ease,8", "line 3: score '8'; expected a whole number 1-7"),
     ],
 )  # fmt: skip

@@ -11,7 +11,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from arteleop.analysis.data import QUESTIONNAIRE_ITEMS
 from arteleop.errors import RunFolderError
 from arteleop.scene import HeadCameraConfig
 from arteleop.study import (
@@ -34,7 +33,7 @@ from arteleop.study.session import (
     SessionInputError,
     served_run,
 )
-from arteleop.study.session_words import AR_CLASS_TEXT, IN_PROGRESS, ITEM_TEXT, OBSERVING
+from arteleop.study.session_words import AR_CLASS_TEXT, IN_PROGRESS, OBSERVING
 from tests.helpers import serve_to
 from tests.instruments.browser import (
     answer_questions,
@@ -309,7 +308,7 @@ def _take_part(
     watcher.get_by_text("Questionnaire").wait_for(timeout=30_000)
     press_button(watcher, "Submit")  # nothing rated: refused, naming the first item
     watcher.get_by_text(
-        f'"{ITEM_TEXT[QUESTIONNAIRE_ITEMS[0]]}", under "{AR_CLASS_TEXT[classes_shown(STUDY)[0]]}": '
+        f'"{STUDY.questionnaire[0].text}", under "{AR_CLASS_TEXT[classes_shown(STUDY)[0]]}": '
         "choose a rating, 1 to 7."
     ).wait_for()
     rate_every_item(watcher, "6")

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from arteleop.ar_features.session_pages import AGREEMENT, EXPERIENCE, HOURS, _rated, _scale
+from arteleop.ar_features.session_pages import EXPERIENCE, HOURS, _rated, _scale
 from arteleop.study import FamiliarizationConfig, StudyConfig
 from arteleop.study.session_words import (
     CONSENT,
@@ -39,7 +39,8 @@ def test_a_study_files_own_consent_is_shown_as_it_is() -> None:
 
 
 def test_every_rating_scale_names_its_ends_and_answers_a_number() -> None:
-    for ends in (EXPERIENCE, AGREEMENT):
+    items = StudyConfig().questionnaire
+    for ends in (EXPERIENCE, *((item.low, item.high) for item in items)):
         options = _scale(ends)
         assert options[0] == f"1 ({ends[0]})" and options[-1] == f"7 ({ends[1]})"
         assert [_rated(o) for o in options] == [1, 2, 3, 4, 5, 6, 7]
