@@ -50,6 +50,8 @@ class TrialCommand(CameraSize):
     """serve the operator's view (point cloud and AR layers) in the browser, in real time"""
     depth_aids: bool = False
     """draw the depth aids in the view: the gripper's drop line to the table, a ring at its foot and its height (the simulated participant judges them too)"""
+    task: str = "pick-and-place"
+    """what the trial asks and how it is scored: pick-and-place, or a task of your own as package.module:NAME (docs/guides/extending.md)"""
     exit_when_done: bool = False
     """with --view: stop when the trial ends (else the view keeps its last frame until Ctrl-C)"""
     host: str = "127.0.0.1"
@@ -122,17 +124,22 @@ def trial(cmd: TrialCommand) -> int:
         TrialConfig,
         run_trial,
         trial_operator,
+        trial_task,
         view_assets,
     )
 
     _check_trial(cmd)
+    try:
+        trial_task(cmd.task)
+    except ConfigurationError as err:  # named as the option it came from
+        raise ConfigurationError(str(err).replace("task = ", "--task ", 1)) from None
     traits, hand_filter = _operator_options(cmd)
     config = TrialConfig(
         modality=cmd.modality, seed=cmd.seed, timeout_s=cmd.timeout_s,
         realtime=cmd.realtime or cmd.view, render_camera=cmd.view,
         network=NetworkConfig(delay_s=cmd.delay_ms / 1000),
         controller=ControllerConfig(hand_filter=hand_filter),
-        site=SiteConfig(camera=cmd.camera_config()), depth_aids=cmd.depth_aids,
+        site=SiteConfig(camera=cmd.camera_config()), depth_aids=cmd.depth_aids, task=cmd.task,
     )  # fmt: skip
     with contextlib.ExitStack() as stack:
         site = stack.enter_context(RemoteSite(config.site))

@@ -68,8 +68,8 @@ def test_study_init_writes_the_commented_default(tmp_path: Path, capsys) -> None
     ("text", "message"),
     [
         ('seed = 1\nordr = "williams"\n',
-         "s.toml line 2: unknown key 'ordr'. Valid keys: name, task, consent, instructions, questionnaire, seed, "
-         "modalities, order, "
+         "s.toml line 2: unknown key 'ordr'. Valid keys: name, task, consent, instructions, "
+         "questionnaire, seed, modalities, order, "
          "orders, trials_per_modality, timeout_s, delay_ms, depth_aids, camera_offset_mm, "
          "camera_offset_deg, camera_pose, start_xy_m, target_xy_m, familiarization, cohort, "
          "participants, operator, hand_filter, conditions."),
