@@ -42,6 +42,7 @@ class _MovedModules(importlib.abc.MetaPathFinder, importlib.abc.Loader):
     def __init__(self, homes: Mapping[str, str], until: str) -> None:
         self._homes = dict(homes)
         self._until = until
+        self._own_specs: dict[str, ModuleSpec | None] = {}  # by old name, while being imported
 
     def _new_name(self, fullname: str) -> str | None:
         for old, new in self._homes.items():
@@ -51,7 +52,7 @@ class _MovedModules(importlib.abc.MetaPathFinder, importlib.abc.Loader):
 
     def find_spec(self, fullname: str, path: Any, target: Any = None) -> ModuleSpec | None:
         new = self._new_name(fullname)
-        if new is None:
+        if new is None or importlib.util.find_spec(new) is None:  # no such module, old or new
             return None
         warnings.warn(
             f"the module {fullname} has moved to {new}: import it from there ({fullname} is "
@@ -62,10 +63,14 @@ class _MovedModules(importlib.abc.MetaPathFinder, importlib.abc.Loader):
         return importlib.util.spec_from_loader(fullname, self)
 
     def create_module(self, spec: ModuleSpec) -> ModuleType:
-        return importlib.import_module(self._new_name(spec.name) or spec.name)
+        module = importlib.import_module(self._new_name(spec.name) or spec.name)
+        self._own_specs[spec.name] = module.__spec__
+        return module
 
     def exec_module(self, module: ModuleType) -> None:
-        """The new module ran when it was imported under its new name."""
+        """The new module ran when it was imported under its new name; the import system has
+        just given it the old name's spec, so it gets its own back (a reload runs its file)."""
+        module.__spec__ = self._own_specs.pop(module.__spec__.name)
 
 
 def moved_modules(homes: Mapping[str, str], until: str) -> None:

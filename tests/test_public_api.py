@@ -113,6 +113,7 @@ def test_a_module_that_moved_is_found_at_its_old_name_with_a_warning(old: str, n
     with pytest.warns(DeprecationWarning) as caught:
         module = importlib.import_module(old)
     assert module is importlib.import_module(new)
+    assert module.__spec__.name == new  # its own, not the old name's: a reload runs its file
     assert str(caught[-1].message) == (
         f"the module {old} has moved to {new}: import it from there ({old} is found through "
         "0.4 only)"

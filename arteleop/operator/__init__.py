@@ -12,6 +12,9 @@ Their modules were here before 0.4 and are found at their old names, with a warn
 to :mod:`arteleop.teleop` in 0.3; the old names are found here, with a warning, through 0.3.
 """
 
+import importlib
+from typing import Any
+
 from arteleop.moved import moved_modules, moved_names
 from arteleop.operator.live import HandTarget, LiveOperator
 from arteleop.operator.minimum_jerk import minimum_jerk, minimum_jerk_profile
@@ -159,7 +162,7 @@ __all__ = [
     "write_recording",
 ]
 
-__getattr__ = moved_names(
+_moved_name = moved_names(
     "arteleop.operator",
     {
         **dict.fromkeys(
@@ -172,19 +175,24 @@ __getattr__ = moved_names(
     until="0.3",
 )  # fmt: skip
 
+_MOVED_MODULES = {
+    **dict.fromkeys(
+        ("acuity", "belief", "bowl_memory", "criterion", "hand", "judging", "look", "mark_memory",
+         "own_errors", "params", "perception", "perceptual_errors", "phase_log", "scatter",
+         "submovements", "synthetic", "tasks", "traits", "watch"),
+        "simulated",
+    ),
+    **dict.fromkeys(("arm_model", "posture", "recording", "recording_file", "synthesis"),
+                    "wearable"),
+}  # fmt: skip
+"""Modules that moved into a room in 0.4, by name, to their room."""
 moved_modules(
-    {
-        **{
-            f"arteleop.operator.{name}": f"arteleop.operator.simulated.{name}"
-            for name in ("acuity", "belief", "bowl_memory", "criterion", "hand", "judging",
-                         "look", "mark_memory", "own_errors", "params", "perception",
-                         "perceptual_errors", "phase_log", "scatter", "submovements",
-                         "synthetic", "tasks", "traits", "watch")
-        },
-        **{
-            f"arteleop.operator.{name}": f"arteleop.operator.wearable.{name}"
-            for name in ("arm_model", "posture", "recording", "recording_file", "synthesis")
-        },
-    },
+    {f"{__name__}.{name}": f"{__name__}.{room}.{name}" for name, room in _MOVED_MODULES.items()},
     until="0.4",
-)  # fmt: skip
+)
+
+
+def __getattr__(name: str) -> Any:
+    if name in _MOVED_MODULES:  # as an attribute, as before 0.4: imported, with the warning
+        return importlib.import_module(f"{__name__}.{name}")
+    return _moved_name(name)

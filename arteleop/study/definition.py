@@ -139,7 +139,7 @@ class StudyConfig:
         orders: With ``order = "listed"``, the sequences of modality names, each naming every
             modality once (e.g. a published study's own square).
         trials_per_modality: Experimental trials per modality: 1, as in the original and as
-            the data format (version 2) records.
+            the data format records.
         timeout_s: Simulated time after which an experimental trial ends as a timeout (s).
         delay_ms: One-way network delay between operator and robot (ms), in every trial.
         depth_aids: The display draws the depth aids in every trial, practice included
@@ -248,7 +248,7 @@ class StudyConfig:
         if self.trials_per_modality != 1:
             raise StudyDefinitionError(
                 f"trials_per_modality = {self.trials_per_modality}: the study data format "
-                "(docs/reference/data-format.md, version 2) holds one experimental trial per "
+                "(docs/reference/data-format.md) holds one experimental trial per "
                 "participant and modality, so 1 is the only value it can record."
             )
         _check_timeout("timeout_s", self.timeout_s)

@@ -9,9 +9,13 @@ the task, rated per AR class).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from arteleop.analysis.data import ITEM_ID
 from arteleop.errors import StudyDefinitionError
+
+if TYPE_CHECKING:
+    from arteleop.study.definition import StudyConfig
 
 MAX_ITEMS = 20
 """At most this many items: each is asked for every AR class shown, on one page."""
@@ -42,10 +46,10 @@ class QuestionnaireItem:
             )
         for key in ("text", "low", "high"):
             value = getattr(self, key)
-            if not value.strip() or "\n" in value:
+            if not value.strip() or not value.isprintable():
                 raise StudyDefinitionError(
                     f"questionnaire.{key} = {value!r} (item {self.id!r}): expected one line of "
-                    "text."
+                    "printable text."
                 )
 
 
@@ -71,3 +75,9 @@ def check_items(items: tuple[QuestionnaireItem, ...]) -> None:
                 f"questionnaire.id = {item_id!r}: item {k + 1} repeats item "
                 f"{ids.index(item_id) + 1}; each item needs an id of its own."
             )
+
+
+def modelled_items(study: StudyConfig) -> list[str]:
+    """The ids of the study's items that the simulated participant answers: the original's, asked
+    in the original's words (an item that only shares an id answers nothing of the model's)."""
+    return [item.id for item in study.questionnaire if item in ORIGINAL_QUESTIONNAIRE]

@@ -31,6 +31,7 @@ from arteleop.study.participants import ParticipantSpec
 from arteleop.study.plan import EXPERIMENTAL, TrialSpec
 from arteleop.study.protocol import TrialRecord, run_planned_trial
 from arteleop.study.questionnaire import classes_shown, simulated_answers
+from arteleop.study.questionnaire_items import modelled_items
 from arteleop.study.run_folder import (
     REAL,
     STUDY_FILE,
@@ -338,5 +339,5 @@ def _questionnaire_text(
     for k, person in enumerate(people):
         own = experimental[experimental["participant"] == person.id]
         rows += simulated_answers(person.id, (study.seed, 4, k), own, study.timeout_s, classes,
-                                  [item.id for item in study.questionnaire])  # fmt: skip
+                                  modelled_items(study))  # fmt: skip
     return table_text(QUESTIONNAIRE_COLUMNS, rows)

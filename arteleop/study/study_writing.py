@@ -37,7 +37,7 @@ _COMMENTS = {
     "modalities": "AR modalities compared: none, manipulation, embodiment, task, full",
     "order": "williams (balanced Latin square), cyclic, random (seeded) or listed (in orders)",
     "orders": 'with order = "listed": the sequences, e.g. [["none", "full"], ["full", "none"]]',
-    "trials_per_modality": "experimental trials per modality (data format version 2: 1)",
+    "trials_per_modality": "experimental trials per modality (the data format holds 1)",
     "timeout_s": "simulated time after which a trial ends as a timeout (s)",
     "delay_ms": "one-way network delay between operator and robot (ms), in every trial",
     "depth_aids": "draw the gripper's drop line to the table and its height, in every trial "

@@ -45,7 +45,7 @@ class TrialTask:
     """A task a study can name: the participant's task and the site's scoring of it.
 
     Attributes:
-        name: How ``trials.csv``, the manifest and messages name it.
+        name: Its name; the platform's own are found by it (:data:`TASKS`).
         operator_task: Makes the simulated participant's task for one trial.
         monitor: Makes the trial's monitor for the trial's workspace: a
             :class:`~arteleop.teleop.TaskMonitor`, or a subclass that scores another task.
@@ -83,12 +83,14 @@ def trial_task(name: str) -> TrialTask:
         f"expected {', '.join(map(repr, TASKS))}, or a task of your own as 'package.module:NAME' "
         "(docs/guides/extending.md)"
     )
-    module_name, colon, attribute = name.partition(":")
-    if not (colon and module_name and attribute):
+    module_name, _, attribute = name.partition(":")
+    if not (
+        all(part.isidentifier() for part in module_name.split(".")) and attribute.isidentifier()
+    ):
         raise ConfigurationError(f"task = {name!r}: {expected}.")
     try:
         module = importlib.import_module(module_name)
-    except Exception as err:  # a user's module may fail in any way while it loads
+    except (Exception, SystemExit) as err:  # a user's module may fail in any way while it loads
         raise ConfigurationError(
             f"task = {name!r}: the module {module_name!r} cannot be imported "
             f"({type(err).__name__}: {err}); install it, put its folder on PYTHONPATH, or mend it."

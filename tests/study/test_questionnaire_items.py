@@ -20,6 +20,7 @@ from arteleop.study import (
     study_text,
 )
 from arteleop.study.answers import merge_answers
+from arteleop.study.questionnaire_items import modelled_items
 from arteleop.study.session import Demographics
 
 ITEMS = """\
@@ -59,6 +60,9 @@ def test_a_questionnaire_file_beside_the_study_file_is_what_the_study_asks(tmp_p
          "items.toml line 1: [[questionnaire]] has no 'text'; give id, text."),
         ('seed = 1\n', "items.toml line 1: expected [[questionnaire]] tables only (id, text, low, "
          "high), not 'seed'."),
+        (ITEMS.replace('"very little"', '"very\\tlittle"'),
+         "items.toml line 4: questionnaire.low = 'very\\tlittle' (item 'workload'): expected one "
+         "line of printable text."),
     ],
 )  # fmt: skip
 def test_a_bad_item_is_refused_at_its_line_in_its_file(
@@ -71,7 +75,9 @@ def test_a_bad_item_is_refused_at_its_line_in_its_file(
     assert str(err.value) == f"{tmp_path / message}"
 
 
-def test_people_answer_the_studys_items_and_the_analysis_compares_each(tmp_path: Path) -> None:
+def test_people_answer_the_studys_items_and_merged_answers_are_checked_against_them(
+    tmp_path: Path,
+) -> None:
     study = parse_study(
         'modalities = ["none", "task", "full"]\n[familiarization]\ntrials = 0\n' + ITEMS
     )
@@ -95,6 +101,9 @@ def test_people_answer_the_studys_items_and_the_analysis_compares_each(tmp_path:
 
 
 def test_simulated_participants_answer_only_the_items_the_model_has() -> None:
+    asked = parse_study(ITEMS + '[[questionnaire]]\nid = "presence"\ntext = "I was there"\n')
+    # Of the three items, only "ease" is the original's as the original asked it.
+    assert modelled_items(asked) == ["ease"]
     trials = pd.DataFrame({
         "modality": ["none", "task"], "outcome": ["success", "success"],
         "completion_time_s": [30.0, 20.0], "placement_error_m": [0.02, 0.01],

@@ -100,7 +100,7 @@ def test_study_init_writes_the_commented_default(tmp_path: Path, capsys) -> None
          "s.toml line 3: participant A: avr_hours = 5; expected a bucket 1, 2 or 3."),
         ("trials_per_modality = 2\n",
          "s.toml line 1: trials_per_modality = 2: the study data format "
-         "(docs/reference/data-format.md, version 2) holds one experimental trial per "
+         "(docs/reference/data-format.md) holds one experimental trial per "
          "participant and modality, so 1 is the only value it can record."),
         ("seed = \n", "s.toml: not valid TOML: Invalid value (at line 1, column 8)."),
         ('modalities = ["none", "full"]\norder = "listed"\norders = [["none", "full"], ["full"]]\n',

@@ -60,6 +60,17 @@ def test_a_study_names_the_pick_and_place_unless_it_says_otherwise() -> None:
         ("pick and place", f"task = 'pick and place': {EXPECTED}"),
         ("tests.teleop.squeeze_task:", f"task = 'tests.teleop.squeeze_task:': {EXPECTED}"),
         (
+            "tests.teleop:squeeze_task:SQUEEZE",
+            f"task = 'tests.teleop:squeeze_task:SQUEEZE': {EXPECTED}",
+        ),
+        (".squeeze_task:SQUEEZE", f"task = '.squeeze_task:SQUEEZE': {EXPECTED}"),
+        (
+            "tests.teleop.exits_on_import:TASK",
+            "task = 'tests.teleop.exits_on_import:TASK': the module "
+            "'tests.teleop.exits_on_import' cannot be imported (SystemExit: this module ends the "
+            "program); install it, put its folder on PYTHONPATH, or mend it.",
+        ),
+        (
             "tests.teleop.squeeze_task:NOT_A_TASK",
             "task = 'tests.teleop.squeeze_task:NOT_A_TASK': tests.teleop.squeeze_task has no "
             f"TrialTask called 'NOT_A_TASK'; {EXPECTED}",

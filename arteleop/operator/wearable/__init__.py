@@ -32,6 +32,7 @@ from arteleop.operator.wearable.recording_file import (
     write_recording,
 )
 from arteleop.operator.wearable.simulator import (
+    BLOCK_SAMPLES,
     ImuErrorConfig,
     WearableConfig,
     WearableSignals,
@@ -44,6 +45,7 @@ from arteleop.operator.wearable.synthesis import (
 )
 
 __all__ = [
+    "BLOCK_SAMPLES",
     "COLUMNS",
     "SEGMENTS",
     "ArmAngles",
