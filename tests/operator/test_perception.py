@@ -40,6 +40,8 @@ _EXACT = PerceptionParams(
     display=DisplayGeometry(pixel_rad=0.0), acuities=Acuities(interval_fraction=0, stereo_pixels=0)
 )
 D, A = P.display, P.acuities
+START = ("start",)
+"""The marks pointing judges besides the target."""
 
 
 class _Independent(PerceptualErrors):
@@ -518,26 +520,28 @@ def test_a_task_that_aims_the_gripper_judges_the_start_cross_against_it() -> Non
     over = make_transform(np.diag([1.0, -1.0, -1.0]), start + [0.0, 0.0, 0.05])
     view = display_frame(T_base_gripper=over, start_m=start)
     truth = start - view.gripper_m
-    exact = perceive(view, _EXACT, _independent(0), aims_gripper=True)
-    np.testing.assert_allclose(exact.start_m - exact.gripper_m, truth, atol=1e-12)
-    assert exact.start_fixations == 1
-    scaled = perceive(view, _EXACT, _independent(0), depth_scale=0.8, aims_gripper=True)
+    exact = perceive(view, _EXACT, _independent(0), aims_gripper=True, judged=START)
+    np.testing.assert_allclose(exact.marks["start"].mark_m - exact.gripper_m, truth, atol=1e-12)
+    assert exact.marks["start"].fixations == 1
+    scaled = perceive(
+        view, _EXACT, _independent(0), depth_scale=0.8, aims_gripper=True, judged=START
+    )
     d = _sight(view, start)
     np.testing.assert_allclose(
-        scaled.start_m - scaled.gripper_m, truth - 0.2 * (truth @ d) * d, atol=1e-12
+        scaled.marks["start"].mark_m - scaled.gripper_m, truth - 0.2 * (truth @ d) * d, atol=1e-12
     )
     noise = _independent(1)
-    errors = np.array([(s.start_m - s.gripper_m - truth)
-                       for s in (perceive(view, P, noise, aims_gripper=True)
+    errors = np.array([(s.marks["start"].mark_m - s.gripper_m - truth)
+                       for s in (perceive(view, P, noise, aims_gripper=True, judged=START)
                                  for _ in range(1500))])  # fmt: skip
     _, across = _split(errors, d)
     eye = float(np.linalg.norm(start - view.viewpoint_m))
     expected = judgement_sd(0.05, eye, 0.0, D, A).across_sd_m
     assert across == pytest.approx(expected, rel=0.1)
-    assert perceive(view, P, _independent(0)).start_m is None
+    assert perceive(view, P, _independent(0)).marks == {}  # the task judges no start
     unseen = display_frame(T_base_gripper=over, start_m=start, gripper_in_camera=False)
-    felt = perceive(unseen, P, _independent(0), aims_gripper=True)
-    assert felt.start_cov is not None and np.all(np.diag(felt.start_cov) > P.proprioception_sd_m**2)
+    felt = perceive(unseen, P, _independent(0), aims_gripper=True, judged=START)
+    assert np.all(np.diag(felt.marks["start"].cov) > P.proprioception_sd_m**2)
 
 
 def _loewner_smaller(a: np.ndarray, b: np.ndarray) -> bool:
@@ -561,25 +565,24 @@ def test_the_depth_aids_add_the_ring_on_the_table_and_the_height_off_its_label()
 
     def judged(view: DisplayFrame) -> tuple[np.ndarray, Perceived]:
         noise = _independent(2)
-        seen = [perceive(view, P, noise, aims_gripper=True) for _ in range(3000)]
-        return np.array([s.start_m - s.gripper_m - truth for s in seen]), seen[0]
+        seen = [perceive(view, P, noise, aims_gripper=True, judged=START) for _ in range(3000)]
+        return np.array([s.marks["start"].mark_m - s.gripper_m - truth for s in seen]), seen[0]
 
     errors_plain, one_plain = judged(plain)
     errors_aided, one_aided = judged(aided)
-    assert one_plain.start_cov is not None and one_aided.start_cov is not None
-    assert _loewner_smaller(one_aided.start_cov, one_plain.start_cov)
+    assert _loewner_smaller(one_aided.marks["start"].cov, one_plain.marks["start"].cov)
     # The height: read off "height 50 mm", 0.4 mm short of the truth, trusted nearly wholly.
-    assert one_aided.start_cov[2, 2] < reading_sd_m(0.001) ** 2
+    assert one_aided.marks["start"].cov[2, 2] < reading_sd_m(0.001) ** 2
     assert errors_aided[:, 2].mean() == pytest.approx(0.0004, abs=0.0001)
     assert errors_plain[:, 2].std() > 10 * errors_aided[:, 2].std()
     # In the table's plane as precise as believed, and more precise than without the aids; the
     # ring, drawn off the table along the camera's line of sight, shows where the line meets
     # it (drawn straight above it, it biased the judgement 2.2 mm).
     assert np.linalg.norm(errors_aided[:, :2].mean(axis=0)) < 1e-4
-    believed = one_aided.start_cov[:2, :2]
+    believed = one_aided.marks["start"].cov[:2, :2]
     np.testing.assert_allclose(np.cov(errors_aided[:, :2].T), believed, rtol=0.1, atol=1e-9)
     assert np.trace(np.cov(errors_aided[:, :2].T)) < np.trace(np.cov(errors_plain[:, :2].T))
-    assert (one_plain.start_fixations, one_aided.start_fixations) == (1, 1)
+    assert (one_plain.marks["start"].fixations, one_aided.marks["start"].fixations) == (1, 1)
     # The target, judged in the plane (pointing at it): the ring, no label.
     target = replace(aided, T_base_gripper=make_transform(
         np.diag([1.0, -1.0, -1.0]), aided.target_m + [0.0, 0.0, 0.05]))  # fmt: skip
@@ -638,8 +641,8 @@ def test_under_the_predictive_ghost_the_aids_are_judged_from_the_frames_arm() ->
                          depth_aids=True)  # fmt: skip
     truth = start - ghost[:3, 3]
     noise = _independent(4)
-    errors = np.array([s.start_m - s.gripper_m - truth
-                       for s in (perceive(view, P, noise, aims_gripper=True)
+    errors = np.array([s.marks["start"].mark_m - s.gripper_m - truth
+                       for s in (perceive(view, P, noise, aims_gripper=True, judged=START)
                                  for _ in range(2000))])  # fmt: skip
     # Unbiased, but for the height's rounding on the label.
     assert np.linalg.norm(errors.mean(axis=0)) < 0.001

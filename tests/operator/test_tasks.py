@@ -161,11 +161,19 @@ def test_pointing_starts_over_the_cross_it_sees() -> None:
     task = PointingTask(width_m=0.02, rest_gripper_m=view.gripper_m)
     params = OperatorParams().perception
     seen = perceive(view, params, PerceptualErrors(np.random.default_rng(0), 1, 0.5),
-                    aims_gripper=True)  # fmt: skip
+                    aims_gripper=True, judged=task.marks)  # fmt: skip
     goal = task.goal(TO_START, seen)
     assert goal is not None and goal.axes == "xyz" and goal.visible
-    np.testing.assert_array_equal(goal.gripper_m, seen.start_m + [0.0, 0.0, 0.05])
-    np.testing.assert_array_equal(goal.cov_m2, seen.start_cov)
+    start = seen.marks["start"]
+    np.testing.assert_array_equal(goal.gripper_m, start.mark_m + [0.0, 0.0, 0.05])
+    np.testing.assert_array_equal(goal.cov_m2, start.cov)
     errors = PerceptualErrors(np.random.default_rng(0), 1, 0.5)
-    unmarked = perceive(display_frame(), params, errors, aims_gripper=True)
+    unmarked = perceive(display_frame(), params, errors, aims_gripper=True, judged=task.marks)
     assert task.goal(TO_START, unmarked) is None
+
+
+def test_a_mark_the_display_does_not_draw_is_refused_naming_those_it_does() -> None:
+    errors = PerceptualErrors(np.random.default_rng(0), 1, 0.5)
+    with pytest.raises(ConfigurationError) as err:
+        perceive(display_frame(), OperatorParams().perception, errors, judged=("finish",))
+    assert str(err.value) == "The task judges a mark 'finish'; the display draws start."

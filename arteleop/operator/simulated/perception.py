@@ -37,13 +37,15 @@ knows how precise a judgement is (its covariance, :class:`Perceived`), not its o
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import NDArray
 
 from arteleop.ar_features import DISTANCE_LABEL_STEP_M, DisplayFrame
 from arteleop.checks import Bounds, check_fields
+from arteleop.errors import ConfigurationError
 from arteleop.operator.simulated.acuity import Acuities, DisplayGeometry, reading_sd_m
 from arteleop.operator.simulated.judging import Judge, Mark, combined, shown_gripper_m
 from arteleop.operator.simulated.mark_memory import MarkMemory
@@ -142,10 +144,10 @@ class Perceived:
             per label read and per drawn thing no other fixation covers
             (:func:`~arteleop.operator.simulated.acuity.fixations`).
         placement_fixations: ...and the placement's judgement.
-        start_m: Where the start is judged, at the centre of its cross; None unless the task
-            aims the gripper and the display gives the start.
-        start_cov: (3, 3) its believed covariance relative to the judged gripper (m^2).
-        start_fixations: The fixations its judgement took.
+        marks: The marks the task judges besides the target (:attr:`~arteleop.operator.Task.marks`),
+            by name, each where it is judged (``mark_m``), its believed covariance relative to
+            the judged gripper (``cov``, m^2) and the fixations it took; a mark the display does
+            not give is absent (pointing's ``"start"``, the centre of its cross).
     """
 
     gripper_m: NDArray[np.float64]
@@ -159,9 +161,7 @@ class Perceived:
     lead_m: NDArray[np.float64] = field(default_factory=lambda: np.zeros(3))
     grasp_fixations: int = 1
     placement_fixations: int = 1
-    start_m: NDArray[np.float64] | None = None
-    start_cov: NDArray[np.float64] | None = None
-    start_fixations: int = 1
+    marks: Mapping[str, Mark] = field(default_factory=dict)
 
 
 def perceive(
@@ -172,6 +172,7 @@ def perceive(
     depth_scale: float = 1.0,
     aims_gripper: bool = False,
     marks: MarkMemory | None = None,
+    judged: Sequence[str] = (),
 ) -> Perceived:
     """One glance at the display frame ``view``, averaged with this look's earlier glances.
 
@@ -180,10 +181,10 @@ def perceive(
     the display's stereo. ``depth_factor`` scales the person's depth SD; ``depth_scale`` is how
     the person sees a depth interval in the rendered scene (1: true), a lasting error the person
     does not know of, so it is not in the believed covariances. Where the task ``aims_gripper``
-    (pointing), the target is judged against the gripper shown over it, not the bowl, and so is
-    the start (``view.start_m``). A mark the display does not draw is judged from ``marks``,
-    the operator's memory of the marks, which this glance's judgements update (a fresh
-    memory: none seen yet)."""
+    (pointing), the target is judged against the gripper shown over it, not the bowl. ``judged``
+    names the marks the task judges besides it (:data:`MARK_JUDGEMENTS`: pointing's start). A
+    mark the display does not draw is judged from ``marks``, the operator's memory of the marks,
+    which this glance's judgements update (a fresh memory: none seen yet)."""
     judge = Judge(view, params, errors, depth_factor, depth_scale, marks)
     cues = view.cues
     gripper_seen = view.gripper_in_camera or cues.ghost or cues.predictive_ghost
@@ -192,15 +193,20 @@ def perceive(
         bowl, bowl_cov = judge.seen("bowl", view.bowl_m, view.target_m, judge.cloud_grain)
     grasp = judge_grasp(judge, gripper_seen, bowl, bowl_cov)
     placement = judge_placement(judge, gripper_seen, bowl, bowl_cov, grasp, aims_gripper)
-    start = start_cov = None
-    start_fixations = 1
-    if aims_gripper and view.start_m is not None:
-        start, start_cov, start_fixations = judge_start(judge, gripper_seen, grasp)
+    judged_marks = {}
+    for name in judged:
+        if name not in MARK_JUDGEMENTS:
+            raise ConfigurationError(
+                f"The task judges a mark {name!r}; the display draws {', '.join(MARK_JUDGEMENTS)}."
+            )
+        mark = MARK_JUDGEMENTS[name](judge, gripper_seen, grasp)
+        if mark is not None:
+            judged_marks[name] = mark
     closure_known = gripper_seen or cues.grip_bar
     return Perceived(
         grasp.gripper_m, bowl, placement.target_m, gripper_seen, closure_known, grasp.cov,
         placement.cov, placement.by_gripper, judge.lead_m, grasp.fixations,
-        placement.fixations, start, start_cov, start_fixations,
+        placement.fixations, judged_marks,
     )  # fmt: skip
 
 
@@ -354,14 +360,14 @@ def judge_placement(
     return PlacementJudgement(marker.mark_m, cov, by_gripper, marker.fixations)
 
 
-def judge_start(
-    judge: Judge, gripper_seen: bool, grasp: GraspJudgement
-) -> tuple[NDArray[np.float64], NDArray[np.float64], int]:
+def judge_start(judge: Judge, gripper_seen: bool, grasp: GraspJudgement) -> Mark | None:
     """The start cross, drawn in the cloud: its centre is where its arms cross, so there is no
     circle to bisect. Judged against the gripper over it; while the gripper is not shown,
-    against what is (the gripper then felt, not seen). The judged start (m), its believed
-    covariance relative to the judged gripper (m^2) and the fixations it took."""
+    against what is (the gripper then felt, not seen). The judged start (m) with its believed
+    covariance relative to the judged gripper (m^2); None where the display gives no start."""
     view = judge.view
+    if view.start_m is None:
+        return None
     cross = view.in_cloud(view.start_m)
     if gripper_seen:
 
@@ -372,8 +378,7 @@ def judge_start(
             )
             return Mark(grasp.gripper_m + mark - judge.shown_gripper, cov, fixations)
 
-        aimed = judge.mark("start", view.start_drawn, judge.shown_gripper, against_gripper)
-        return aimed.mark_m, aimed.cov, aimed.fixations
+        return judge.mark("start", view.start_drawn, judge.shown_gripper, against_gripper)
     mark_point = view.target_m if view.cues.target_mesh else view.in_cloud(view.target_m)
     against = view.bowl_m if view.bowl_m is not None else mark_point
 
@@ -382,4 +387,12 @@ def judge_start(
         return Mark(start, mark_cov, judge.fixated(cross, against))
 
     seen = judge.mark("start", view.start_drawn, against, against_scene)
-    return seen.mark_m, seen.cov + grasp.cov, seen.fixations
+    return replace(seen, cov=seen.cov + grasp.cov)
+
+
+MARK_JUDGEMENTS: dict[str, Callable[[Judge, bool, GraspJudgement], Mark | None]] = {
+    "start": judge_start,
+}
+"""The marks a task may judge besides the target (:attr:`~arteleop.operator.Task.marks`), each
+from one glance: who judges it, given the glance, whether the gripper is shown, and the
+gripper's judgement."""

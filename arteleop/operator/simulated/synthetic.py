@@ -160,7 +160,7 @@ class SyntheticOperator:
         t = self.traits
         return perceive(
             view, self.p.perception, self._errors, t.depth_factor, t.depth_scale,
-            self.task.aims_gripper, self._marks,
+            self.task.aims_gripper, self._marks, getattr(self.task, "marks", ()),
         )  # fmt: skip
 
     def _glance_s(self, goal: Goal | None) -> float:

@@ -52,6 +52,7 @@ class PickAndPlace:
     phases = (REACH, DESCEND, CLOSE, LIFT, TRANSPORT, LOWER, OPEN, RETRACT, HOME)
     ends_trial = False
     aims_gripper = False
+    marks: tuple[str, ...] = ()
 
     def __init__(
         self,

@@ -45,6 +45,7 @@ class PointingTask:
     phases = (TO_START, POINT, SELECT)
     ends_trial = True
     aims_gripper = True
+    marks = ("start",)
 
     def __init__(
         self,
@@ -69,12 +70,12 @@ class PointingTask:
         if phase is POINT:
             # The circle as the cloud shows it, centred on by eye.
             return planar_goal(seen.target_m + up, seen, None)
-        if seen.start_m is None or seen.start_cov is None:
+        start = seen.marks.get("start")
+        if start is None:
             return None  # no start drawn: nothing to aim at
         # The cross as the cloud shows it, against the gripper over it, and the height with it:
         # the pointing movement starts level with where it ends.
-        return Goal(seen.start_m + up, seen.start_cov, "xyz", seen.gripper_seen,
-                    seen.start_fixations)  # fmt: skip
+        return Goal(start.mark_m + up, start.cov, "xyz", seen.gripper_seen, start.fixations)
 
     def gripped(self, phase: TaskPhase, seen: Perceived) -> None:
         """Nothing to remember: the selection ends the task."""

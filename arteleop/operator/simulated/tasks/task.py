@@ -81,13 +81,18 @@ class Task(Protocol):
         aims_gripper: The task brings the gripper itself onto marks drawn on the table
             (pointing at the target from the start), not an object it holds: the target's
             circle and the start's cross are judged against the gripper, not the object
-            (``Perceived.target_m``, ``Perceived.start_m``).
+            (``Perceived.target_m``, ``Perceived.marks``).
+        marks: The marks the task judges besides the target, by name
+            (:data:`~arteleop.operator.simulated.perception.MARK_JUDGEMENTS`: ``"start"``, the
+            start's cross); a task without the attribute judges none. What is seen of them is
+            ``Perceived.marks``: a task's own judgements are not fields of every glance.
     """
 
     phases: tuple[TaskPhase, ...]
     rest_gripper_m: NDArray[np.float64]
     ends_trial: bool
     aims_gripper: bool
+    marks: tuple[str, ...]
 
     def criterion_m(self, phase: TaskPhase, traits: OperatorTraits) -> float | None:
         """The person's criterion for the phase's goal (m) before urgency loosens it; None for a
