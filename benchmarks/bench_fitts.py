@@ -29,7 +29,7 @@ settle, looking and waiting, with its corrections and looks.
     python benchmarks/bench_fitts.py [--people 16] [--reps 5] [--lags 0,75,150,225,450]
                                      [--quick] [--fresh] [--depth-aids] [--workers 2]
                                      [--own-error-prior-sd SD]
-                                     [--json OUT.json]
+                                     [--json OUT.json] [--csv pointing.csv]
 
 What it prints is what the model predicts: no constant of the operator is fitted to it.
 """
@@ -48,7 +48,15 @@ from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy import stats
+import pandas as pd
+
+from arteleop.analysis.pointing import (
+    cell_medians,
+    fitts_fits,
+    lag_effect,
+    lag_models,
+    person_cells,
+)
 
 DISTANCES_M = (0.1, 0.2, 0.4)
 WIDTHS_M = (0.01, 0.02, 0.04)
@@ -132,28 +140,6 @@ def run(block: Block) -> list[dict[str, float]]:
     return rows
 
 
-def fit_line(x: np.ndarray, y: np.ndarray) -> tuple[float, float, float]:
-    """(a, b, R^2) of y = a + b x."""
-    b, a = np.polyfit(x, y, 1)
-    r2 = 1 - np.sum((y - a - b * x) ** 2) / np.sum((y - y.mean()) ** 2)
-    return float(a), float(b), float(r2)
-
-
-def fit_lag_models(ids: np.ndarray, lags_s: np.ndarray, mt: np.ndarray) -> dict[str, dict]:
-    """MacKenzie & Ware's additive and multiplicative models, least squares; coefficients and
-    R^2."""
-    out = {}
-    designs = {
-        "additive": np.column_stack([np.ones_like(ids), ids, lags_s]),
-        "multiplicative": np.column_stack([np.ones_like(ids), ids, lags_s * ids]),
-    }
-    for name, X in designs.items():
-        coef, *_ = np.linalg.lstsq(X, mt, rcond=None)
-        r2 = 1 - np.sum((mt - X @ coef) ** 2) / np.sum((mt - mt.mean()) ** 2)
-        out[name] = {"a_s": coef[0], "b_s_per_bit": coef[1], "c": coef[2], "r2": r2}
-    return {k: {kk: float(vv) for kk, vv in v.items()} for k, v in out.items()}
-
-
 def parse_lags(text: str) -> list[float]:
     try:
         lags = [float(x) for x in text.split(",") if x.strip()]
@@ -185,6 +171,8 @@ def main() -> None:
                              "of its own (a sensitivity run; above 0)")  # fmt: skip
     parser.add_argument("--workers", type=int, default=len(os.sched_getaffinity(0)))
     parser.add_argument("--json", help="write the lag table, the fits and the cells to this file")
+    parser.add_argument("--csv", help="write the trials to this file as a pointing study's table "
+                        "(pointing.csv: 'arteleop analyze FILE' reads it)")  # fmt: skip
     args = parser.parse_args()
     if args.people < 1:
         parser.error(f"--people {args.people}: give 1 or more")
@@ -205,74 +193,32 @@ def main() -> None:
         rows = [row for block_rows in pool.map(run, blocks) for row in block_rows]
     print(f"{len(rows)} pointing trials, {people} people x {reps} repetitions, in "
           f"{time.perf_counter() - t0:.0f} s on {args.workers} workers\n")  # fmt: skip
-    report(rows, lags, args.json)
+    report(rows, lags, args.json, args.csv)
 
 
-def person_cells(rows: list[dict]) -> list[dict]:
-    """Per lag, person and cell: the movement time (median of the repetitions), the effective
-    width and distance of the selections, ID_e, errors and slips."""
-    keyed: dict[tuple, list[dict]] = {}
+def pointing_table(rows: list[dict]) -> pd.DataFrame:
+    """The trials as a pointing study's table (docs/reference/data-format.md, ``pointing.csv``):
+    what ``arteleop analyze`` reads of people's pointing, and analyses the same way."""
+    selected = np.array([bool(r["selected"]) for r in rows])
+    table = pd.DataFrame({
+        "participant": [f"F{r['person']:02d}" for r in rows],
+        "round_trip_ms": [r["lag_ms"] for r in rows],
+        "distance_m": [r["distance_m"] for r in rows],
+        "width_m": [r["width_m"] for r in rows],
+        **{c: [r[c] for r in rows] for c in ("movement_time_s", "along_m", "across_m", "hit")},
+    })  # fmt: skip
+    table.loc[~selected, ["movement_time_s", "along_m", "across_m", "hit"]] = np.nan
+    return table
+
+
+def slips(rows: list[dict], keys: tuple[str, ...]) -> dict[tuple, float]:
+    """The slips (closures before the decision: the simulated participant's own account) per
+    value of ``keys`` among lag_ms, person, distance_m, width_m."""
+    out: dict[tuple, float] = {}
     for r in rows:
-        keyed.setdefault((r["lag_ms"], r["person"], r["distance_m"], r["width_m"]), []).append(r)
-    out = []
-    for (lag, person, d, w), trials in sorted(keyed.items()):
-        done = [r for r in trials if r["selected"]]
-        entry = {"lag_ms": lag, "person": person, "D_m": d, "W_m": w, "n": len(done),
-                 "timeouts": len(trials) - len(done),
-                 "slips": float(np.sum([r["slips"] for r in trials])),
-                 "id": float(np.log2(d / w + 1))}  # fmt: skip
-        if len(done) >= 2:
-            along = np.array([r["along_m"] for r in done])
-            we = 4.133 * along.std(ddof=1)
-            de = d + along.mean()
-            entry.update(
-                mt_s=float(np.median([r["movement_time_s"] for r in done])),
-                we_m=float(we), de_m=float(de), id_e=float(np.log2(de / we + 1)),
-                error_rate=float(1 - np.mean([r["hit"] for r in done])),
-            )  # fmt: skip
-        out.append(entry)
+        key = tuple(r[k] for k in keys)
+        out[key] = out.get(key, 0.0) + r["slips"]
     return out
-
-
-def cell_medians(people: list[dict], lags: list[float]) -> list[dict]:
-    """Per lag and cell, the medians over people."""
-    cells = []
-    for lag in lags:
-        for d in DISTANCES_M:
-            for w in WIDTHS_M:
-                ps = [p for p in people if p["lag_ms"] == lag and p["D_m"] == d
-                      and p["W_m"] == w and "mt_s" in p]  # fmt: skip
-                if not ps:
-                    continue
-                cells.append({
-                    "lag_ms": lag, "D_m": d, "W_m": w, "people": len(ps),
-                    "id": float(np.log2(d / w + 1)),
-                    "id_e": float(np.median([p["id_e"] for p in ps])),
-                    "we_mm": 1000 * float(np.median([p["we_m"] for p in ps])),
-                    "mt_s": float(np.median([p["mt_s"] for p in ps])),
-                    "error_rate": float(np.mean([p["error_rate"] for p in ps])),
-                    "slips": float(np.sum([p["slips"] for p in ps])),
-                    "timeouts": int(np.sum([p["timeouts"] for p in ps])),
-                })  # fmt: skip
-    return cells
-
-
-def lag_effect(people: list[dict], lag: float, base: float) -> tuple[float, float, float, int]:
-    """Movement time at ``lag`` over ``base``, person by person (the mean of log ratios over the
-    cells both have), as the geometric mean over people with its 95 % t-interval, and n."""
-    logs = []
-    for person in sorted({p["person"] for p in people}):
-        mine = {(p["D_m"], p["W_m"], p["lag_ms"]): p["mt_s"]
-                for p in people if p["person"] == person and "mt_s" in p}  # fmt: skip
-        pairs = [np.log(mine[d, w, lag] / mine[d, w, base]) for d in DISTANCES_M
-                 for w in WIDTHS_M if (d, w, lag) in mine and (d, w, base) in mine]  # fmt: skip
-        if pairs:
-            logs.append(float(np.mean(pairs)))
-    if len(logs) < 2:
-        return float("nan"), float("nan"), float("nan"), len(logs)
-    mean, sem = float(np.mean(logs)), float(stats.sem(logs))
-    half = float(stats.t.ppf(0.975, len(logs) - 1) * sem)
-    return float(np.exp(mean)), float(np.exp(mean - half)), float(np.exp(mean + half)), len(logs)
 
 
 def last_beliefs(rows: list[dict], lag: float) -> list[float]:
@@ -297,39 +243,50 @@ def people_ratio(lag_ms: float, own_lag_s: float) -> float:
     return (1 + slope_per_s * (own_lag_s + lag_ms / 1000)) / (1 + slope_per_s * own_lag_s)
 
 
-def report(rows: list[dict], lags: list[float], json_path: str | None) -> None:
-    people = person_cells(rows)
-    cells = cell_medians(people, lags)
+def report(
+    rows: list[dict], lags: list[float], json_path: str | None, csv_path: str | None
+) -> None:
+    table = pointing_table(rows)
+    if csv_path:
+        table.to_csv(csv_path, index=False)
+    people = person_cells(table)
+    cells = cell_medians(people)
+    cell_slips = slips(rows, ("lag_ms", "distance_m", "width_m"))
     timeouts = sum(1 for r in rows if not r["selected"])
     if timeouts:
         print(f"{timeouts} trials ended without a selection (timeout); left out\n")
     fits: dict[str, object] = {}
+    lines = fitts_fits(cells).set_index("round_trip_ms")
     for lag in lags:
-        here = [c for c in cells if c["lag_ms"] == lag]
+        here = cells[cells["round_trip_ms"] == lag]
         print(f"## Lag {lag:g} ms (medians over people)\n")
         print("| D (m) | W (mm) | ID (bits) | W_e (mm) | ID_e (bits) | MT (s) | errors | slips "
               "| timeouts |")  # fmt: skip
         print("| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
-        for c in here:
-            print(f"| {c['D_m']:.1f} | {1000 * c['W_m']:.0f} | {c['id']:.2f} | {c['we_mm']:.1f} "
-                  f"| {c['id_e']:.2f} | {c['mt_s']:.2f} | {100 * c['error_rate']:.0f} % "
-                  f"| {c['slips']:.0f} | {c['timeouts']} |")  # fmt: skip
-        if len(here) >= 3:
-            a, b, r2 = fit_line(np.array([c["id_e"] for c in here]),
-                                np.array([c["mt_s"] for c in here]))  # fmt: skip
-            a0, b0, r20 = fit_line(np.array([c["id"] for c in here]),
-                                   np.array([c["mt_s"] for c in here]))  # fmt: skip
+        for c in here.itertuples():
+            n_slips = cell_slips.get((lag, c.distance_m, c.width_m), 0.0)
+            print(f"| {c.distance_m:.1f} | {1000 * c.width_m:.0f} | {c.id_bits:.2f} "
+                  f"| {1000 * c.we_m:.1f} | {c.id_e_bits:.2f} | {c.mt_s:.2f} "
+                  f"| {100 * c.error_rate:.0f} % | {n_slips:.0f} | {c.timeouts} |")  # fmt: skip
+        if lag in lines.index:
+            f = lines.loc[lag]
             key = "" if lag == lags[0] else f"_{lag:g}ms"
-            fits[f"fitts_effective{key}"] = {"a_s": a, "b_s_per_bit": b, "r2": r2}
-            fits[f"fitts_nominal{key}"] = {"a_s": a0, "b_s_per_bit": b0, "r2": r20}
-            print(f"\nMT = {a:.2f} s + {b:.2f} s/bit x ID_e, R^2 = {r2:.2f} "
-                  f"(nominal ID: {a0:.2f} s + {b0:.2f} s/bit, R^2 = {r20:.2f})\n")  # fmt: skip
+            fits[f"fitts_effective{key}"] = {"a_s": f.a_s_effective,
+                                             "b_s_per_bit": f.b_s_per_bit_effective,
+                                             "r2": f.r2_effective}  # fmt: skip
+            fits[f"fitts_nominal{key}"] = {"a_s": f.a_s_nominal,
+                                           "b_s_per_bit": f.b_s_per_bit_nominal,
+                                           "r2": f.r2_nominal}  # fmt: skip
+            print(f"\nMT = {f.a_s_effective:.2f} s + {f.b_s_per_bit_effective:.2f} s/bit x ID_e, "
+                  f"R^2 = {f.r2_effective:.2f} (nominal ID: {f.a_s_nominal:.2f} s + "
+                  f"{f.b_s_per_bit_nominal:.2f} s/bit, R^2 = {f.r2_nominal:.2f})\n")  # fmt: skip
     from arteleop.operator import OperatorParams
 
     own_lag_s = OperatorParams().familiar_lag_s  # the display's lag with none added, measured
     per_lag: dict[str, list] = {"lag_ms": [], "movement_time_s": [], "error_rate": [],
                                 "ratio": [], "ratio_low": [], "ratio_high": [],
                                 "believed_lag_s": [], "people_ratio": []}  # fmt: skip
+    lag_slips = slips(rows, ("lag_ms",))
     print("## Under added lag (round trip)\n")
     print(
         f"The yardstick: people's ratio on MacKenzie & Ware's line (+64 % at 225 ms), from this "
@@ -339,11 +296,11 @@ def report(rows: list[dict], lags: list[float], json_path: str | None) -> None:
           "| yardstick | errors | slips | lag believed at the end (s) |")  # fmt: skip
     print("| ---: | ---: | --- | ---: | ---: | ---: | ---: | ---: |")
     for lag in lags:
-        c = [x for x in cells if x["lag_ms"] == lag]
-        if not c:
+        c = cells[cells["round_trip_ms"] == lag]
+        if c.empty:
             continue
-        mt = float(np.median([x["mt_s"] for x in c]))
-        err = float(np.mean([x["error_rate"] for x in c]))
+        mt = float(np.median(c["mt_s"].to_numpy()))
+        err = float(np.mean(c["error_rate"].to_numpy()))
         ratio, low, high, n = lag_effect(people, lag, lags[0])
         believed = float(np.median(last_beliefs(rows, lag)))
         yardstick = people_ratio(lag, own_lag_s)
@@ -351,12 +308,10 @@ def report(rows: list[dict], lags: list[float], json_path: str | None) -> None:
         for key, value in zip(per_lag, values, strict=True):
             per_lag[key].append(value)
         print(f"| {lag:g} | {mt:.2f} | x {ratio:.2f} ({low:.2f}-{high:.2f}) | {n} | "
-              f"x {yardstick:.2f} | {100 * err:.0f} % | {sum(x['slips'] for x in c):.0f} | "
+              f"x {yardstick:.2f} | {100 * err:.0f} % | {lag_slips.get((lag,), 0.0):.0f} | "
               f"{believed:.2f} |")  # fmt: skip
     if len(per_lag["lag_ms"]) > 1:
-        ids = np.array([c["id"] for c in cells])
-        lag_s = np.array([c["lag_ms"] / 1000 for c in cells])
-        models = fit_lag_models(ids, lag_s, np.array([c["mt_s"] for c in cells]))
+        models = lag_models(cells)
         fits.update(models)
         for name, m in models.items():
             print(f"\n{name}: a = {m['a_s']:.2f} s, b = {m['b_s_per_bit']:.2f} s/bit, "
@@ -365,8 +320,9 @@ def report(rows: list[dict], lags: list[float], json_path: str | None) -> None:
     through = through_blocks(rows, lags)
     if json_path:
         with open(json_path, "w", encoding="utf-8") as f:
-            json.dump({**per_lag, "fits": fits, "cells": cells, "people": people,
-                       "breakdown": breakdown, "through_blocks": through}, f, indent=1)  # fmt: skip
+            json.dump({**per_lag, "fits": fits, "cells": cells.to_dict("records"),
+                       "people": people.to_dict("records"), "breakdown": breakdown,
+                       "through_blocks": through}, f, indent=1)  # fmt: skip
         print(f"\nwrote {json_path}")
 
 

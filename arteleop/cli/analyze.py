@@ -25,7 +25,7 @@ class AnalyzeCommand:
     sources: Annotated[
         tyro.conf.Positional[tuple[Path, ...]], tyro.conf.arg(metavar="RUN_DIR_OR_CSV ...")
     ]
-    """a run folder (trials.csv, participants.csv, questionnaire.csv, trajectories/) or a trials CSV; several run folders: one per cohort, pooled"""
+    """a run folder (trials.csv, participants.csv, questionnaire.csv, trajectories/) or a trials CSV; several run folders: one per cohort, pooled; or a pointing study's table (pointing.csv, or a folder holding it): its ISO 9241-9 analysis"""
     out: Path = Path("arteleop-report")
     """report folder"""
     participants: Path | None = None
@@ -57,6 +57,10 @@ def analyze(cmd: AnalyzeCommand) -> int:
     check_report_folder(cmd.out, cmd.sources, cmd.force)
     try:
         if len(cmd.sources) == 1:
+            from arteleop.analysis.pointing import pointing_table_path
+
+            if (table := pointing_table_path(cmd.sources[0])) is not None:
+                return _analyse_pointing(table, cmd.out)
             return _analyse_one(cmd, options)
         return _pool(cmd)
     except AnalysisInputError as err:
@@ -110,6 +114,19 @@ def _analyse_one(cmd: AnalyzeCommand, options: AnalysisOptions) -> int:
     for note in result.notes:
         print(f"note: {note}")
     print(f"wrote {len(files)} files to {cmd.out}, see {files['report.md']}")
+    return 0
+
+
+def _analyse_pointing(table: Path, out: Path) -> int:
+    from arteleop.analysis.pointing import load_pointing
+    from arteleop.analysis.pointing_report import write_pointing_report
+
+    trials = load_pointing(table)
+    files = write_pointing_report(table, trials, out)
+    print(f"analysed {len(trials)} pointing trials of {trials['participant'].nunique()} "
+          f"participants under {trials['round_trip_ms'].nunique()} lags")  # fmt: skip
+    print(files["report.md"].read_text(), end="")
+    print(f"wrote {len(files)} files to {out}, see {files['report.md']}")
     return 0
 
 
