@@ -1,4 +1,5 @@
-"""A pointing study's report: its tables as CSV and report.md (:mod:`.pointing`)."""
+"""A pointing study's report: its tables as CSV and report.md (:mod:`.pointing`); or several
+pointing tables side by side (a lab's people and simulated participants of the same design)."""
 
 from __future__ import annotations
 
@@ -100,4 +101,87 @@ def _markdown(
             f"{name} lag model (MacKenzie & Ware 1993): a = {m['a_s']:.2f} s, b = "
             f"{m['b_s_per_bit']:.2f} s/bit, c = {m['c']:.2f}, R^2 = {m['r2']:.3f}  "
         )
+    return "\n".join(lines).rstrip() + "\n"
+
+
+def source_name(source: Path) -> str:
+    """How a comparison names a pointing table: its folder's name for ``pointing.csv``, else
+    the file's stem."""
+    source = Path(source)
+    return source.parent.name if source.name == "pointing.csv" else source.stem
+
+
+def write_pointing_comparison(
+    sources: list[Path], tables: list[pd.DataFrame], out_dir: Path
+) -> dict[str, Path]:
+    """Several pointing tables side by side, each analysed alone (:func:`write_pointing_report`'s
+    tables, a ``source`` column first): cells.csv, fits.csv, lags.csv and report.md, with each
+    lag's cells and fits of every source in one table; whole or not at all."""
+    names = [source_name(s) for s in sources]
+    parts: dict[str, list[pd.DataFrame]] = {"cells.csv": [], "fits.csv": [], "lags.csv": []}
+    for name, trials in zip(names, tables, strict=True):
+        cells = cell_medians(person_cells(trials))
+        people = person_cells(trials)
+        lags = sorted(trials["round_trip_ms"].unique())
+        effects = pd.DataFrame(
+            [(lag, *lag_effect(people, lag, lags[0])) for lag in lags],
+            columns=["round_trip_ms", "mt_ratio", "ratio_low", "ratio_high", "people"],
+        )
+        for key, table in (("cells.csv", cells), ("fits.csv", fitts_fits(cells)),
+                           ("lags.csv", effects)):  # fmt: skip
+            parts[key].append(table.assign(source=name)[["source", *table.columns]])
+    joined = {key: pd.concat(frames, ignore_index=True) for key, frames in parts.items()}
+    with whole_folder(out_dir) as partial:
+        for key, table in joined.items():
+            table.to_csv(partial / key, index=False, float_format="%.6g")
+        (partial / "report.md").write_text(_comparison(names, tables, joined), encoding="utf-8")
+    return {name: out_dir / name for name in [*joined, "report.md"]}
+
+
+def _comparison(
+    names: list[str], tables: list[pd.DataFrame], joined: dict[str, pd.DataFrame]
+) -> str:
+    cells, fits, lags = joined["cells.csv"], joined["fits.csv"], joined["lags.csv"]
+    lines = ["# Pointing (ISO 9241-9), side by side", ""]
+    for name, trials in zip(names, tables, strict=True):
+        lines.append(f"- **{name}**: {len(trials)} trials of {trials['participant'].nunique()} "
+                     "participants")  # fmt: skip
+    lines += ["", "Each source analysed alone, as `arteleop analyze` analyses one; per cell the "
+              "medians over its participants.", ""]  # fmt: skip
+    for lag in sorted(cells["round_trip_ms"].unique()):
+        here = cells[cells["round_trip_ms"] == lag]
+        lines += [
+            f"## Lag {lag:g} ms (round trip)",
+            "",
+            "| D (m) | W (mm) | ID (bits) | "
+            + " | ".join(f"{n}: MT (s) | {n}: errors" for n in names)
+            + " |",
+            "| ---: | ---: | ---: | " + "---: | ---: | " * len(names),
+        ]
+        for (d, w), cell in here.groupby(["distance_m", "width_m"], sort=True):
+            by_source = cell.set_index("source")
+            values = []
+            for n in names:
+                if n in by_source.index:
+                    c = by_source.loc[n]
+                    values.append(f"{c.mt_s:.2f} | {100 * c.error_rate:.0f} %")
+                else:
+                    values.append("- | -")
+            lines.append(f"| {d:g} | {1000 * w:.0f} | {np.log2(d / w + 1):.2f} | "
+                         + " | ".join(values) + " |")  # fmt: skip
+        lines.append("")
+        for f in fits[fits["round_trip_ms"] == lag].itertuples():
+            lines.append(f"{f.source}: MT = {f.a_s_effective:.2f} s + "
+                         f"{f.b_s_per_bit_effective:.2f} s/bit x ID_e, R^2 = "
+                         f"{f.r2_effective:.2f}  ")  # fmt: skip
+        lines.append("")
+    later = lags[lags["round_trip_ms"] > lags.groupby("source")["round_trip_ms"].transform("min")]
+    if not later.empty:
+        lines += ["## Each lag against the source's first", "",
+                  "| source | lag (ms) | MT ratio (95 % CI) | participants |",
+                  "| --- | ---: | --- | ---: |"]  # fmt: skip
+        for e in later.itertuples():
+            ratio = "-" if np.isnan(e.mt_ratio) else (
+                f"x {e.mt_ratio:.2f} ({e.ratio_low:.2f}-{e.ratio_high:.2f})")  # fmt: skip
+            lines.append(f"| {e.source} | {e.round_trip_ms:g} | {ratio} | {e.people} |")
     return "\n".join(lines).rstrip() + "\n"

@@ -56,11 +56,18 @@ def analyze(cmd: AnalyzeCommand) -> int:
         raise ConfigurationError(f"{err}.") from None
     check_report_folder(cmd.out, cmd.sources, cmd.force)
     try:
-        if len(cmd.sources) == 1:
-            from arteleop.analysis.pointing import pointing_table_path
+        from arteleop.analysis.pointing import pointing_table_path
 
-            if (table := pointing_table_path(cmd.sources[0])) is not None:
-                return _analyse_pointing(table, cmd.out)
+        tables = [pointing_table_path(source) for source in cmd.sources]
+        if all(table is not None for table in tables):
+            return _analyse_pointing([t for t in tables if t is not None], cmd.out)
+        if any(table is not None for table in tables):
+            pointing = cmd.sources[[t is not None for t in tables].index(True)]
+            raise ConfigurationError(
+                f"{pointing} is a pointing study's table, and the others are not: give pointing "
+                "tables alone (compared side by side) or run folders alone (pooled)."
+            )
+        if len(cmd.sources) == 1:
             return _analyse_one(cmd, options)
         return _pool(cmd)
     except AnalysisInputError as err:
@@ -117,14 +124,33 @@ def _analyse_one(cmd: AnalyzeCommand, options: AnalysisOptions) -> int:
     return 0
 
 
-def _analyse_pointing(table: Path, out: Path) -> int:
+def _analyse_pointing(tables: list[Path], out: Path) -> int:
     from arteleop.analysis.pointing import load_pointing
-    from arteleop.analysis.pointing_report import write_pointing_report
+    from arteleop.analysis.pointing_report import (
+        source_name,
+        write_pointing_comparison,
+        write_pointing_report,
+    )
 
-    trials = load_pointing(table)
-    files = write_pointing_report(table, trials, out)
-    print(f"analysed {len(trials)} pointing trials of {trials['participant'].nunique()} "
-          f"participants under {trials['round_trip_ms'].nunique()} lags")  # fmt: skip
+    seen: dict[object, Path] = {}
+    for table in tables:
+        for key, what in ((table.resolve(), "is given twice"),
+                          (table.read_bytes(), "holds the same trials as"),
+                          (source_name(table), "has the same name as")):  # fmt: skip
+            if key in seen:
+                raise ConfigurationError(
+                    f"{table} {what} {seen[key]}: each source is compared once, by a name of "
+                    "its own (its folder's for pointing.csv, else its file's)."
+                )
+            seen[key] = table
+    trials = [load_pointing(table) for table in tables]
+    if len(tables) == 1:
+        files = write_pointing_report(tables[0], trials[0], out)
+    else:
+        files = write_pointing_comparison(tables, trials, out)
+    for table, these in zip(tables, trials, strict=True):
+        print(f"analysed {len(these)} pointing trials of {these['participant'].nunique()} "
+              f"participants under {these['round_trip_ms'].nunique()} lags ({table})")  # fmt: skip
     print(files["report.md"].read_text(), end="")
     print(f"wrote {len(files)} files to {out}, see {files['report.md']}")
     return 0

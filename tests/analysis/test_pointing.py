@@ -96,3 +96,28 @@ def test_a_bad_value_is_named_by_line_and_column(
     with pytest.raises(AnalysisInputError) as err:
         load_pointing(path)
     assert str(err.value) == f"{path}, line 5, {message}"
+
+
+def test_a_labs_people_and_simulated_ones_side_by_side(tmp_path: Path, capsys) -> None:
+    people, simulated = tmp_path / "people.csv", tmp_path / "simulated.csv"
+    _table().to_csv(people, index=False)
+    slower = _table()
+    slower["movement_time_s"] *= 1.2
+    slower.to_csv(simulated, index=False)
+    assert main(["analyze", str(people), str(simulated), "--out", str(tmp_path / "both")]) == 0
+    report = (tmp_path / "both" / "report.md").read_text()
+    assert "people: MT = 0.20 s + 0.30 s/bit x ID_e, R^2 = 1.00" in report
+    assert "simulated: MT = 0.24 s + 0.36 s/bit x ID_e, R^2 = 1.00" in report
+    fits = pd.read_csv(tmp_path / "both" / "fits.csv")
+    assert list(fits["source"]) == ["people", "people", "simulated", "simulated"]
+    capsys.readouterr()
+    # The same trials twice would count one cohort as two.
+    copy = tmp_path / "copy.csv"
+    copy.write_bytes(people.read_bytes())
+    assert main(["analyze", str(people), str(copy), "--out", str(tmp_path / "twice")]) == 2
+    assert f"{copy} holds the same trials as {people}" in capsys.readouterr().err
+    run = tmp_path / "run"
+    run.mkdir()
+    (run / "trials.csv").write_text("participant\n")
+    assert main(["analyze", str(people), str(run), "--out", str(tmp_path / "mixed")]) == 2
+    assert "is a pointing study's table, and the others are not" in capsys.readouterr().err
