@@ -320,8 +320,12 @@ def report(
     through = through_blocks(rows, lags)
     if json_path:
         with open(json_path, "w", encoding="utf-8") as f:
-            json.dump({**per_lag, "fits": fits, "cells": cells.to_dict("records"),
-                       "people": people.to_dict("records"), "breakdown": breakdown,
+            # NaN (a cell with too few selections) is not JSON: null.
+            def records(df: pd.DataFrame) -> list[dict]:
+                return df.astype(object).where(df.notna(), None).to_dict("records")
+
+            json.dump({**per_lag, "fits": fits, "cells": records(cells),
+                       "people": records(people), "breakdown": breakdown,
                        "through_blocks": through}, f, indent=1)  # fmt: skip
         print(f"\nwrote {json_path}")
 

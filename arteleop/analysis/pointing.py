@@ -3,17 +3,20 @@ Computer Studies 61, 2004), under added lag (MacKenzie & Ware, CHI 1993).
 
 The input is one row per pointing trial (docs/reference/data-format.md, ``pointing.csv``): who,
 under which round-trip lag, at which distance and width, and where the selection landed. Per
-person, lag and cell (distance D, width W): the movement time (the median of the selected
-trials), the effective width ``W_e = 4.133 SD`` of the selections along the task axis and the
-effective distance ``D_e`` (D plus their mean overshoot), ``ID_e = log2(D_e / W_e + 1)`` (bits),
-the throughput ``ID_e / MT`` (bits/s) and the error rate (selections outside the circle). Per lag
-and cell, the medians over people; per lag, the Fitts fit of the medians on ``ID_e`` (and on the
-nominal ``ID = log2(D / W + 1)``); over lags, each lag's movement time against the first lag's,
-person by person, and MacKenzie & Ware's additive and multiplicative lag models.
+person, lag and cell (distance D, width W), with two selections or more: the movement time (the
+median of the selected trials, where Soukoreff & MacKenzie take the mean: robust to the odd
+trial a lab's people or the simulated participant leave long), the effective width
+``W_e = 4.133 SD`` of the selections along the task axis and the effective distance ``D_e`` (D
+plus their mean overshoot), ``ID_e = log2(D_e / W_e + 1)`` (bits), the throughput ``ID_e / MT``
+(bits/s) and the error rate (selections outside the circle). Per lag and cell, the medians over
+people (the error rate their mean); per lag, the Fitts fit of the medians on ``ID_e`` (and on
+the nominal ``ID = log2(D / W + 1)``); over lags, each lag's movement time against the first
+lag's, person by person, and MacKenzie & Ware's additive and multiplicative lag models.
 """
 
 from __future__ import annotations
 
+import csv
 from pathlib import Path
 
 import numpy as np
@@ -42,12 +45,17 @@ def pointing_table_path(source: Path) -> Path | None:
     if source.is_dir():
         table = source / POINTING_FILE
         return table if table.is_file() and not (source / "trials.csv").exists() else None
+    header = _header(source)
+    return source if {"distance_m", "width_m", "round_trip_ms"} <= set(header) else None
+
+
+def _header(path: Path) -> list[str]:
+    """A CSV's column names (none if it cannot be read)."""
     try:
-        with source.open(encoding="utf-8") as f:
-            header = {c.strip() for c in f.readline().split(",")}
-    except (OSError, UnicodeDecodeError):
-        return None
-    return source if {"distance_m", "width_m", "round_trip_ms"} <= header else None
+        with path.open(encoding="utf-8-sig", newline="") as f:
+            return [c.strip() for c in next(csv.reader(f), [])]
+    except (OSError, UnicodeDecodeError, csv.Error):
+        return []
 
 
 def load_pointing(path: Path) -> pd.DataFrame:
@@ -56,8 +64,11 @@ def load_pointing(path: Path) -> pd.DataFrame:
     path = Path(path)
     if not path.is_file():
         raise AnalysisInputError(f"{path}: no such file; a pointing study's trials are a CSV")
-    table = read_table(path, POINTING_COLUMNS, POINTING_COLUMNS, _NUMERIC, {},
+    # A lab's table may hold more (a block, a trial number): those columns are not read.
+    extra = tuple(c for c in _header(path) if c not in POINTING_COLUMNS)
+    table = read_table(path, POINTING_COLUMNS + extra, POINTING_COLUMNS, _NUMERIC, {},
                        may_be_empty=POINTING_COLUMNS[4:])  # fmt: skip
+    table = table[list(POINTING_COLUMNS)]
     if table.empty:
         raise AnalysisInputError(f"{path}: no trials below the header")
     checks = {
@@ -87,6 +98,15 @@ def load_pointing(path: Path) -> pd.DataFrame:
     return table
 
 
+PERSON_CELL_COLUMNS = ("round_trip_ms", "participant", "distance_m", "width_m", "n", "timeouts",
+                       "id_bits", "mt_s", "we_m", "de_m", "id_e_bits", "throughput_bits_s",
+                       "error_rate")  # fmt: skip
+CELL_COLUMNS = ("round_trip_ms", "distance_m", "width_m", "people", "id_bits", "id_e_bits",
+                "we_m", "mt_s", "throughput_bits_s", "error_rate", "timeouts")  # fmt: skip
+FIT_COLUMNS = ("round_trip_ms", "a_s_effective", "b_s_per_bit_effective", "r2_effective",
+               "a_s_nominal", "b_s_per_bit_nominal", "r2_nominal")  # fmt: skip
+
+
 def person_cells(trials: pd.DataFrame) -> pd.DataFrame:
     """Per lag, participant and cell: the trials selected (``n``) and not (``timeouts``), the
     nominal ``id_bits``; with two selections or more, ``mt_s``, ``we_m``, ``de_m``,
@@ -103,33 +123,43 @@ def person_cells(trials: pd.DataFrame) -> pd.DataFrame:
             along = done["along_m"].to_numpy()
             we = EFFECTIVE_WIDTH_SD * float(along.std(ddof=1))
             de = d + float(along.mean())
-            id_e = float(np.log2(de / we + 1))
+            # Selections all alike (W_e 0) or short of the start (D_e <= 0) give no ID_e.
+            id_e = float(np.log2(de / we + 1)) if we > 0 and de > 0 else float("nan")
             mt = float(np.median(done["movement_time_s"].to_numpy()))
             error_rate = float(1 - np.mean(done["hit"].to_numpy()))
         entry.update(mt_s=mt, we_m=we, de_m=de, id_e_bits=id_e, throughput_bits_s=id_e / mt,
                      error_rate=error_rate)  # fmt: skip
         rows.append(entry)
-    return pd.DataFrame(rows)
+    return pd.DataFrame(rows, columns=PERSON_CELL_COLUMNS)
 
 
 def cell_medians(people: pd.DataFrame) -> pd.DataFrame:
-    """Per lag and cell, over the people with a movement time there: their count, the nominal
-    ID, the medians of ``id_e_bits``, ``we_m``, ``mt_s`` and ``throughput_bits_s``, the mean
-    error rate and the timeouts."""
+    """Per lag and cell with a movement time of someone's: the people with one there (two
+    selections or more), the nominal ID, the medians of their ``mt_s``, ``id_e_bits``,
+    ``we_m`` and ``throughput_bits_s`` (of those with an ID_e), the mean of their error rates,
+    and everyone's timeouts there."""
     rows = []
+    keys = ["round_trip_ms", "distance_m", "width_m"]
+    timeouts = people.groupby(keys)["timeouts"].sum()
     timed = people[people["mt_s"].notna()]
-    for (lag, d, w), cell in timed.groupby(["round_trip_ms", "distance_m", "width_m"], sort=True):
+    for (lag, d, w), cell in timed.groupby(keys, sort=True):
         rows.append({
             "round_trip_ms": lag, "distance_m": d, "width_m": w, "people": len(cell),
             "id_bits": float(np.log2(d / w + 1)),
-            "id_e_bits": float(np.median(cell["id_e_bits"].to_numpy())),
-            "we_m": float(np.median(cell["we_m"].to_numpy())),
+            "id_e_bits": _median(cell["id_e_bits"]),
+            "we_m": _median(cell["we_m"]),
             "mt_s": float(np.median(cell["mt_s"].to_numpy())),
-            "throughput_bits_s": float(np.median(cell["throughput_bits_s"].to_numpy())),
+            "throughput_bits_s": _median(cell["throughput_bits_s"]),
             "error_rate": float(np.mean(cell["error_rate"].to_numpy())),
-            "timeouts": int(np.sum(cell["timeouts"].to_numpy())),
+            "timeouts": int(timeouts[lag, d, w]),
         })  # fmt: skip
-    return pd.DataFrame(rows)
+    return pd.DataFrame(rows, columns=CELL_COLUMNS)
+
+
+def _median(values: pd.Series) -> float:
+    """The median of the values there are (NaN: none)."""
+    present = values.dropna().to_numpy()
+    return float(np.median(present)) if len(present) else float("nan")
 
 
 def fit_line(x: np.ndarray, y: np.ndarray) -> tuple[float, float, float]:
@@ -143,7 +173,7 @@ def fitts_fits(cells: pd.DataFrame) -> pd.DataFrame:
     """Per lag with three cells or more: ``MT = a + b ID_e`` and ``MT = a + b ID`` over its
     cells' medians (``a_s``, ``b_s_per_bit``, ``r2``, each ``_effective`` and ``_nominal``)."""
     rows = []
-    for lag, here in cells.groupby("round_trip_ms", sort=True):
+    for lag, here in cells[cells["id_e_bits"].notna()].groupby("round_trip_ms", sort=True):
         if len(here) < 3:
             continue
         mt = here["mt_s"].to_numpy()
@@ -152,7 +182,7 @@ def fitts_fits(cells: pd.DataFrame) -> pd.DataFrame:
         rows.append({"round_trip_ms": lag, "a_s_effective": a, "b_s_per_bit_effective": b,
                      "r2_effective": r2, "a_s_nominal": a0, "b_s_per_bit_nominal": b0,
                      "r2_nominal": r20})  # fmt: skip
-    return pd.DataFrame(rows)
+    return pd.DataFrame(rows, columns=FIT_COLUMNS)
 
 
 def lag_effect(people: pd.DataFrame, lag: float, base: float) -> tuple[float, float, float, int]:
@@ -178,7 +208,9 @@ def lag_effect(people: pd.DataFrame, lag: float, base: float) -> tuple[float, fl
 def lag_models(cells: pd.DataFrame) -> dict[str, dict[str, float]]:
     """MacKenzie & Ware's models of the cells' median movement time, least squares: additive
     ``MT = a + b ID + c lag`` and multiplicative ``MT = a + b ID + c lag ID`` (lag in s); each
-    model's ``a_s``, ``b_s_per_bit``, ``c`` and ``r2``."""
+    model's ``a_s``, ``b_s_per_bit``, ``c`` and ``r2`` (none with fewer than four cells)."""
+    if len(cells) < 4:
+        return {}
     ids = cells["id_bits"].to_numpy()
     lag_s = cells["round_trip_ms"].to_numpy() / 1000
     mt = cells["mt_s"].to_numpy()

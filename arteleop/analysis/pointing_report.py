@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from arteleop.analysis.data import AnalysisInputError
 from arteleop.analysis.output import whole_folder
 from arteleop.analysis.pointing import (
     cell_medians,
@@ -31,6 +32,11 @@ def write_pointing_report(source: Path, trials: pd.DataFrame, out_dir: Path) -> 
         columns=["round_trip_ms", "mt_ratio", "ratio_low", "ratio_high", "people"],
     )
     models = lag_models(cells) if cells["round_trip_ms"].nunique() > 1 else {}
+    if cells.empty:
+        raise AnalysisInputError(
+            f"{source}: no participant has two selections in any cell; an effective width needs "
+            "a spread of selections (repeat each cell)"
+        )
     tables = {"people.csv": people, "cells.csv": cells, "fits.csv": fits, "lags.csv": effects}
     with whole_folder(out_dir) as partial:
         for name, table in tables.items():
@@ -69,9 +75,9 @@ def _markdown(
         for c in here.itertuples():
             lines.append(
                 f"| {c.distance_m:g} | {1000 * c.width_m:.0f} | {c.id_bits:.2f} "
-                f"| {1000 * c.we_m:.1f} | {c.id_e_bits:.2f} | {c.mt_s:.2f} "
-                f"| {c.throughput_bits_s:.2f} | {100 * c.error_rate:.0f} % | {c.people} "
-                f"| {c.timeouts} |"
+                f"| {_shown(1000 * c.we_m, '.1f')} | {_shown(c.id_e_bits, '.2f')} | {c.mt_s:.2f} "
+                f"| {_shown(c.throughput_bits_s, '.2f')} | {100 * c.error_rate:.0f} % "
+                f"| {c.people} | {c.timeouts} |"
             )
         fit = fits[fits["round_trip_ms"] == lag]
         if not fit.empty:
@@ -107,7 +113,7 @@ def _markdown(
 def source_name(source: Path) -> str:
     """How a comparison names a pointing table: its folder's name for ``pointing.csv``, else
     the file's stem."""
-    source = Path(source)
+    source = Path(source).resolve()
     return source.parent.name if source.name == "pointing.csv" else source.stem
 
 
@@ -120,8 +126,8 @@ def write_pointing_comparison(
     names = [source_name(s) for s in sources]
     parts: dict[str, list[pd.DataFrame]] = {"cells.csv": [], "fits.csv": [], "lags.csv": []}
     for name, trials in zip(names, tables, strict=True):
-        cells = cell_medians(person_cells(trials))
         people = person_cells(trials)
+        cells = cell_medians(people)
         lags = sorted(trials["round_trip_ms"].unique())
         effects = pd.DataFrame(
             [(lag, *lag_effect(people, lag, lags[0])) for lag in lags],
@@ -131,6 +137,11 @@ def write_pointing_comparison(
                            ("lags.csv", effects)):  # fmt: skip
             parts[key].append(table.assign(source=name)[["source", *table.columns]])
     joined = {key: pd.concat(frames, ignore_index=True) for key, frames in parts.items()}
+    if joined["cells.csv"].empty:
+        raise AnalysisInputError(
+            "no participant of any source has two selections in any cell; an effective width "
+            "needs a spread of selections (repeat each cell)"
+        )
     with whole_folder(out_dir) as partial:
         for key, table in joined.items():
             table.to_csv(partial / key, index=False, float_format="%.6g")
@@ -185,3 +196,9 @@ def _comparison(
                 f"x {e.mt_ratio:.2f} ({e.ratio_low:.2f}-{e.ratio_high:.2f})")  # fmt: skip
             lines.append(f"| {e.source} | {e.round_trip_ms:g} | {ratio} | {e.people} |")
     return "\n".join(lines).rstrip() + "\n"
+
+
+def _shown(value: float, spec: str) -> str:
+    """A number as a table shows it; "-" where there is none (selections all alike, or
+    short of the start, have no ID_e)."""
+    return "-" if np.isnan(value) else format(value, spec)

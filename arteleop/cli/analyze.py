@@ -60,6 +60,7 @@ def analyze(cmd: AnalyzeCommand) -> int:
 
         tables = [pointing_table_path(source) for source in cmd.sources]
         if all(table is not None for table in tables):
+            _refuse_study_options(cmd)
             return _analyse_pointing([t for t in tables if t is not None], cmd.out)
         if any(table is not None for table in tables):
             pointing = cmd.sources[[t is not None for t in tables].index(True)]
@@ -124,6 +125,20 @@ def _analyse_one(cmd: AnalyzeCommand, options: AnalysisOptions) -> int:
     return 0
 
 
+def _refuse_study_options(cmd: AnalyzeCommand) -> None:
+    """A pointing table has no modalities to compare, participants' file or designs to pool."""
+    given = [option for option, on in (
+        (f"--participants {cmd.participants}", cmd.participants is not None),
+        (f"--method {cmd.method}", cmd.method != "untrimmed"), ("--paired", cmd.paired),
+        ("--holm", cmd.holm), ("--allow-different-designs", cmd.allow_different_designs),
+    ) if on]  # fmt: skip
+    if given:
+        raise ConfigurationError(
+            f"{given[0]}: compares a study's modalities; a pointing table is analysed as "
+            "ISO 9241-9 asks, with no such option. Leave it out."
+        )
+
+
 def _analyse_pointing(tables: list[Path], out: Path) -> int:
     from arteleop.analysis.pointing import load_pointing
     from arteleop.analysis.pointing_report import (
@@ -134,8 +149,12 @@ def _analyse_pointing(tables: list[Path], out: Path) -> int:
 
     seen: dict[object, Path] = {}
     for table in tables:
+        try:
+            content = table.read_bytes()
+        except OSError as err:
+            raise ConfigurationError(f"{table}: cannot read it ({err.strerror or err}).") from None
         for key, what in ((table.resolve(), "is given twice"),
-                          (table.read_bytes(), "holds the same trials as"),
+                          (content, "holds the same trials as"),
                           (source_name(table), "has the same name as")):  # fmt: skip
             if key in seen:
                 raise ConfigurationError(

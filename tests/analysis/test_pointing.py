@@ -121,3 +121,23 @@ def test_a_labs_people_and_simulated_ones_side_by_side(tmp_path: Path, capsys) -
     (run / "trials.csv").write_text("participant\n")
     assert main(["analyze", str(people), str(run), "--out", str(tmp_path / "mixed")]) == 2
     assert "is a pointing study's table, and the others are not" in capsys.readouterr().err
+
+
+def test_degenerate_cells_have_no_id_and_a_table_without_spread_is_refused(tmp_path: Path) -> None:
+    """Selections all alike (W_e 0) or short of the start (D_e <= 0) give no ID_e, and the fit
+    leaves them out; no cell with two selections is a message. A lab's extra columns and a
+    quoted header are read."""
+    table = _table()
+    first = table.index[:3]  # P1's first cell without lag: every selection at its centre
+    table.loc[first, "along_m"] = 0.0
+    people = person_cells(table)
+    degenerate = people.iloc[0]
+    assert degenerate["we_m"] == 0.0 and np.isnan(degenerate["id_e_bits"])
+    fits = fitts_fits(cell_medians(people)).set_index("round_trip_ms")
+    assert fits.loc[0.0, "b_s_per_bit_effective"] == pytest.approx(B_S, abs=1e-9)  # P2's cell
+    path = tmp_path / "pointing.csv"
+    table.assign(block=1).to_csv(path, index=False, quoting=1)  # quoted, with a block column
+    assert len(load_pointing(path)) == len(table)
+    timeouts = table.assign(movement_time_s=np.nan, along_m=np.nan, across_m=np.nan, hit=np.nan)
+    timeouts.to_csv(path, index=False)
+    assert main(["analyze", str(path), "--out", str(tmp_path / "none")]) == 2

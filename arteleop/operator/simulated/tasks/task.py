@@ -80,8 +80,8 @@ class Task(Protocol):
             judges when it has ended (the bowl found at rest at its place).
         aims_gripper: The task brings the gripper itself onto marks drawn on the table
             (pointing at the target from the start), not an object it holds: the target's
-            circle and the start's cross are judged against the gripper, not the object
-            (``Perceived.target_m``, ``Perceived.marks``).
+            circle, and the marks it judges (``marks``), are judged against the gripper, not
+            the object (``Perceived.target_m``, ``Perceived.marks``).
         marks: The marks the task judges besides the target, by name
             (:data:`~arteleop.operator.simulated.perception.MARK_JUDGEMENTS`: ``"start"``, the
             start's cross); a task without the attribute judges none. What is seen of them is
