@@ -4,15 +4,15 @@ not a replayed path (docs/explanation/operator-model.md gives every constant wit
 What is to be done is the task's (:mod:`arteleop.operator.simulated.tasks`: phases, goals judged
 from the display, criteria); how, the operator's, the same for every task. It **moves** in
 minimum-jerk submovements timed to minimise the expected time to the criterion
-(:mod:`.submovements`), **watches** the display until the gripper it shows is still
-(:mod:`.watch`), **looks**, glance after glance, until it is sure either way (:mod:`.look`,
-:mod:`.perception`, :mod:`.belief`), and **homes in** during a movement where the display shows the
-gripper and the goal, with corrections spaced so that each one's effect is on the display before
-the next (intermittent control), acting on what it sees, a round trip old, and predicting from its
-efference copy over the lag it believes. Before the task it holds the calibration
-posture, aligns its hand on the resting gripper and waits for the display to show the robot
-engaged. A cue changes it only through what the display lets it see. Its output is a hand pose
-in the torso frame and a grip value; the loop turns them into IMU signals.
+(:mod:`.submovements`), **watches** the display until the gripper it shows is still (:mod:`.watch`),
+**looks**, glance after glance, until it is sure either way (:mod:`.look`, :mod:`.perception`,
+:mod:`.belief`), and **homes in** during a movement where the display shows the gripper and the
+goal, with corrections spaced so that each one's effect is on the display before the next
+(intermittent control), acting on what it sees, a round trip old, and predicting from its efference
+copy over the lag it believes. Before the task it holds the calibration posture, aligns its hand on
+the resting gripper and waits for the display to show the robot engaged. A cue changes it only
+through what the display lets it see. Its output is a hand pose in the torso frame and a grip value;
+the loop turns them into IMU signals.
 """
 
 from __future__ import annotations
@@ -395,7 +395,5 @@ class SyntheticOperator:
 
 
 __getattr__ = moved_names(
-    "arteleop.operator.synthetic",
-    {"TaskGeometry": "arteleop.operator.simulated.tasks:PickAndPlace"},
-    "0.3",
+    "arteleop.operator.synthetic", {"TaskGeometry": "arteleop.operator:PickAndPlace"}, "0.3"
 )
