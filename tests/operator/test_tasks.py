@@ -177,3 +177,11 @@ def test_a_mark_the_display_does_not_draw_is_refused_naming_those_it_does() -> N
     with pytest.raises(ConfigurationError) as err:
         perceive(display_frame(), OperatorParams().perception, errors, judged=("finish",))
     assert str(err.value) == "The task judges a mark 'finish'; the display draws start."
+
+
+def test_no_module_of_the_operator_is_over_400_lines() -> None:
+    """Small modules with one job each: a module past 400 lines holds more than one."""
+    room = Path(arteleop.operator.__file__).parent
+    long = {str(p.relative_to(room)): n for p in room.rglob("*.py")
+            if (n := len(p.read_text().splitlines())) > 400}  # fmt: skip
+    assert long == {}
