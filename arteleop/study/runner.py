@@ -239,6 +239,13 @@ def _execute(
     folder.finish(order)
     # Answers come from the finished trials.csv, so they depend only on its bytes.
     folder.write_questionnaire(_questionnaire_text(study, folder, people))
+    unanswered = [i.id for i in study.questionnaire if i.id not in modelled_items(study)]
+    if unanswered and classes_shown(study):
+        folder.notes.append(
+            f"questionnaire.csv: the simulated participants answer no {', '.join(unanswered)}: "
+            "they answer only the original study's items, in its words "
+            "(docs/guides/serving-a-study.md); 'arteleop study answer' adds real answers."
+        )
     manifest = folder.manifest()
     manifest["finished"] = utc_now()
     folder.write_manifest(manifest)

@@ -126,3 +126,22 @@ def test_the_analysis_compares_the_classes_on_each_item_it_finds(tmp_path: Path)
     q.assign(item="Work load").to_csv(run / "questionnaire.csv", index=False)
     with pytest.raises(AnalysisInputError, match="column item: 'Work load' is not an item id"):
         load_study(run)
+
+
+def test_a_run_says_which_items_its_simulated_participants_leave_unanswered(
+    tmp_path: Path,
+) -> None:
+    from arteleop.study import run_study
+
+    study = parse_study(
+        'modalities = ["task"]\ntimeout_s = 2.0\n[familiarization]\ntrials = 0\n'
+        "[cohort]\nsize = 1\navr_experts = 0\ngames_experts = 0\nboth_experts = 0\n" + ITEMS
+    )
+    run = run_study(study, tmp_path / "run", workers=1)
+    assert run.notes == (
+        "questionnaire.csv: the simulated participants answer no workload: they answer only the "
+        "original study's items, in its words (docs/guides/serving-a-study.md); 'arteleop study "
+        "answer' adds real answers.",
+    )
+    answers = pd.read_csv(tmp_path / "run" / "questionnaire.csv")
+    assert set(answers["item"]) == {"ease"}
