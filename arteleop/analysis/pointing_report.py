@@ -19,25 +19,33 @@ from arteleop.analysis.pointing import (
 )
 
 
-def write_pointing_report(source: Path, trials: pd.DataFrame, out_dir: Path) -> dict[str, Path]:
-    """Write people.csv (per lag, participant and cell), cells.csv (medians over people),
-    fits.csv (the Fitts fit per lag), lags.csv (each lag against the first, and the lag
-    models) and report.md into ``out_dir``, whole or not at all; returns the files by name."""
+def pointing_tables(trials: pd.DataFrame) -> dict[str, pd.DataFrame]:
+    """One pointing table's analysis as its report's files: people.csv (per lag, participant and
+    cell), cells.csv (medians over people), fits.csv (the Fitts fit per lag) and lags.csv (each
+    lag against the first)."""
     people = person_cells(trials)
     cells = cell_medians(people)
-    fits = fitts_fits(cells)
     lags = sorted(trials["round_trip_ms"].unique())
     effects = pd.DataFrame(
         [(lag, *lag_effect(people, lag, lags[0])) for lag in lags],
         columns=["round_trip_ms", "mt_ratio", "ratio_low", "ratio_high", "people"],
     )
+    return {"people.csv": people, "cells.csv": cells, "fits.csv": fitts_fits(cells),
+            "lags.csv": effects}  # fmt: skip
+
+
+def write_pointing_report(source: Path, trials: pd.DataFrame, out_dir: Path) -> dict[str, Path]:
+    """Write people.csv (per lag, participant and cell), cells.csv (medians over people),
+    fits.csv (the Fitts fit per lag), lags.csv (each lag against the first, and the lag
+    models) and report.md into ``out_dir``, whole or not at all; returns the files by name."""
+    tables = pointing_tables(trials)
+    cells, fits, effects = tables["cells.csv"], tables["fits.csv"], tables["lags.csv"]
     models = lag_models(cells) if cells["round_trip_ms"].nunique() > 1 else {}
     if cells.empty:
         raise AnalysisInputError(
             f"{source}: no participant has two selections in any cell; an effective width needs "
             "a spread of selections (repeat each cell)"
         )
-    tables = {"people.csv": people, "cells.csv": cells, "fits.csv": fits, "lags.csv": effects}
     with whole_folder(out_dir) as partial:
         for name, table in tables.items():
             table.to_csv(partial / name, index=False, float_format="%.6g")
@@ -126,16 +134,9 @@ def write_pointing_comparison(
     names = [source_name(s) for s in sources]
     parts: dict[str, list[pd.DataFrame]] = {"cells.csv": [], "fits.csv": [], "lags.csv": []}
     for name, trials in zip(names, tables, strict=True):
-        people = person_cells(trials)
-        cells = cell_medians(people)
-        lags = sorted(trials["round_trip_ms"].unique())
-        effects = pd.DataFrame(
-            [(lag, *lag_effect(people, lag, lags[0])) for lag in lags],
-            columns=["round_trip_ms", "mt_ratio", "ratio_low", "ratio_high", "people"],
-        )
-        for key, table in (("cells.csv", cells), ("fits.csv", fitts_fits(cells)),
-                           ("lags.csv", effects)):  # fmt: skip
-            parts[key].append(table.assign(source=name)[["source", *table.columns]])
+        for key, table in pointing_tables(trials).items():
+            if key in parts:
+                parts[key].append(table.assign(source=name)[["source", *table.columns]])
     joined = {key: pd.concat(frames, ignore_index=True) for key, frames in parts.items()}
     if joined["cells.csv"].empty:
         raise AnalysisInputError(

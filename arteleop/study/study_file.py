@@ -164,14 +164,20 @@ def _read_text(path: Path, named: str, missing: str) -> str:
         raise StudyDefinitionError(f"{named}: cannot read it ({err}).") from None
 
 
-def _text_file(key: str, value: Any, source: str, at: str) -> str:
-    """A page's Markdown, from the file the study file's ``key`` names."""
+def _named_file(key: str, value: Any, source: str, at: str, missing: str) -> tuple[Path, str]:
+    """The path and text of the file the study file's ``key`` names (relative to the study
+    file); ``missing`` says what to put there if it is not."""
     if not isinstance(value, str) or not value:
         raise StudyDefinitionError(f"{at}: {key} must be a file name, got {value!r}.")
     path = Path(source).parent / value
-    text = _read_text(
-        path, f"{at}: {key}: {path}", "no such file. Put the page's text (Markdown) there, the "
-        "text your ethics board approved, or name its file relative to the study file."
+    return path, _read_text(path, f"{at}: {key}: {path}", missing)
+
+
+def _text_file(key: str, value: Any, source: str, at: str) -> str:
+    """A page's Markdown, from the file the study file's ``key`` names."""
+    path, text = _named_file(
+        key, value, source, at, "no such file. Put the page's text (Markdown) there, the text "
+        "your ethics board approved, or name its file relative to the study file."
     )  # fmt: skip
     if not text.strip():
         raise StudyDefinitionError(f"{at}: {key}: {path} is empty.")
@@ -207,13 +213,10 @@ def _items(value: Any, where: _Locator) -> tuple[QuestionnaireItem, ...]:
 def _items_file(value: Any, source: str, at: str) -> tuple[QuestionnaireItem, ...]:
     """The items of the file the study file's ``questionnaire_file`` names: its
     ``[[questionnaire]]`` tables, each problem named by that file's line."""
-    key = QUESTIONNAIRE_FILE_KEY
-    if not isinstance(value, str) or not value:
-        raise StudyDefinitionError(f"{at}: {key} must be a file name, got {value!r}.")
-    path = Path(source).parent / value
-    text = _read_text(
-        path, f"{at}: {key}: {path}", "no such file. Put the items there as [[questionnaire]] "
-        "tables (id, text, low, high), or name its file relative to the study file."
+    path, text = _named_file(
+        QUESTIONNAIRE_FILE_KEY, value, source, at, "no such file. Put the items there as "
+        "[[questionnaire]] tables (id, text, low, high), or name its file relative to the study "
+        "file."
     )  # fmt: skip
     try:
         data = tomllib.loads(text.removeprefix("\ufeff"))
