@@ -33,6 +33,7 @@ if TYPE_CHECKING:
         pooled_effects,
         write_cohort_report,
     )
+    from arteleop.analysis.order import order_effect
     from arteleop.analysis.pooling import check_cohorts
     from arteleop.analysis.power import Pool, PowerOptions, check_pool_size, make_pool, power
     from arteleop.analysis.power_report import write_power_report
@@ -51,7 +52,6 @@ if TYPE_CHECKING:
         holm,
         holm_test,
         normality,
-        order_effect,
         pairwise,
         rank_biserial,
         stars,
@@ -67,7 +67,6 @@ _LAZY = {
             "METHODS", "AnalysisOptions", "NormalityResult", "TestResult", "cohens_d", "compare",
             "compare_independent", "compare_paired", "compare_trimmed_differences", "compare_yuen",
             "holm", "holm_test", "normality",
-            "order_effect",
             "pairwise", "rank_biserial", "stars", "trim_extremes",
         ),
         "arteleop.analysis.statistics",
@@ -91,6 +90,7 @@ _LAZY = {
     "AnalysisResult": "arteleop.analysis.study_analysis",
     "analyse": "arteleop.analysis.study_analysis",
     "write_report": "arteleop.analysis.report",
+    "order_effect": "arteleop.analysis.order",
 }  # fmt: skip
 
 

@@ -24,6 +24,7 @@ from arteleop.analysis.delay import (
     with_network,
 )
 from arteleop.analysis.errors import AnalysisInputError
+from arteleop.analysis.order import order_effect
 from arteleop.analysis.smoothness import (
     idle_share,
     log_dimensionless_jerk,
@@ -37,7 +38,6 @@ from arteleop.analysis.statistics import (
     NormalityResult,
     TestResult,
     compare,
-    order_effect,
     pairwise,
     tested,
     trim_extremes,
