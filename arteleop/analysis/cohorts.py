@@ -19,12 +19,12 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-from scipy import stats
 
 from arteleop.analysis.data import StudyData, sources_in
 from arteleop.analysis.delay import cue_sets, profiles, with_network
 from arteleop.analysis.output import whole_folder
 from arteleop.analysis.pooling import DIFFERENT
+from arteleop.analysis.statistics import mean_interval
 
 REFERENCE = "none"
 RATIOS = {"completion_time_s": "time", "placement_error_m": "error"}
@@ -82,13 +82,6 @@ def cohort_source(trials: pd.DataFrame, cohort: int) -> str:
     return "+".join(sources_in(trials[trials["cohort"] == cohort]))
 
 
-def _interval(values: np.ndarray) -> tuple[float, float, float]:
-    """Mean and its 95 % t-interval."""
-    mean = float(np.mean(values))
-    half = float(stats.t.ppf(0.975, len(values) - 1) * stats.sem(values))
-    return mean, mean - half, mean + half
-
-
 def pooled_effects(trials: pd.DataFrame) -> pd.DataFrame:
     """Each cue set against none at the same network profile, pooled over the cohorts and
     paired by participant: ``effect`` with its interval ``low`` to ``high`` (a ratio for time
@@ -112,10 +105,10 @@ def pooled_effects(trials: pd.DataFrame) -> pd.DataFrame:
                        "direction": "too few pairs"}  # fmt: skip
                 if len(pairs) >= MIN_PAIRS:
                     if column in RATIOS:
-                        mean, low, high = np.exp(_interval(np.log(pairs[:, 0] / pairs[:, 1])))
+                        mean, low, high = np.exp(mean_interval(np.log(pairs[:, 0] / pairs[:, 1])))
                         middle = 1.0
                     else:
-                        mean, low, high = _interval(pairs[:, 0] - pairs[:, 1])
+                        mean, low, high = mean_interval(pairs[:, 0] - pairs[:, 1])
                         middle = 0.0
                     direction = ("lower" if high < middle else "higher" if low > middle
                                  else "no difference")  # fmt: skip

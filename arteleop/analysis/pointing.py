@@ -21,9 +21,9 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-from scipy import stats
 
 from arteleop.analysis.data import AnalysisInputError, read_table
+from arteleop.analysis.statistics import mean_interval
 
 EFFECTIVE_WIDTH_SD = 4.133
 """W_e in SDs of the selections along the task axis: the width that holds 96 % of a normal
@@ -200,9 +200,8 @@ def lag_effect(people: pd.DataFrame, lag: float, base: float) -> tuple[float, fl
             logs.append(float(np.mean(pairs)))
     if len(logs) < 2:
         return float("nan"), float("nan"), float("nan"), len(logs)
-    mean, sem = float(np.mean(logs)), float(stats.sem(logs))
-    half = float(stats.t.ppf(0.975, len(logs) - 1) * sem)
-    return float(np.exp(mean)), float(np.exp(mean - half)), float(np.exp(mean + half)), len(logs)
+    mean, low, high = np.exp(mean_interval(logs))
+    return float(mean), float(low), float(high), len(logs)
 
 
 def lag_models(cells: pd.DataFrame) -> dict[str, dict[str, float]]:

@@ -378,3 +378,10 @@ def holm(rows: list[TestResult], alpha: float = 0.05) -> list[TestResult]:
         }
         out[i] = TestResult(**r)
     return out
+
+
+def mean_interval(values: NDArray[np.float64] | Sequence[float]) -> tuple[float, float, float]:
+    """The mean of ``values`` and its 95 % t-interval (two values or more)."""
+    mean = float(np.mean(values))
+    half = float(stats.t.ppf(0.975, len(values) - 1) * stats.sem(values))
+    return mean, mean - half, mean + half
