@@ -68,6 +68,7 @@ class SyntheticOperator:
         self.p = params or OperatorParams()
         self.traits = traits or OperatorTraits()
         self.task = task
+        self._judged = getattr(task, "marks", ())  # optional in a task of one's own
         self._to_hand = hand_for_gripper
         # The mapping is affine: the hand's step for each of the gripper's is the same from
         # anywhere, and so is its inverse.
@@ -160,7 +161,7 @@ class SyntheticOperator:
         t = self.traits
         return perceive(
             view, self.p.perception, self._errors, t.depth_factor, t.depth_scale,
-            self.task.aims_gripper, self._marks, getattr(self.task, "marks", ()),
+            self.task.aims_gripper, self._marks, self._judged,
         )  # fmt: skip
 
     def _glance_s(self, goal: Goal | None) -> float:
