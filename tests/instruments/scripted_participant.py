@@ -109,8 +109,9 @@ OUTCOME_WAIT_S = 10.0
 TRIAL_END_WAIT_S = 130.0
 """Out of the way, the outcome shows within this (s): the camera sees the bowl standing (or the
 trial runs out of time, if its timeout is shorter)."""
-LINE_UP_GOES = 2
-"""Goes at lining the bowl up with the target, each from a fresh look."""
+LINE_UP_GOES = 3
+"""Goes at lining the bowl up with the target, each from a fresh look: a first go on a step
+misjudged by half overshoots, the second mends most of it, the third the rest."""
 MOST_STEPS_A_GO = 10
 """Steps pressed at most before looking again (a person does not press 45 times blind): more
 says the pixels a step were misread."""
@@ -400,10 +401,12 @@ class ScriptedParticipant:
             self.press(AXES[axis][0] if n > 0 else AXES[axis][1], abs(n))
             before, now = now, self._bowl_moved(coordinate, now, n * per_step_px)
             # As the steps went, not as assumed (a bowl that turned in the fingers moves
-            # otherwise), but within a factor of two of what was expected: a bowl that barely
-            # moved (held back, or misread) read as 1 px a step sent it 45 cm in one go.
+            # otherwise), but from half to three times what was expected: a bowl that barely
+            # moved (held back, or misread) read as 1 px a step sent it 45 cm in one go, and a
+            # step into the image, estimated from the target's foreshortening, was seen 2.5
+            # times as long as estimated (the bowl nearer the camera than the circle).
             seen = (now - before) / n
-            if abs(now - before) >= abs(n) and 0.5 <= seen / expected <= 2.0:
+            if abs(now - before) >= abs(n) and 0.5 <= seen / expected <= 3.0:
                 per_step_px = seen
         return per_step_px
 
