@@ -31,6 +31,11 @@ settle, looking and waiting, with its corrections and looks.
                                      [--own-error-prior-sd SD]
                                      [--json OUT.json] [--csv pointing.csv]
 
+The design is a pointing study's (``arteleop.study.pointing_run``; at the defaults,
+docs/examples/fitts_lag.toml, which ``arteleop study run`` runs to the same trials): this script
+adds its timing, the model's own account (slips, through a block, where the time goes) and
+options a study file has not (``--fresh``, ``--own-error-prior-sd``).
+
 What it prints is what the model predicts: no constant of the operator is fitted to it.
 """
 
@@ -44,13 +49,13 @@ import json
 import os
 import sys
 import time
-from concurrent.futures import ProcessPoolExecutor
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 import pandas as pd
 
 from arteleop.analysis.pointing import (
+    POINTING_COLUMNS,
     cell_medians,
     fitts_fits,
     lag_effect,
@@ -62,82 +67,36 @@ DISTANCES_M = (0.1, 0.2, 0.4)
 WIDTHS_M = (0.01, 0.02, 0.04)
 
 
-@dataclass(frozen=True)
-class Trial:
-    distance_m: float
-    width_m: float
-    rep: int
-    seed: int
+def fitts_study(people: int, reps: int, lags: list[float], depth_aids: bool = False):  # type: ignore[no-untyped-def]
+    """The bench's design as a pointing study (docs/examples/fitts_lag.toml at the defaults):
+    people F00, F01, ... (novices at their own speed, traits drawn from seed 0), every cell
+    ``reps`` times per lag (ms)."""
+    from arteleop.study import StudyConfig
+    from arteleop.study.definition import ConditionSpec, ParticipantSpec
+    from arteleop.study.pointing_design import PointingDesign
+
+    return StudyConfig(
+        name="bench_fitts", task="pointing", depth_aids=depth_aids,
+        participants=tuple(ParticipantSpec(f"F{p:02d}") for p in range(people)),
+        conditions=tuple(ConditionSpec(round_trip_ms=lag) for lag in lags),
+        pointing=PointingDesign(DISTANCES_M, WIDTHS_M, reps),
+    )  # fmt: skip
 
 
-@dataclass(frozen=True)
-class Block:
-    """One person's trials under one lag, in order."""
+def block_trials(person: int, reps: int):  # type: ignore[no-untyped-def]
+    """A person's trials in a block (the study's :meth:`PointingDesign.block`)."""
+    from arteleop.study.pointing_design import PointingDesign
 
-    person: int
-    lag_ms: float
-    trials: tuple[Trial, ...]
-    fresh: bool = False
-    depth_aids: bool = False
-    own_error_prior_sd: float | None = None
-    """The operator's ``own_error_prior_sd``, if not its own (a sensitivity run)."""
-
-
-def block_trials(person: int, reps: int) -> tuple[Trial, ...]:
-    """A person's trials in a block: each repetition's cells in an order shuffled for the
-    person and the repetition (the same at every lag)."""
-    cells = [(i, j) for i in range(len(DISTANCES_M)) for j in range(len(WIDTHS_M))]
-    trials = []
-    for rep in range(reps):
-        for k in np.random.default_rng([person, rep]).permutation(len(cells)):
-            i, j = cells[k]
-            trials.append(Trial(DISTANCES_M[i], WIDTHS_M[j], rep,
-                                seed=10000 * person + 100 * rep + 10 * i + j))  # fmt: skip
-    return tuple(trials)
+    return PointingDesign(DISTANCES_M, WIDTHS_M, reps).block(person)
 
 
 def person_traits(person: int):  # type: ignore[no-untyped-def]
-    """The traits of the bench's simulated person ``person`` (F00, F01, ...), drawn as a study
-    draws a novice's."""
-    from arteleop.operator import Expertise, TraitDistribution
+    """The traits of the bench's simulated person ``person`` (F00, F01, ...), as the study
+    draws them."""
+    from arteleop.study.protocol import operator_traits
 
-    return TraitDistribution().draw(0, f"F{person:02d}", Expertise())
-
-
-def run(block: Block) -> list[dict[str, float]]:
-    """A block's pointing trials, one after the other, the person carrying its belief of the lag
-    and the outcomes it has seen (a miss told, as Fitts experiments tell it) from each to the
-    next (unless the block is fresh): each trial's movement time, the selection's endpoint, hit
-    and slips, and the error scale it began with."""
-    from arteleop.operator import (
-        ACTIVITIES,
-        OperatorParams,
-        believed_error_scale,
-    )
-    from arteleop.teleop.pointing import run_pointing_trial
-
-    traits = person_traits(block.person)
-    practice = OperatorParams()
-    if block.own_error_prior_sd is not None:
-        practice = replace(practice, own_error_prior_sd=block.own_error_prior_sd)
-    rows = []
-    for trial in block.trials:
-        r = run_pointing_trial(trial.distance_m, trial.width_m, traits, trial.seed,
-                               block.lag_ms / 1000, params=practice,
-                               depth_aids=block.depth_aids)  # fmt: skip
-        scale = believed_error_scale(practice.seen_outcomes, traits.confidence,
-                                     practice.own_error_prior_sd)  # fmt: skip
-        if not block.fresh:
-            practice = replace(practice, familiar_lag_s=r.believed_lag_s,
-                               seen_outcomes=practice.seen_outcomes.after(not r.hit))  # fmt: skip
-        rows.append({"person": block.person, "lag_ms": block.lag_ms, **vars(trial),
-                     "error_scale": scale,
-                     "selected": float(r.selected), "movement_time_s": r.movement_time_s,
-                     "along_m": r.along_m, "across_m": r.across_m, "hit": float(r.hit),
-                     "slips": float(r.slips), "believed_lag_s": r.believed_lag_s,
-                     "corrections": float(r.corrections), "looks": float(r.looks),
-                     **{f"{a}_s": r.activity_s.get(a, 0.0) for a in ACTIVITIES}})  # fmt: skip
-    return rows
+    study = fitts_study(person + 1, 2, [0.0])
+    return operator_traits(study, study.participants[person])
 
 
 def parse_lags(text: str) -> list[float]:
@@ -184,30 +143,34 @@ def main() -> None:
     if args.workers < 1:
         parser.error(f"--workers {args.workers}: give 1 or more")
     people, reps, lags = (4, 3, [0.0, 225.0]) if args.quick else (args.people, args.reps, args.lags)
-    blocks = [Block(p, lag, block_trials(p, reps), args.fresh, args.depth_aids, sd)
-              for lag in lags for p in range(people)]  # fmt: skip
+    from arteleop.operator import OperatorParams
+    from arteleop.study.pointing_run import pointing_blocks, run_blocks
+
+    params = OperatorParams()
+    if sd is not None:
+        params = replace(params, own_error_prior_sd=sd)
+    blocks = [replace(b, fresh=args.fresh, params=params)
+              for b in pointing_blocks(fitts_study(people, reps, lags, args.depth_aids))]  # fmt: skip
     t0 = time.perf_counter()
-    # A fresh worker for each block: a worker's memory grew about 13 MB a trial, to 12 GB
-    # after an hour of the default run (benchmarks/README.md: what is found of why).
-    with ProcessPoolExecutor(args.workers, max_tasks_per_child=1) as pool:
-        rows = [row for block_rows in pool.map(run, blocks) for row in block_rows]
+    rows = [_bench_row(row) for row in run_blocks(blocks, args.workers)]
     print(f"{len(rows)} pointing trials, {people} people x {reps} repetitions, in "
           f"{time.perf_counter() - t0:.0f} s on {args.workers} workers\n")  # fmt: skip
     report(rows, lags, args.json, args.csv)
 
 
+def _bench_row(row: dict) -> dict:
+    """A study's row with the bench's own keys: the person's number, the lag, whether it
+    selected; a trial with no selection is a miss through a block."""
+    selected = bool(np.isfinite(row["movement_time_s"]))
+    return {**row, "person": int(str(row["participant"])[1:]), "lag_ms": row["round_trip_ms"],
+            "selected": float(selected), "hit": row["hit"] if selected else 0.0}  # fmt: skip
+
+
 def pointing_table(rows: list[dict]) -> pd.DataFrame:
     """The trials as a pointing study's table (docs/reference/data-format.md, ``pointing.csv``):
     what ``arteleop analyze`` reads of people's pointing, and analyses the same way."""
-    selected = np.array([bool(r["selected"]) for r in rows])
-    table = pd.DataFrame({
-        "participant": [f"F{r['person']:02d}" for r in rows],
-        "round_trip_ms": [r["lag_ms"] for r in rows],
-        "distance_m": [r["distance_m"] for r in rows],
-        "width_m": [r["width_m"] for r in rows],
-        **{c: [r[c] for r in rows] for c in ("movement_time_s", "along_m", "across_m", "hit")},
-    })  # fmt: skip
-    table.loc[~selected, ["movement_time_s", "along_m", "across_m", "hit"]] = np.nan
+    table = pd.DataFrame(rows)[list(POINTING_COLUMNS)]
+    table.loc[table["movement_time_s"].isna(), "hit"] = np.nan
     return table
 
 

@@ -96,4 +96,24 @@ def study_file_reference() -> str:
         "```toml",
         study_text(StudyConfig()).rstrip(),
         "```",
+        "",
+        "## A pointing study",
+        "",
+        'With `task = "pointing"` (a Fitts study under lag, run with simulated participants; see',
+        "[Analysing data](../guides/analysing-data.md#a-pointing-study)), the `[pointing]` table",
+        "designs the trials and the `[[conditions]]` are the lags, each a `round_trip_ms` with",
+        "`cues = []`; its defaults:",
+        "",
+        "```toml",
+        _pointing_table(),
+        "```",
     ]) + "\n"  # fmt: skip
+
+
+def _pointing_table() -> str:
+    """The ``[pointing]`` table as a pointing study's file writes it, with its defaults."""
+    from arteleop.study import StudyConfig, study_text
+    from arteleop.study.definition import ConditionSpec
+
+    text = study_text(StudyConfig(task="pointing", conditions=(ConditionSpec(),)))
+    return text[text.index("[pointing]") :].split("\n\n", 1)[0]

@@ -131,6 +131,8 @@ def _study_progress(run_dir: Path, quiet: bool) -> Iterator[Any]:
 
 def _study_done(run: Any) -> int:
     trials = run.trials
+    if "phase" not in trials:  # a pointing study's table
+        return _pointing_done(run)
     experimental = trials[trials["phase"] == "experimental"]
     print(f"{len(trials)} trials in {run.folder} ({run.ran} run now)")
     print("outcomes: " + ", ".join(f"{k} {v}" for k, v in trials["outcome"].value_counts().items()))
@@ -143,6 +145,17 @@ def _study_done(run: Any) -> int:
               f"{1000 * ok['placement_error_m'].median():>19.1f}")  # fmt: skip
     for note in run.notes:
         print(f"note: {note}")
+    return _write_run_report(run.folder)
+
+
+def _pointing_done(run: Any) -> int:
+    trials = run.trials
+    print(f"{len(trials)} pointing trials in {run.folder}")
+    print(f"{'lag (ms)':>8}{'trials':>8}{'selected':>10}{'hits':>6}{'median MT (s)':>15}")
+    for lag, group in trials.groupby("round_trip_ms", sort=False):
+        selected = group["movement_time_s"].notna()
+        print(f"{lag:>8g}{len(group):>8}{int(selected.sum()):>10}{int(group['hit'].sum()):>6}"
+              f"{group['movement_time_s'].median():>15.2f}")  # fmt: skip
     return _write_run_report(run.folder)
 
 
@@ -198,6 +211,12 @@ def study_serve(cmd: StudyServeCommand) -> int:
     from arteleop.study.session import served_run
 
     study = None if cmd.file is None else load_study_file(cmd.file)[0]
+    if study is not None and study.task == "pointing":
+        raise ConfigurationError(
+            f"{cmd.file}: task = 'pointing': serving a pointing study to people is not built yet "
+            "('arteleop study run' runs it with simulated participants); run your people with "
+            "your own pointing software and compare: docs/guides/analysing-data.md."
+        )
     camera = HeadCameraConfig(width_px=cmd.width_px, height_px=cmd.height_px)
     host = check_host(cmd.host, cmd.port)  # before the run folder is begun
     view = ViewConfig(host=cmd.host, port=cmd.port, public_url=cmd.public_url,

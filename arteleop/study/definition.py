@@ -22,13 +22,14 @@ from arteleop.errors import ConfigurationError, StudyDefinitionError
 from arteleop.operator.simulated.traits import TraitDistribution
 from arteleop.scene.camera_config import HeadCameraConfig
 from arteleop.study.participants import CohortConfig, ParticipantSpec
+from arteleop.study.pointing_design import MOST_PEOPLE, PointingDesign
 from arteleop.study.questionnaire_items import (
     ORIGINAL_QUESTIONNAIRE,
     QuestionnaireItem,
     check_items,
 )
 from arteleop.teleop.hand_filter import HandFilterConfig
-from arteleop.teleop.trial_task import trial_task
+from arteleop.teleop.trial_task import POINTING, trial_task
 
 MODALITY_NAMES: tuple[str, ...] = STUDY_MODALITIES
 """The original study's modalities, in its order: the default conditions."""
@@ -113,7 +114,8 @@ class StudyConfig:
     Attributes:
         name: A name for the report.
         task: What every trial asks and how it is scored: ``"pick-and-place"`` (the original
-            study's), or a task of one's own as ``"package.module:NAME"``
+            study's), ``"pointing"`` (a Fitts study under lag: ``pointing``, and the lags as
+            ``conditions``), or a task of one's own as ``"package.module:NAME"``
             (:func:`~arteleop.teleop.trial_task`, docs/guides/extending.md).
         consent: The information and consent page shown to people (``arteleop study serve``),
             in Markdown (the study file's ``consent``, or the file its ``consent_file`` names);
@@ -171,6 +173,8 @@ class StudyConfig:
             criterion, confidence, urgency, glance, expertise's effects); each participant's are
             drawn from it, the study's seed and their id.
         hand_filter: The 1€ filter on the operator's reconstructed hand, in every trial.
+        pointing: With ``task = "pointing"``: the targets' distances and widths and the
+            repetitions of each cell under each lag (the conditions, met in blocks).
     """
 
     name: str = "arteleop default study"
@@ -197,12 +201,20 @@ class StudyConfig:
     operator: TraitDistribution = field(default_factory=TraitDistribution)
     hand_filter: HandFilterConfig = field(default_factory=HandFilterConfig)
     conditions: tuple[ConditionSpec, ...] = ()
+    pointing: PointingDesign = field(default_factory=PointingDesign)
 
     def __post_init__(self) -> None:
         try:
             trial_task(self.task)
         except ConfigurationError as err:
             raise StudyDefinitionError(str(err)) from None
+        if self.task == POINTING.name:
+            _check_pointing(self)
+        elif self.pointing != PointingDesign():
+            raise StudyDefinitionError(
+                f'pointing: the [pointing] table designs a pointing study; give task = "pointing" '
+                f"with it (task is {self.task!r}), or remove the table."
+            )
         if self.seed < 0:
             raise StudyDefinitionError(f"seed = {self.seed}: expected a whole number, 0 or more.")
         check_items(self.questionnaire)
@@ -307,6 +319,26 @@ class StudyConfig:
             "registration_offset_deg": self.camera_offset_deg,
             "registered_pose": self.camera_pose or None,
         }
+
+
+def _check_pointing(study: StudyConfig) -> None:
+    """A pointing study's lags are its conditions, which differ in round trip alone."""
+    if not study.conditions:
+        raise StudyDefinitionError(
+            'task = "pointing": give its lags as [[conditions]] tables, one round_trip_ms each '
+            "(cues = [] for all), e.g. round_trip_ms = 0 and round_trip_ms = 225."
+        )
+    for k, condition in enumerate(study.conditions):
+        if condition.cues or condition.jitter_ms or condition.loss:
+            raise StudyDefinitionError(
+                f"conditions: condition {k + 1} ({condition.name}): a pointing study's conditions "
+                "are lags; give cues = [], jitter_ms = 0 and loss = 0, and round_trip_ms."
+            )
+    people = len(study.participants) or study.cohort.size
+    if people > MOST_PEOPLE:
+        raise StudyDefinitionError(
+            f"a pointing study of {people} participants: at most {MOST_PEOPLE}."
+        )
 
 
 def _is_cue_set(label: str) -> bool:

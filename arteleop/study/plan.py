@@ -75,6 +75,16 @@ def trial_seed(study_seed: int, participant_index: int, trial_index: int) -> int
     return int(sequence.generate_state(1)[0])
 
 
+def condition_orders(config: StudyConfig, n_people: int) -> list[tuple[int, ...]]:
+    """Each participant's order of the conditions (indices into
+    :attr:`StudyConfig.planned_conditions`), by the study's order scheme."""
+    names = config.condition_names
+    if config.order == "listed":
+        listed = [tuple(names.index(m) for m in o) for o in config.orders]
+        return [listed[k % len(listed)] for k in range(n_people)]
+    return participant_orders(config.order, len(names), n_people, config.seed)
+
+
 def plan_study(
     config: StudyConfig, practice_points: PracticePoints | None = None
 ) -> list[TrialSpec]:
@@ -84,13 +94,7 @@ def plan_study(
     definition has practice trials.
     """
     people = participants(config)
-    names = config.condition_names
-    n = len(names)
-    if config.order == "listed":
-        listed = [tuple(names.index(m) for m in o) for o in config.orders]
-        orders = [listed[k % len(listed)] for k in range(len(people))]
-    else:
-        orders = participant_orders(config.order, n, len(people), config.seed)
+    orders = condition_orders(config, len(people))
     plan: list[TrialSpec] = []
     for k, (person, order) in enumerate(zip(people, orders, strict=True)):
         plan += _session(config, k, person, order, practice_points)

@@ -42,6 +42,7 @@ from arteleop.study.run_lock import LOCK_FILE, after_fork_in_child, run_lock
 from arteleop.study.run_opening import new_manifest, open_run, plan_run, require_run_folder, utc_now
 from arteleop.study.sites import StudySite
 from arteleop.study.study_writing import study_text
+from arteleop.teleop.trial_task import POINTING
 
 Progress = Callable[[TrialSpec, int, int], None]
 """Called after each trial is written: (the trial, trials done, trials in the plan)."""
@@ -85,6 +86,10 @@ def run_study(
         executor: Runs the trials (any :class:`concurrent.futures.Executor`).
         progress: Told of each trial written.
     """
+    if study.task == POINTING.name:
+        from arteleop.study.pointing_run import run_pointing_study  # it runs on this module's
+
+        return run_pointing_study(study, out, workers, executor, progress)  # type: ignore[arg-type]
     folder = RunFolder(out)
     check_new(folder)
     site = StudySite()
@@ -94,7 +99,7 @@ def run_study(
     make_folder(folder)
     with run_lock(folder.path):
         check_new(folder)  # again, holding the lock: another run may have begun meanwhile
-        folder.start(text, manifest, _participants_text(people))
+        folder.start(text, manifest, participants_text(people))
         return _execute(study, site, folder, plan, people, workers, executor, progress)
 
 
@@ -138,6 +143,15 @@ def resume_study(
             raise RunFolderError(
                 f"{folder.path} is a study served to people: 'arteleop study serve --out "
                 f"{folder.path}' continues it with the next participant."
+            )
+        if folder.manifest().get("task") == POINTING.name:
+            if folder.manifest().get("finished"):
+                raise RunComplete(f"{folder.path} is complete: nothing to resume.")
+            again = f"arteleop study run {folder.path / STUDY_FILE} --out NEW_DIR"
+            raise RunFolderError(
+                f"{folder.path} is a pointing study's run cut short, which cannot be resumed "
+                f"yet: run its study again into a new folder ('{again}'); the same seed gives "
+                "the same trials."
             )
         recorded, plan, people, manifest = open_run(folder, study, site)
         if manifest.get("finished") and len(folder.done_rows(repair=True)) == len(plan):
@@ -203,7 +217,7 @@ def _execute(
         pool = executor or ProcessPoolExecutor(
             workers,
             mp_context=multiprocessing.get_context("fork"),
-            initializer=_start_worker,
+            initializer=start_worker,
             initargs=(os.getpid(),),
         )
         # A participant's trials run one after the other, each bringing the last one's belief
@@ -230,7 +244,7 @@ def _execute(
             for future in running:
                 future.cancel()
             if own:  # a stop (Ctrl-C, a failed write) must not wait for the trials under way
-                _stop_workers(pool)  # type: ignore[arg-type]
+                stop_workers(pool)  # type: ignore[arg-type]
             raise
         finally:
             if own:
@@ -259,7 +273,7 @@ PARENT_CHECK_S = 0.5
 """How often a worker checks that the process that started it is still there (s)."""
 
 
-def _start_worker(parent_pid: int) -> None:
+def start_worker(parent_pid: int) -> None:
     """In a worker: Ctrl-C reaches the whole process group, and the parent alone handles it; the
     run folder's lock stays the parent's; and the worker ends when its parent is gone, however
     it went (a ``kill -9`` leaves no orphans blocked on a pipe)."""
@@ -274,7 +288,7 @@ def _exit_with_parent(parent_pid: int) -> None:
     os._exit(1)
 
 
-def _stop_workers(pool: ProcessPoolExecutor) -> None:
+def stop_workers(pool: ProcessPoolExecutor) -> None:
     """End the pool's worker processes now; their trials are lost and run again on resume.
     (``ProcessPoolExecutor`` has no public way to do this before Python 3.14.)"""
     for process in list(getattr(pool, "_processes", {}).values()):
@@ -327,7 +341,7 @@ def _believed_lag_s(folder: RunFolder, key: tuple[str, int], line: str) -> float
     return lag
 
 
-def _participants_text(people: Sequence[ParticipantSpec]) -> str:
+def participants_text(people: Sequence[ParticipantSpec]) -> str:
     rows = [
         (p.id, p.age, p.gender, "right", p.avr_experience, p.avr_hours, p.games_experience,
          p.games_hours, "synthetic")

@@ -21,6 +21,7 @@ from arteleop.study.definition import (
     ParticipantSpec,
     StudyConfig,
 )
+from arteleop.study.pointing_design import PointingDesign
 from arteleop.study.questionnaire_items import QuestionnaireItem
 from arteleop.teleop.hand_filter import HandFilterConfig
 
@@ -29,6 +30,7 @@ TABLES: dict[str, type] = {
     "cohort": CohortConfig,
     "operator": TraitDistribution,
     "hand_filter": HandFilterConfig,
+    "pointing": PointingDesign,
 }
 """The study file's tables and what each is read into."""
 QUESTIONNAIRE_FILE_KEY = "questionnaire_file"

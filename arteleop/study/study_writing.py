@@ -8,6 +8,7 @@ from typing import Any
 
 from arteleop.study.definition import StudyConfig
 from arteleop.study.study_file import TABLES
+from arteleop.teleop.trial_task import POINTING
 
 
 def _toml_value(value: Any) -> str:
@@ -73,6 +74,10 @@ _COMMENTS = {
     "operator.depth_scale_sd": "how each person sees depth intervals in the rendered scene: "
     "a scale of median 1",
     "operator.games_speed_factor": "gamers' movement time: a factor on their own",
+    "pointing.distances_m": "targets' distances from the start cross, along +y (m)",
+    "pointing.widths_m": "targets' diameters (m)",
+    "pointing.repetitions": "trials of each distance and width under each lag",
+    "pointing.timeout_s": "simulated time after which a trial with no selection ends (s)",
     "hand_filter.enabled": "1-euro filter on the operator's reconstructed hand (Casiez 2012)",
     "hand_filter.min_cutoff_hz": "cutoff at rest (Hz): lower removes more jitter, adds more lag",
     "hand_filter.beta_per_m": "how fast the cutoff rises with the hand's speed (Hz per m/s)",
@@ -126,6 +131,8 @@ def study_text(config: StudyConfig) -> str:
         if f.name not in nested:
             out.append(_key_line(f.name, getattr(config, f.name), f.name))
     for table in TABLES:
+        if table == "pointing" and config.task != POINTING.name:
+            continue  # a pick-and-place study's file, as before pointing studies
         out.append(f"\n[{table}]\n")
         sub = getattr(config, table)
         for f in dataclasses.fields(sub):

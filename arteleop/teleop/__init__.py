@@ -31,11 +31,18 @@ from arteleop.teleop.reconstruction import (
     reconstruct,
 )
 from arteleop.teleop.sensor_calibration import SensorMounting, calibrate, calibrate_from_hold
-from arteleop.teleop.task_monitor import TaskMonitor
+from arteleop.teleop.task_monitor import PointingMonitor, TaskMonitor
 from arteleop.teleop.timing import StageStats, StageTimer
 from arteleop.teleop.trace import TRACE_COLUMNS, TrialTrace
 from arteleop.teleop.trial import Outcome, TrialConfig, TrialProgress, TrialResult
-from arteleop.teleop.trial_task import PICK_AND_PLACE, TASKS, TaskSite, TrialTask, trial_task
+from arteleop.teleop.trial_task import (
+    PICK_AND_PLACE,
+    POINTING,
+    TASKS,
+    TaskSite,
+    TrialTask,
+    trial_task,
+)
 
 if TYPE_CHECKING:
     from arteleop.teleop.live_app import TeleopApp, TeleopAppConfig, TrialInterrupted
@@ -48,6 +55,7 @@ _LAZY = {
 
 __all__ = [
     "PICK_AND_PLACE",
+    "POINTING",
     "TASKS",
     "TRACE_COLUMNS",
     "ControllerConfig",
@@ -65,6 +73,7 @@ __all__ = [
     "NetworkLink",
     "OperatorBody",
     "Outcome",
+    "PointingMonitor",
     "SampleStatus",
     "SensorMounting",
     "StageStats",

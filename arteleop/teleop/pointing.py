@@ -131,7 +131,7 @@ def pointing_config(
     return TrialConfig(modality="none", seed=seed, timeout_s=timeout_s,
                        network=NetworkConfig(delay_s=round_trip_lag_s / 2),
                        site=SiteConfig(workspace=ws), record_trace=True,
-                       depth_aids=depth_aids)  # fmt: skip
+                       depth_aids=depth_aids, task="pointing")  # fmt: skip
 
 
 def pointing_source(

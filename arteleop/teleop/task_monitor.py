@@ -1,4 +1,5 @@
-"""Watches the pick-and-place task and says when, and how, the trial ends.
+"""Watches the pick-and-place task and says when, and how, the trial ends (and the pointing
+task, :class:`PointingMonitor`).
 
 - Motion onset: the first control tick, once engaged, at which the operator's hand moves faster
   than ``START_SPEED_M_S``. The completion timer starts there.
@@ -125,3 +126,13 @@ class TaskMonitor:
         if self.grasp_attempts and not self.grasped:
             return Outcome.NOT_GRASPED
         return Outcome.OPERATOR_STOPPED
+
+
+class PointingMonitor(TaskMonitor):
+    """A pointing trial's: it ends when the operator, having selected (closed the gripper),
+    stops; that is a success. Whether the selection hit the target is where the gripper was
+    when it closed, measured from the trace (:func:`arteleop.teleop.pointing.run_pointing_trial`),
+    as a Fitts study counts a miss as a trial done, not failed."""
+
+    def operator_stopped(self) -> Outcome:
+        return Outcome.SUCCESS if self.grasp_attempts else Outcome.OPERATOR_STOPPED

@@ -5,7 +5,8 @@ The operator's side of a task (its phases and goals, :class:`~arteleop.operator.
 nothing of how a trial is judged; the site's side (a :class:`~arteleop.teleop.TaskMonitor`:
 when the trial starts and ends, and whether it succeeded) knows nothing of how a person does it.
 A :class:`TrialTask` pairs the two under one name, so that a study file's ``task`` key chooses
-both: ``"pick-and-place"`` (the original study's), or a task of one's own as
+both: ``"pick-and-place"`` (the original study's), ``"pointing"`` (the simulated
+participant's calibration task, a Fitts study's), or a task of one's own as
 ``"package.module:NAME"``, ``NAME`` a :class:`TrialTask` (docs/guides/extending.md).
 """
 
@@ -19,9 +20,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from arteleop.errors import ConfigurationError
-from arteleop.operator import PickAndPlace, Task
+from arteleop.operator import PickAndPlace, PointingTask, Task
 from arteleop.scene import BowlTracker, Workspace
-from arteleop.teleop.task_monitor import TaskMonitor
+from arteleop.teleop.task_monitor import PointingMonitor, TaskMonitor
 
 
 @dataclass(frozen=True)
@@ -70,7 +71,18 @@ PICK_AND_PLACE = TrialTask(
 """The original study's task: the bowl from its start into the target circle
 (docs/explanation/study.md)."""
 
-TASKS: dict[str, TrialTask] = {PICK_AND_PLACE.name: PICK_AND_PLACE}
+
+def _pointing(site: TaskSite) -> Task:
+    """The target circle's diameter is the target's width."""
+    width_m = 2 * site.workspace.target_circle_radius_m
+    return PointingTask(width_m=width_m, rest_gripper_m=site.rest_gripper_m)
+
+
+POINTING = TrialTask("pointing", _pointing, lambda ws: PointingMonitor(ws, BowlTracker(ws.bowl)))
+"""A Fitts pointing trial: from over the start cross to over the target circle, selected by
+closing the gripper (:mod:`arteleop.teleop.pointing`)."""
+
+TASKS: dict[str, TrialTask] = {PICK_AND_PLACE.name: PICK_AND_PLACE, POINTING.name: POINTING}
 """The platform's own tasks, by name."""
 
 

@@ -72,7 +72,7 @@ def test_study_init_writes_the_commented_default(tmp_path: Path, capsys) -> None
          "questionnaire, seed, modalities, order, "
          "orders, trials_per_modality, timeout_s, delay_ms, depth_aids, camera_offset_mm, "
          "camera_offset_deg, camera_pose, start_xy_m, target_xy_m, familiarization, cohort, "
-         "participants, operator, hand_filter, conditions."),
+         "participants, operator, hand_filter, conditions, pointing."),
         ("camera_offset_mm = [600, 0, 0]\n",
          "s.toml line 1: camera_offset_mm = [600.0, 0.0, 0.0]: expected three numbers (mm, "
          "camera frame) whose length is at most 500 mm."),

@@ -17,7 +17,7 @@ from tests.teleop.squeeze_task import ABOVE_M, SQUEEZE, SqueezeMonitor
 WORKSPACE = SiteConfig().workspace
 OWN = "tests.teleop.squeeze_task:SQUEEZE"
 EXPECTED = (
-    "expected 'pick-and-place', or a task of your own as 'package.module:NAME' "
+    "expected 'pick-and-place', 'pointing', or a task of your own as 'package.module:NAME' "
     "(docs/guides/extending.md)."
 )
 

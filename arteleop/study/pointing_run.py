@@ -1,0 +1,224 @@
+"""Run a pointing study (``task = "pointing"``) with simulated participants into a run folder.
+
+Each participant does one block per lag (the study's conditions, in the order its scheme gives
+the participant): every cell of :class:`~arteleop.study.pointing_design.PointingDesign`
+``repetitions`` times, one trial after the other, carrying what it believes of the lag and what
+it has seen of its outcomes (a miss told, as Fitts experiments tell it) from each trial to the
+next; a block begins with the belief from practice on the system (``familiar_lag_s``), as
+``benchmarks/bench_fitts.py`` has always run it. Blocks run side by side, each in a fresh worker
+process (a worker's memory grew about 13 MB a trial: benchmarks/README.md).
+
+The run folder holds ``study.toml``, ``manifest.json``, ``participants.csv`` and ``pointing.csv``
+(docs/reference/data-format.md#pointingcsv): the table ``arteleop analyze`` reports as ISO 9241-9
+asks, written whole once every block is in, in the plan's order, so that the same seed gives the
+same bytes.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable, Sequence
+from concurrent.futures import Executor, ProcessPoolExecutor
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+import pandas as pd
+
+from arteleop.analysis.pointing import POINTING_COLUMNS, POINTING_FILE
+from arteleop.operator import (
+    ACTIVITIES,
+    OperatorParams,
+    OperatorTraits,
+    believed_error_scale,
+)
+from arteleop.study.cohort import participants
+from arteleop.study.definition import StudyConfig
+from arteleop.study.plan import condition_orders
+from arteleop.study.pointing_design import PointingTrial
+from arteleop.study.protocol import operator_traits
+from arteleop.study.run_folder import (
+    PARTICIPANTS_FILE,
+    STUDY_FILE,
+    RunFolder,
+    table_text,
+    write_atomic,
+)
+from arteleop.study.run_lock import run_lock
+from arteleop.study.run_opening import new_manifest, utc_now
+from arteleop.study.runner import (
+    StudyRun,
+    check_new,
+    make_folder,
+    participants_text,
+    start_worker,
+    stop_workers,
+)
+from arteleop.study.study_writing import study_text
+
+RUN_COLUMNS = (*POINTING_COLUMNS, "block", "trial", "rep", "seed", "slips", "corrections",
+               "looks", "believed_lag_s", "error_scale")  # fmt: skip
+"""``pointing.csv`` of a simulated run: the analysed columns, then each trial's place (its
+block and its number in the participant's session, from 1), its seed, and the simulated
+participant's own account: slips (closures before it decided), corrections and looks in the
+movement time, the lag it believed at the end (s), and the error scale it began with (what its
+misses so far taught it)."""
+
+
+@dataclass(frozen=True)
+class PointingBlock:
+    """One participant's trials under one lag, in order.
+
+    Attributes:
+        participant: The participant's id.
+        traits: Their lasting traits.
+        round_trip_ms: The block's lag: the network's round trip, half each way (ms).
+        trials: The trials, in the order they come.
+        block: The block's place in the participant's session, from 1.
+        first_trial: The number of its first trial in the session, from 1.
+        timeout_s: A trial with no selection ends after this much simulated time (s).
+        depth_aids: The display draws the depth aids.
+        fresh: Every trial meets the lag anew, as the block's first (a benchmark's check).
+        params: The operator's constants at the block's start.
+    """
+
+    participant: str
+    traits: OperatorTraits
+    round_trip_ms: float
+    trials: tuple[PointingTrial, ...]
+    block: int = 1
+    first_trial: int = 1
+    timeout_s: float = 40.0
+    depth_aids: bool = False
+    fresh: bool = False
+    params: OperatorParams = field(default_factory=OperatorParams)
+
+    @property
+    def trial_index(self) -> int:
+        """The number of its last trial in the session (for progress)."""
+        return self.first_trial + len(self.trials) - 1
+
+
+def pointing_blocks(study: StudyConfig) -> list[PointingBlock]:
+    """Every block of ``study``, participant by participant, in each one's order of lags."""
+    people = participants(study)
+    lags = [c.round_trip_ms for c in study.planned_conditions]
+    blocks = []
+    for k, (person, order) in enumerate(
+        zip(people, condition_orders(study, len(people)), strict=True)
+    ):
+        traits = operator_traits(study, person)
+        trials = study.pointing.block(k, study.seed)
+        for place, c in enumerate(order):
+            blocks.append(PointingBlock(person.id, traits, lags[c], trials, place + 1,
+                                        place * len(trials) + 1, study.pointing.timeout_s,
+                                        study.depth_aids))  # fmt: skip
+    return blocks
+
+
+def run_pointing_block(block: PointingBlock) -> list[dict[str, float | str]]:
+    """A block's trials, one after the other: each trial's row of :data:`RUN_COLUMNS`, and
+    where its movement time went (``<activity>_s``, :data:`~arteleop.operator.ACTIVITIES`)."""
+    from arteleop.teleop.pointing import run_pointing_trial
+
+    practice = block.params
+    rows: list[dict[str, float | str]] = []
+    for n, trial in enumerate(block.trials):
+        r = run_pointing_trial(trial.distance_m, trial.width_m, block.traits, trial.seed,
+                               block.round_trip_ms / 1000, block.timeout_s, practice,
+                               block.depth_aids)  # fmt: skip
+        scale = believed_error_scale(practice.seen_outcomes, block.traits.confidence,
+                                     practice.own_error_prior_sd)  # fmt: skip
+        if not block.fresh:
+            practice = replace(practice, familiar_lag_s=r.believed_lag_s,
+                               seen_outcomes=practice.seen_outcomes.after(not r.hit))  # fmt: skip
+        selected = r.selected
+        nan = math.nan
+        rows.append({
+            "participant": block.participant, "round_trip_ms": block.round_trip_ms,
+            "distance_m": trial.distance_m, "width_m": trial.width_m,
+            "movement_time_s": r.movement_time_s if selected else nan,
+            "along_m": r.along_m if selected else nan, "across_m": r.across_m if selected else nan,
+            "hit": float(r.hit) if selected else nan,
+            "block": block.block, "trial": block.first_trial + n, "rep": trial.rep,
+            "seed": trial.seed, "slips": r.slips, "corrections": r.corrections, "looks": r.looks,
+            "believed_lag_s": r.believed_lag_s, "error_scale": scale,
+            **{f"{a}_s": r.activity_s.get(a, 0.0) for a in ACTIVITIES},
+        })  # fmt: skip
+    return rows
+
+
+def run_blocks(
+    blocks: Sequence[PointingBlock],
+    workers: int | None = None,
+    executor: Executor | None = None,
+    progress: Callable[[PointingBlock, int, int], None] | None = None,
+) -> list[dict[str, float | str]]:
+    """The rows of every block, in the order of ``blocks`` whichever ends first; each block in a
+    fresh worker process (``workers``, default one per core; 1: in this process), or on
+    ``executor``. ``progress`` hears (the block, trials done, trials in all) as each ends."""
+    total = sum(len(b.trials) for b in blocks)
+    done = 0
+    results: list[list[dict[str, float | str]]] = []
+
+    def tell(block: PointingBlock, rows: list[dict[str, float | str]]) -> None:
+        nonlocal done
+        done += len(rows)
+        results.append(rows)
+        if progress is not None:
+            progress(block, done, total)
+
+    workers = min(workers or os.cpu_count() or 1, max(len(blocks), 1))
+    if executor is None and workers == 1:
+        for block in blocks:
+            tell(block, run_pointing_block(block))
+        return [row for rows in results for row in rows]
+    own = executor is None
+    pool = executor or ProcessPoolExecutor(
+        workers, initializer=start_worker, initargs=(os.getpid(),), max_tasks_per_child=1
+    )
+    futures = [pool.submit(run_pointing_block, block) for block in blocks]
+    try:
+        for block, future in zip(blocks, futures, strict=True):
+            tell(block, future.result())
+    except BaseException:
+        for future in futures:
+            future.cancel()
+        if own:  # a stop (Ctrl-C) must not wait for the blocks under way
+            stop_workers(pool)  # type: ignore[arg-type]
+        raise
+    finally:
+        if own:
+            pool.shutdown(wait=True, cancel_futures=True)
+    return [row for rows in results for row in rows]
+
+
+def run_pointing_study(
+    study: StudyConfig,
+    out: Path,
+    workers: int | None = None,
+    executor: Executor | None = None,
+    progress: Callable[[PointingBlock, int, int], None] | None = None,
+) -> StudyRun:
+    """Run the pointing study ``study`` in the new folder ``out``, to the end (see the module's
+    docstring); the arguments as :func:`~arteleop.study.run_study`'s."""
+    folder = RunFolder(out)
+    check_new(folder)
+    blocks = pointing_blocks(study)
+    people = participants(study)
+    text = study_text(study)
+    manifest = new_manifest(study, text, (), len(people))
+    manifest.update(task=study.task, trials_planned=sum(len(b.trials) for b in blocks))
+    del manifest["plan_sha256"]  # a pick-and-place plan's: a pointing run's plan is its blocks
+    make_folder(folder)
+    with run_lock(folder.path):
+        check_new(folder)
+        write_atomic(folder.path / STUDY_FILE, text)
+        write_atomic(folder.path / PARTICIPANTS_FILE, participants_text(people))
+        folder.write_manifest(manifest)
+        rows = run_blocks(blocks, workers, executor, progress)
+        table = [[row[c] for c in RUN_COLUMNS] for row in rows]
+        write_atomic(folder.path / POINTING_FILE, table_text(RUN_COLUMNS, table))
+        manifest["finished"] = utc_now()
+        folder.write_manifest(manifest)
+    return StudyRun(folder.path, pd.DataFrame(table, columns=list(RUN_COLUMNS)), len(rows), [])

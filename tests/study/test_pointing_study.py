@@ -1,0 +1,141 @@
+"""A pointing study run from a study file: the design, its trials, the run folder and its
+report; the definition's bad values refused at their line."""
+
+from __future__ import annotations
+
+import csv
+import json
+import shutil
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from arteleop.cli import main
+from arteleop.errors import RunFolderError, StudyDefinitionError
+from arteleop.operator import OperatorParams
+from arteleop.scene import SiteConfig
+from arteleop.study import RunComplete, parse_study, resume_study
+from arteleop.study.pointing_design import PointingDesign
+from arteleop.study.protocol import operator_traits
+from arteleop.teleop import POINTING, PointingMonitor, trial_task
+from arteleop.teleop.pointing import run_pointing_trial
+
+TINY = """\
+task = "pointing"
+seed = 0
+participants = [{id = "F02"}]
+
+[pointing]
+distances_m = [0.1]
+widths_m = [0.03]
+repetitions = 2
+
+[[conditions]]
+cues = []
+round_trip_ms = 150
+"""
+
+
+def test_a_pointing_study_runs_each_trial_as_the_pointing_trial_and_carries_the_block(
+    tmp_path: Path,
+) -> None:
+    """Each row of pointing.csv is the pointing trial of its seed, by the participant's traits,
+    under the condition's lag, bringing the belief and the outcome the trial before left; the
+    run's report is the pointing analysis; a finished run has nothing to resume."""
+    (tmp_path / "tiny.toml").write_text(TINY)
+    out = tmp_path / "run"
+    assert main(["study", "run", str(tmp_path / "tiny.toml"), "--out", str(out),
+                 "--workers", "1", "--quiet"]) == 0  # fmt: skip
+    with open(out / "pointing.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    # Study seed 0: bench_fitts's seeds, 10000 x the participant's place + 100 x rep + cell.
+    assert [(r["participant"], r["trial"], r["seed"], r["round_trip_ms"]) for r in rows] == [
+        ("F02", "1", "0", "150.0"),
+        ("F02", "2", "100", "150.0"),
+    ]  # fmt: skip
+    traits = operator_traits(parse_study(TINY), parse_study(TINY).participants[0])
+    fresh = OperatorParams()
+    first = run_pointing_trial(0.1, 0.03, traits, 0, 0.15, 40.0, fresh)
+    carried = replace(fresh, familiar_lag_s=first.believed_lag_s,
+                      seen_outcomes=fresh.seen_outcomes.after(not first.hit))  # fmt: skip
+    second = run_pointing_trial(0.1, 0.03, traits, 100, 0.15, 40.0, carried)
+    for row, trial in zip(rows, (first, second), strict=True):
+        assert float(row["movement_time_s"]) == trial.movement_time_s
+        assert (float(row["along_m"]), float(row["across_m"])) == (trial.along_m, trial.across_m)
+        assert float(row["hit"]) == float(trial.hit)
+    assert json.loads((out / "manifest.json").read_text())["task"] == "pointing"
+    assert "## Lag 150 ms (round trip)" in (out / "report" / "report.md").read_text()
+    with pytest.raises(RunComplete, match="is complete"):
+        resume_study(out)
+    cut = tmp_path / "cut"
+    shutil.copytree(out, cut)
+    manifest = json.loads((cut / "manifest.json").read_text())
+    (cut / "manifest.json").write_text(json.dumps({**manifest, "finished": None}))
+    with pytest.raises(RunFolderError) as err:
+        resume_study(cut)
+    assert str(err.value) == (
+        f"{cut} is a pointing study's run cut short, which cannot be resumed yet: run its study "
+        f"again into a new folder ('arteleop study run {cut / 'study.toml'} --out NEW_DIR'); the "
+        "same seed gives the same trials."
+    )
+
+
+def test_a_block_is_every_cell_per_repetition_in_an_order_of_its_own() -> None:
+    """Study seed 0 keeps bench_fitts's seeds and orders; another seed gives others."""
+    design = PointingDesign((0.1, 0.2), (0.01, 0.02, 0.04), 3)
+    block = design.block(3)
+    cells = [(i, j) for i in range(2) for j in range(3)]
+    for rep in range(3):
+        order = np.random.default_rng([3, rep]).permutation(6)
+        trials = block[6 * rep : 6 * rep + 6]
+        assert [t.seed for t in trials] == [30000 + 100 * rep + 10 * cells[k][0] + cells[k][1]
+                                            for k in order]  # fmt: skip
+        assert [(t.distance_m, t.width_m) for t in trials] == [
+            (design.distances_m[cells[k][0]], design.widths_m[cells[k][1]]) for k in order
+        ]
+    other = design.block(3, study_seed=1)
+    assert sorted((t.distance_m, t.width_m) for t in other) == sorted(
+        (t.distance_m, t.width_m) for t in block
+    )
+    assert not {t.seed for t in other} & {t.seed for t in block}
+    assert trial_task("pointing") is POINTING
+    assert type(POINTING.monitor(SiteConfig().workspace)) is PointingMonitor
+
+
+CONDITION = "\n[[conditions]]\ncues = []\nround_trip_ms = 0\n"
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        ('task = "pointing"\n',
+         'study.toml line 1: task = "pointing": give its lags as [[conditions]] tables, one '
+         "round_trip_ms each (cues = [] for all), e.g. round_trip_ms = 0 and round_trip_ms = 225."),
+        ('task = "pointing"\n[[conditions]]\ncues = ["full"]\n',
+         "study.toml: conditions: condition 1 (full@0ms): a pointing study's conditions are "
+         "lags; give cues = [], jitter_ms = 0 and loss = 0, and round_trip_ms."),
+        ("seed = 1\n[pointing]\nrepetitions = 3\n",
+         'study.toml: pointing: the [pointing] table designs a pointing study; give task = '
+         "\"pointing\" with it (task is 'pick-and-place'), or remove the table."),
+        ('task = "pointing"\n[pointing]\nrepetitions = 1\n' + CONDITION,
+         "study.toml line 3: pointing.repetitions = 1: expected 2 to 99 (an effective width "
+         "needs a spread)."),
+        ('task = "pointing"\n[pointing]\ndistances_m = [0.1, 0.6]\n' + CONDITION,
+         "study.toml line 3: pointing.distances_m = [0.1, 0.6]: expected 1 to 9 different "
+         "values, each 0.02-0.4 m."),
+        ('task = "pointing"\n[pointing]\nwidths_m = [0.02, 0.02]\n' + CONDITION,
+         "study.toml line 3: pointing.widths_m = [0.02, 0.02]: expected 1 to 9 different "
+         "values, each 0.005-0.1 m."),
+        ('task = "pointing"\n[pointing]\ndistances_m = [0.05]\nwidths_m = [0.06]\n' + CONDITION,
+         "study.toml line 4: pointing.widths_m = [0.06]: each target must be narrower than "
+         "the shortest distance (0.05 m), or it covers the start."),
+        ('task = "pointing"\n[pointing]\ntimeout_s = 0\n' + CONDITION,
+         "study.toml line 3: pointing.timeout_s = 0.0: expected a positive time (s)."),
+    ],
+)  # fmt: skip
+def test_a_pointing_design_out_of_range_is_refused_at_its_line(text: str, message: str) -> None:
+    with pytest.raises(StudyDefinitionError) as err:
+        parse_study(text, "study.toml")
+    assert str(err.value) == message
