@@ -107,7 +107,7 @@ def test_study_run_seed_replaces_the_definitions(
         (["--confidence", "1"], "--confidence 1.0: expected 0.5-0.999 (a probability)."),
         (
             ["--task", "pick"],
-            "--task 'pick': expected 'pick-and-place', or a task of your own as "
+            "--task 'pick': expected 'pick-and-place', 'pointing', or a task of your own as "
             "'package.module:NAME' (docs/guides/extending.md).",
         ),
         (
