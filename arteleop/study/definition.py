@@ -13,7 +13,7 @@ mirror the original study (docs/explanation/study.md §4) and the operator model
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import MISSING, dataclass, field, fields
 from typing import Any
 
 from arteleop.analysis.data import network_label
@@ -321,6 +321,16 @@ class StudyConfig:
         }
 
 
+_POINTING_UNUSED = ("consent", "instructions", "questionnaire", "modalities", "trials_per_modality",
+                    "timeout_s", "delay_ms", "camera_offset_mm", "camera_offset_deg",
+                    "camera_pose", "start_xy_m", "target_xy_m", "familiarization",
+                    "hand_filter")  # fmt: skip
+"""The keys of a pick-and-place study that a pointing study's trials do not read."""
+_SCALARS = ("trials_per_modality", "timeout_s", "delay_ms", "start_xy_m", "target_xy_m",
+            "camera_offset_mm", "camera_offset_deg", "modalities")  # fmt: skip
+"""Of those, the keys whose value a message can quote in a line."""
+
+
 def _check_pointing(study: StudyConfig) -> None:
     """A pointing study's lags are its conditions, which differ in round trip alone."""
     if not study.conditions:
@@ -334,6 +344,18 @@ def _check_pointing(study: StudyConfig) -> None:
                 f"conditions: condition {k + 1} ({condition.name}): a pointing study's conditions "
                 "are lags; give cues = [], jitter_ms = 0 and loss = 0, and round_trip_ms."
             )
+    for f in fields(study):
+        if f.name in _POINTING_UNUSED:
+            default = f.default_factory() if f.default is MISSING else f.default  # type: ignore[misc]
+            if getattr(study, f.name) != default:
+                value = getattr(study, f.name)
+                value = list(value) if isinstance(value, tuple) else value
+                given = f"{f.name} = {value!r}" if f.name in _SCALARS else f.name
+                raise StudyDefinitionError(
+                    f"{given}: a pointing study does not use it (its trials are the [pointing] "
+                    "table's, without practice, on the default camera and hand filter, and it is "
+                    "not served to people); remove it."
+                )
     people = len(study.participants) or study.cohort.size
     if people > MOST_PEOPLE:
         raise StudyDefinitionError(

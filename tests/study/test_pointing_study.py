@@ -105,6 +105,10 @@ def test_a_block_is_every_cell_per_repetition_in_an_order_of_its_own() -> None:
 
 
 CONDITION = "\n[[conditions]]\ncues = []\nround_trip_ms = 0\n"
+UNUSED = (
+    "a pointing study does not use it (its trials are the [pointing] table's, without practice, "
+    "on the default camera and hand filter, and it is not served to people); remove it."
+)
 
 
 @pytest.mark.parametrize(
@@ -131,6 +135,10 @@ CONDITION = "\n[[conditions]]\ncues = []\nround_trip_ms = 0\n"
         ('task = "pointing"\n[pointing]\ndistances_m = [0.05]\nwidths_m = [0.06]\n' + CONDITION,
          "study.toml line 4: pointing.widths_m = [0.06]: each target must be narrower than "
          "the shortest distance (0.05 m), or it covers the start."),
+        ('task = "pointing"\nstart_xy_m = [0.6, -0.4]\n' + CONDITION,
+         "study.toml line 2: start_xy_m = [0.6, -0.4]: " + UNUSED),
+        ('task = "pointing"\n[familiarization]\ntrials = 0\n' + CONDITION,
+         "study.toml: familiarization: " + UNUSED),
         ('task = "pointing"\n[pointing]\ntimeout_s = 0\n' + CONDITION,
          "study.toml line 3: pointing.timeout_s = 0.0: expected a positive time (s)."),
     ],
