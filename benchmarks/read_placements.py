@@ -74,7 +74,7 @@ def _spy(self: pick_and_place.PickAndPlace, phase: TaskPhase, seen: Perceived) -
             "seen_target": seen.target_m.copy(),
             "believed_bowl": None if believed is None else believed.copy(),
             "bowl_seen": seen.bowl_m is not None,
-            "placement_sd_mm": 1000 * float(np.sqrt(np.trace(seen.placement_cov[:2, :2]) / 2)),
+            "placement_sd_mm": 1000 * float(np.sqrt(np.trace(seen.target_cov[:2, :2]) / 2)),
         })  # fmt: skip
     _gripped(self, phase, seen)
 

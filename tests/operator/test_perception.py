@@ -131,13 +131,13 @@ def test_a_judgement_takes_the_fixations_of_what_it_combines() -> None:
     for cues, expected in ((MODALITIES["none"], 1), (ArCues(beam=True), 1),
                            (MODALITIES["manipulation"], 2)):  # fmt: skip
         seen = perceive(display_frame(cues=cues, T_base_gripper=near), P, _independent(0))
-        assert seen.grasp_fixations == expected, cues
+        assert seen.gripper_fixations == expected, cues
     view = display_frame()
     angle = math.acos(_sight(view, view.target_m) @ _sight(view, view.bowl_m))
     assert angle > P.parafovea_rad  # the frame's target and bowl are far apart
-    assert perceive(view, P, _independent(0)).placement_fixations == 2
+    assert perceive(view, P, _independent(0)).target_fixations == 2
     beside = display_frame(target_m=view.bowl_m + [0.02, 0.0, 0.0])
-    assert perceive(beside, P, _independent(0)).placement_fixations == 1
+    assert perceive(beside, P, _independent(0)).target_fixations == 1
 
 
 def test_no_layer_has_a_precision_of_its_own() -> None:
@@ -167,7 +167,7 @@ def _target_errors(unseen_s: float, drawn: float = 0.0, cues: ArCues = MODALITIE
         perceive(shown, P, noise, marks=marks)
         seen = perceive(later, P, noise, marks=marks)
         errors.append((seen.target_m - later.target_m)[:2])
-        sd = math.sqrt(seen.placement_cov[0, 0])
+        sd = math.sqrt(seen.target_cov[0, 0])
     return np.array(errors), sd
 
 
@@ -284,10 +284,10 @@ def test_the_mesh_guides_the_gripper_while_the_arm_hides_the_bowl() -> None:
         mesh = judgement_sd(view.grasp_radius_m, _eye_m(view, view.target_m), 0.0, D, A)
         if cues.target_mesh:
             np.testing.assert_allclose(relative.std(axis=0), mesh.across_sd_m, rtol=0.06)
-            np.testing.assert_allclose(np.diag(seen[0].placement_cov)[:2], mesh.across_sd_m**2)
+            np.testing.assert_allclose(np.diag(seen[0].target_cov)[:2], mesh.across_sd_m**2)
         else:
             assert np.all(relative.std(axis=0) > 2 * mesh.across_sd_m)
-        assert seen[0].placed_by_gripper  # the bowl's place in the hand adds its uncertainty
+        assert seen[0].target_by_gripper  # the bowl's place in the hand adds its uncertainty
 
 
 def test_a_bowl_the_display_does_not_show_is_not_perceived() -> None:
@@ -334,7 +334,7 @@ def test_a_task_that_aims_the_gripper_judges_the_target_against_it() -> None:
         return float(np.sqrt((errors**2).sum(axis=1).mean()))
 
     assert spread(True) < spread(False) / 4
-    assert perceive(view, P, _independent(0), aims_gripper=True).placement_fixations == 1
+    assert perceive(view, P, _independent(0), aims_gripper=True).target_fixations == 1
     scaled = perceive(view, _EXACT, _independent(0), depth_scale=0.8, aims_gripper=True)
     d = _sight(view, view.target_m)
     np.testing.assert_allclose(
@@ -356,7 +356,7 @@ def test_a_persons_depth_scale_stretches_depth_intervals_unknown_to_the_person()
     np.testing.assert_allclose(
         (scaled.gripper_m - scaled.bowl_m) - (true.gripper_m - true.bowl_m), expected, atol=1e-12
     )
-    np.testing.assert_array_equal(scaled.grasp_cov, true.grasp_cov)
+    np.testing.assert_array_equal(scaled.gripper_cov, true.gripper_cov)
     bar = display_frame(cues=MODALITIES["manipulation"])
     read = perceive(bar, exact, _independent(0))
     read_scaled = perceive(bar, exact, _independent(0), depth_scale=0.8)
@@ -390,7 +390,7 @@ def test_a_longer_look_averages_a_judgement_of_the_display() -> None:
     one = judgement_sd(float(np.linalg.norm(view.gripper_m - view.grasp_point_m())),
                        _eye_m(view, view.gripper_m), 0.0, D, A).depth_sd_m  # fmt: skip
     assert np.std(np.array(looks) @ d) == pytest.approx(one / 2, rel=0.06)
-    assert d @ seen.grasp_cov @ d == pytest.approx(one**2 / 4, rel=1e-6)
+    assert d @ seen.gripper_cov @ d == pytest.approx(one**2 / 4, rel=1e-6)
 
 
 def test_a_judgement_keeps_its_bias_and_a_longer_look_averages_the_rest() -> None:
@@ -588,8 +588,8 @@ def test_the_depth_aids_add_the_ring_on_the_table_and_the_height_off_its_label()
         np.diag([1.0, -1.0, -1.0]), aided.target_m + [0.0, 0.0, 0.05]))  # fmt: skip
     pointed = perceive(target, P, _independent(0), aims_gripper=True)
     alone = perceive(replace(target, depth_aids=False), P, _independent(0), aims_gripper=True)
-    assert pointed.placement_fixations == alone.placement_fixations == 1
-    assert _loewner_smaller(pointed.placement_cov[:2, :2], alone.placement_cov[:2, :2])
+    assert pointed.target_fixations == alone.target_fixations == 1
+    assert _loewner_smaller(pointed.target_cov[:2, :2], alone.target_cov[:2, :2])
 
 
 def test_a_hidden_bowl_is_placed_by_the_gripper_over_the_ring() -> None:
@@ -599,12 +599,12 @@ def test_a_hidden_bowl_is_placed_by_the_gripper_over_the_ring() -> None:
     view = display_frame(cues=MODALITIES["none"], bowl_m=None, depth_aids=True)
     aided = perceive(view, P, _independent(0))
     plain = perceive(replace(view, depth_aids=False), P, _independent(0))
-    assert aided.placed_by_gripper and plain.placed_by_gripper
-    assert _loewner_smaller(aided.placement_cov[:2, :2], plain.placement_cov[:2, :2])
+    assert aided.target_by_gripper and plain.target_by_gripper
+    assert _loewner_smaller(aided.target_cov[:2, :2], plain.target_cov[:2, :2])
     unseen = replace(view, gripper_in_camera=False)
     felt = perceive(unseen, P, _independent(0))
     felt_plain = perceive(replace(unseen, depth_aids=False), P, _independent(0))
-    np.testing.assert_array_equal(felt.placement_cov, felt_plain.placement_cov)
+    np.testing.assert_array_equal(felt.target_cov, felt_plain.target_cov)
     np.testing.assert_array_equal(felt.target_m, felt_plain.target_m)
 
 
@@ -616,16 +616,16 @@ def test_the_drop_line_passing_the_rims_height_guides_the_grasp() -> None:
     assert view.gripper_m[2] > view.grasp_point_m()[2]
     aided = perceive(view, P, _independent(0))
     plain = perceive(replace(view, depth_aids=False), P, _independent(0))
-    assert _loewner_smaller(aided.grasp_cov[:2, :2], plain.grasp_cov[:2, :2])
+    assert _loewner_smaller(aided.gripper_cov[:2, :2], plain.gripper_cov[:2, :2])
     noise = _independent(3)
     errors = np.array([(s.gripper_m - s.bowl_m) - (view.gripper_m - view.bowl_m)
                        for s in (perceive(view, P, noise) for _ in range(3000))])  # fmt: skip
-    np.testing.assert_allclose(np.cov(errors[:, :2].T), aided.grasp_cov[:2, :2], rtol=0.15)
+    np.testing.assert_allclose(np.cov(errors[:, :2].T), aided.gripper_cov[:2, :2], rtol=0.15)
     low = make_transform(np.diag([1.0, -1.0, -1.0]), view.grasp_point_m() - [0.0, 0.0, 0.01])
     below = replace(view, T_base_gripper=low)
-    np.testing.assert_array_equal(perceive(below, P, _independent(0)).grasp_cov,
+    np.testing.assert_array_equal(perceive(below, P, _independent(0)).gripper_cov,
                                   perceive(replace(below, depth_aids=False), P,
-                                           _independent(0)).grasp_cov)  # fmt: skip
+                                           _independent(0)).gripper_cov)  # fmt: skip
 
 
 def test_under_the_predictive_ghost_the_aids_are_judged_from_the_frames_arm() -> None:

@@ -42,7 +42,7 @@ class BowlMemory:
         """The operator has closed the gripper on the bowl believed at ``bowl_m``; the bowl's
         place in the hand is as uncertain as the grasp's judgement was."""
         self._in_hand_m = None if bowl_m is None else bowl_m - seen.gripper_m
-        self.in_hand_cov = seen.grasp_cov.copy()
+        self.in_hand_cov = seen.gripper_cov.copy()
 
     def release(self) -> None:
         self._in_hand_m = None

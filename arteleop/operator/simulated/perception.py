@@ -126,24 +126,25 @@ class Perceived:
     """The operator's judgements at one glance, base frame (m); ``bowl_m`` is None when the
     display does not show the bowl.
 
-    ``grasp_cov`` is the covariance (3, 3; m^2) of the judged gripper relative to the bowl (or,
-    without a bowl in view, to where the operator remembers it); ``placement_cov`` that of the
-    judged target relative to the bowl (or the gripper, see ``placed_by_gripper``). Both are
-    what the operator believes of its own precision: the bias's variance and the look's
-    averaged noise.
+    ``gripper_cov`` is the covariance (3, 3; m^2) of the judged gripper relative to the bowl
+    (or, without a bowl in view, to where the operator remembers it); ``target_cov`` that of
+    the judged target relative to the bowl (or the gripper, see ``target_by_gripper``). Both
+    are what the operator believes of its own precision: the bias's variance and the look's
+    averaged noise. Every task judges these; what else a task judges is in ``marks``.
 
     Attributes:
         gripper_seen: The display shows the gripper (in the cloud or as the ghost).
         closure_known: The display shows whether the gripper is closed.
-        placed_by_gripper: The placement was judged from the gripper (the bowl in hand hidden):
-            the bowl's place in the hand adds its own uncertainty.
+        target_by_gripper: The target was judged from the gripper (the bowl in hand hidden, or
+            a task that aims the gripper itself): the bowl's place in the hand adds its own
+            uncertainty.
         lead_m: How far ahead of the frame's own arm the gripper judged is (m): the predictive
             ghost's lead, zero without it. The bowl is seen in the frame, a round trip old: a
             bowl carried by the hand is that much behind where the judged gripper carries it.
-        grasp_fixations: The fixations the gripper's judgement against the bowl took: one
+        gripper_fixations: The fixations the gripper's judgement against the bowl took: one
             per label read and per drawn thing no other fixation covers
             (:func:`~arteleop.operator.simulated.acuity.fixations`).
-        placement_fixations: ...and the placement's judgement.
+        target_fixations: ...and the target's judgement.
         marks: The marks the task judges besides the target (:attr:`~arteleop.operator.Task.marks`),
             by name, each where it is judged (``mark_m``), its believed covariance relative to
             the judged gripper (``cov``, m^2) and the fixations it took; a mark the display does
@@ -155,12 +156,12 @@ class Perceived:
     target_m: NDArray[np.float64]
     gripper_seen: bool
     closure_known: bool
-    grasp_cov: NDArray[np.float64]
-    placement_cov: NDArray[np.float64]
-    placed_by_gripper: bool
+    gripper_cov: NDArray[np.float64]
+    target_cov: NDArray[np.float64]
+    target_by_gripper: bool
     lead_m: NDArray[np.float64] = field(default_factory=lambda: np.zeros(3))
-    grasp_fixations: int = 1
-    placement_fixations: int = 1
+    gripper_fixations: int = 1
+    target_fixations: int = 1
     marks: Mapping[str, Mark] = field(default_factory=dict)
 
 

@@ -120,7 +120,7 @@ def relative_goal(gripper_m: NDArray[np.float64], seen: Perceived) -> Goal:
     """A goal judged as the gripper's place relative to the bowl (grasping, or any goal set
     from the bowl): seen whole where the display shows the gripper and the bowl."""
     shown = seen.gripper_seen and seen.bowl_m is not None
-    return Goal(gripper_m, seen.grasp_cov, "xyz", shown, seen.grasp_fixations)
+    return Goal(gripper_m, seen.gripper_cov, "xyz", shown, seen.gripper_fixations)
 
 
 def planar_goal(
@@ -129,11 +129,11 @@ def planar_goal(
     """A goal judged in the table's plane against the target (placing, or pointing at it).
     Where it was judged from the gripper (a bowl in hand hidden), the bowl's place in the hand,
     with covariance ``held_cov_m2`` (None: nothing held), adds its own uncertainty."""
-    cov = seen.placement_cov
-    if seen.placed_by_gripper and held_cov_m2 is not None:
+    cov = seen.target_cov
+    if seen.target_by_gripper and held_cov_m2 is not None:
         cov = cov + held_cov_m2
-    shown = seen.bowl_m is not None or (seen.placed_by_gripper and seen.gripper_seen)
-    return Goal(gripper_m, cov, "xy", shown and seen.gripper_seen, seen.placement_fixations)
+    shown = seen.bowl_m is not None or (seen.target_by_gripper and seen.gripper_seen)
+    return Goal(gripper_m, cov, "xy", shown and seen.gripper_seen, seen.target_fixations)
 
 
 def phase_named(task: Task, name: str) -> TaskPhase:
