@@ -62,19 +62,26 @@ from arteleop.analysis.pointing import (
     lag_models,
     person_cells,
 )
+from arteleop.operator import ACTIVITIES, OperatorParams, OperatorTraits
+from arteleop.study import StudyConfig
+from arteleop.study.definition import ConditionSpec, ParticipantSpec
+from arteleop.study.pointing_design import (
+    MOST_PEOPLE,
+    MOST_REPETITIONS,
+    PointingDesign,
+    PointingTrial,
+)
+from arteleop.study.pointing_run import pointing_blocks, run_blocks
+from arteleop.study.protocol import operator_traits
 
 DISTANCES_M = (0.1, 0.2, 0.4)
 WIDTHS_M = (0.01, 0.02, 0.04)
 
 
-def fitts_study(people: int, reps: int, lags: list[float], depth_aids: bool = False):  # type: ignore[no-untyped-def]
+def fitts_study(people: int, reps: int, lags: list[float], depth_aids: bool = False) -> StudyConfig:
     """The bench's design as a pointing study (docs/examples/fitts_lag.toml at the defaults):
     people F00, F01, ... (novices at their own speed, traits drawn from seed 0), every cell
     ``reps`` times per lag (ms)."""
-    from arteleop.study import StudyConfig
-    from arteleop.study.definition import ConditionSpec, ParticipantSpec
-    from arteleop.study.pointing_design import PointingDesign
-
     return StudyConfig(
         name="bench_fitts", task="pointing", depth_aids=depth_aids,
         participants=tuple(ParticipantSpec(f"F{p:02d}") for p in range(people)),
@@ -83,18 +90,14 @@ def fitts_study(people: int, reps: int, lags: list[float], depth_aids: bool = Fa
     )  # fmt: skip
 
 
-def block_trials(person: int, reps: int):  # type: ignore[no-untyped-def]
+def block_trials(person: int, reps: int) -> tuple[PointingTrial, ...]:
     """A person's trials in a block (the study's :meth:`PointingDesign.block`)."""
-    from arteleop.study.pointing_design import PointingDesign
-
     return PointingDesign(DISTANCES_M, WIDTHS_M, reps).block(person)
 
 
-def person_traits(person: int):  # type: ignore[no-untyped-def]
+def person_traits(person: int) -> OperatorTraits:
     """The traits of the bench's simulated person ``person`` (F00, F01, ...), as the study
     draws them."""
-    from arteleop.study.protocol import operator_traits
-
     study = fitts_study(person + 1, 2, [0.0])
     return operator_traits(study, study.participants[person])
 
@@ -104,9 +107,11 @@ def parse_lags(text: str) -> list[float]:
         lags = [float(x) for x in text.split(",") if x.strip()]
     except ValueError:
         lags = []
-    if not lags or any(not np.isfinite(x) or x < 0 or x > 2000 for x in lags):
+    if (not lags or len(set(lags)) < len(lags)
+            or any(not np.isfinite(x) or x < 0 or x > 2000 for x in lags)):  # fmt: skip
         raise argparse.ArgumentTypeError(
-            f"{text!r}: give round-trip lags in ms, 0-2000, separated by commas (e.g. 0,75,150)"
+            f"{text!r}: give different round-trip lags in ms, 0-2000, separated by commas "
+            "(e.g. 0,75,150)"
         )
     return lags
 
@@ -133,19 +138,17 @@ def main() -> None:
     parser.add_argument("--csv", help="write the trials to this file as a pointing study's table "
                         "(pointing.csv: 'arteleop analyze FILE' reads it)")  # fmt: skip
     args = parser.parse_args()
-    if args.people < 1:
-        parser.error(f"--people {args.people}: give 1 or more")
-    if args.reps < 2:
-        parser.error(f"--reps {args.reps}: give 2 or more (an effective width needs a spread)")
+    if not 1 <= args.people <= MOST_PEOPLE:
+        parser.error(f"--people {args.people}: give 1 to {MOST_PEOPLE}")
+    if not 2 <= args.reps <= MOST_REPETITIONS:
+        parser.error(f"--reps {args.reps}: give 2 to {MOST_REPETITIONS} (an effective width "
+                     "needs a spread)")  # fmt: skip
     sd = args.own_error_prior_sd
     if sd is not None and not (np.isfinite(sd) and sd > 0):
         parser.error(f"--own-error-prior-sd {sd}: give a number above 0 (the SD of a log)")
     if args.workers < 1:
         parser.error(f"--workers {args.workers}: give 1 or more")
     people, reps, lags = (4, 3, [0.0, 225.0]) if args.quick else (args.people, args.reps, args.lags)
-    from arteleop.operator import OperatorParams
-    from arteleop.study.pointing_run import pointing_blocks, run_blocks
-
     params = OperatorParams()
     if sd is not None:
         params = replace(params, own_error_prior_sd=sd)
@@ -243,7 +246,6 @@ def report(
             print(f"\nMT = {f.a_s_effective:.2f} s + {f.b_s_per_bit_effective:.2f} s/bit x ID_e, "
                   f"R^2 = {f.r2_effective:.2f} (nominal ID: {f.a_s_nominal:.2f} s + "
                   f"{f.b_s_per_bit_nominal:.2f} s/bit, R^2 = {f.r2_nominal:.2f})\n")  # fmt: skip
-    from arteleop.operator import OperatorParams
 
     own_lag_s = OperatorParams().familiar_lag_s  # the display's lag with none added, measured
     per_lag: dict[str, list] = {"lag_ms": [], "movement_time_s": [], "error_rate": [],
@@ -326,8 +328,6 @@ def time_breakdown(rows: list[dict], lags: list[float]) -> list[dict]:
     """Per lag and target width, where the movement time of the selected trials went: the mean
     seconds in each of the operator's activities (they add up to the mean movement time), and
     the mean corrections and looks per trial; printed as a table."""
-    from arteleop.operator import ACTIVITIES
-
     out = []
     print("\n## Where the movement time goes (means over the selected trials)\n")
     print("| lag (ms) | W (mm) | trials | MT (s) | " + " | ".join(f"{a} (s)" for a in ACTIVITIES)

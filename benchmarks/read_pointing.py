@@ -32,6 +32,7 @@ from arteleop.operator import (
 )
 from arteleop.operator.simulated import look as look_module
 from arteleop.operator.simulated.belief import averaging_saturated
+from arteleop.study.pointing_design import MOST_PEOPLE, MOST_REPETITIONS
 from arteleop.teleop.pointing import run_pointing_trial
 
 VERDICTS: list[tuple[str, float]] = []
@@ -73,14 +74,15 @@ def main() -> None:
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
     parser.add_argument("--people", type=int, default=4, help="people (1 or more)")
-    parser.add_argument("--reps", type=int, default=2, help="repetitions (1 or more)")
+    parser.add_argument("--reps", type=int, default=2, help="repetitions (2 to 99)")
     parser.add_argument("--distance-m", type=float, default=0.4, choices=DISTANCES_M)
     parser.add_argument("--width-m", type=float, default=0.01, choices=WIDTHS_M)
     parser.add_argument("--seen", type=seen_outcomes, default=SeenOutcomes(),
                         help="outcomes seen before, MISSES/TRIALS (default 0/0)")  # fmt: skip
     args = parser.parse_args()
-    if args.people < 1 or args.reps < 1:
-        parser.error(f"--people {args.people} --reps {args.reps}: give 1 or more of each")
+    if not (1 <= args.people <= MOST_PEOPLE and 2 <= args.reps <= MOST_REPETITIONS):
+        parser.error(f"--people {args.people} --reps {args.reps}: give 1 to {MOST_PEOPLE} people "
+                     f"and 2 to {MOST_REPETITIONS} repetitions")  # fmt: skip
     look_module.Look.verdict = _logging_verdict(look_module.Look.verdict)
     params = replace(OperatorParams(), seen_outcomes=args.seen)
     print("| person | rep | error scale | hit | along (mm) | across (mm) | MT (s) | corrections "

@@ -111,6 +111,12 @@ def test_study_run_seed_replaces_the_definitions(
             "'package.module:NAME' (docs/guides/extending.md).",
         ),
         (
+            ["--task", "pointing"],
+            "--task pointing: a pointing trial's targets come from a pointing study's design; run "
+            "one with 'arteleop study run docs/examples/fitts_lag.toml --out DIR', or a study file "
+            'of your own with task = "pointing".',
+        ),
+        (
             ["--placement-criterion-m", "0.5"],
             "--placement-criterion-m 0.5: expected 0.001-0.1 (m).",
         ),

@@ -152,7 +152,7 @@ def _pointing_done(run: Any) -> int:
     trials = run.trials
     print(f"{len(trials)} pointing trials in {run.folder}")
     print(f"{'lag (ms)':>8}{'trials':>8}{'selected':>10}{'hits':>6}{'median MT (s)':>15}")
-    for lag, group in trials.groupby("round_trip_ms", sort=False):
+    for lag, group in trials.groupby("round_trip_ms"):
         selected = group["movement_time_s"].notna()
         print(f"{lag:>8g}{len(group):>8}{int(selected.sum()):>10}{int(group['hit'].sum()):>6}"
               f"{group['movement_time_s'].median():>15.2f}")  # fmt: skip
@@ -208,15 +208,12 @@ def study_serve(cmd: StudyServeCommand) -> int:
     from arteleop.scene import HeadCameraConfig
     from arteleop.study import load_study_file
     from arteleop.study.serve import StudyServer
-    from arteleop.study.session import served_run
+    from arteleop.study.session import NOT_SERVED, served_run
+    from arteleop.teleop import POINTING
 
     study = None if cmd.file is None else load_study_file(cmd.file)[0]
-    if study is not None and study.task == "pointing":
-        raise ConfigurationError(
-            f"{cmd.file}: task = 'pointing': serving a pointing study to people is not built yet "
-            "('arteleop study run' runs it with simulated participants); run your people with "
-            "your own pointing software and compare: docs/guides/analysing-data.md."
-        )
+    if study is not None and study.task == POINTING.name:
+        raise ConfigurationError(f"{cmd.file}: {NOT_SERVED}")
     camera = HeadCameraConfig(width_px=cmd.width_px, height_px=cmd.height_px)
     host = check_host(cmd.host, cmd.port)  # before the run folder is begun
     view = ViewConfig(host=cmd.host, port=cmd.port, public_url=cmd.public_url,

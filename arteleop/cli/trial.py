@@ -119,6 +119,7 @@ def trial(cmd: TrialCommand) -> int:
     from arteleop.operator import RecordingSource, load_recording
     from arteleop.scene import RemoteSite, SiteConfig
     from arteleop.teleop import (
+        POINTING,
         ControllerConfig,
         NetworkConfig,
         TrialConfig,
@@ -133,6 +134,12 @@ def trial(cmd: TrialCommand) -> int:
         trial_task(cmd.task)
     except ConfigurationError as err:  # named as the option it came from
         raise ConfigurationError(str(err).replace("task = ", "--task ", 1)) from None
+    if cmd.task == POINTING.name:  # its start and target are a pointing design's, not a trial's
+        raise ConfigurationError(
+            "--task pointing: a pointing trial's targets come from a pointing study's design; "
+            "run one with 'arteleop study run docs/examples/fitts_lag.toml --out DIR', or a study "
+            'file of your own with task = "pointing".'
+        )
     traits, hand_filter = _operator_options(cmd)
     config = TrialConfig(
         modality=cmd.modality, seed=cmd.seed, timeout_s=cmd.timeout_s,

@@ -321,7 +321,7 @@ class StudyConfig:
         }
 
 
-_POINTING_UNUSED = ("consent", "instructions", "questionnaire", "modalities", "trials_per_modality",
+POINTING_UNUSED = ("consent", "instructions", "questionnaire", "modalities", "trials_per_modality",
                     "timeout_s", "delay_ms", "camera_offset_mm", "camera_offset_deg",
                     "camera_pose", "start_xy_m", "target_xy_m", "familiarization",
                     "hand_filter")  # fmt: skip
@@ -338,14 +338,21 @@ def _check_pointing(study: StudyConfig) -> None:
             'task = "pointing": give its lags as [[conditions]] tables, one round_trip_ms each '
             "(cues = [] for all), e.g. round_trip_ms = 0 and round_trip_ms = 225."
         )
+    timeout_ms = 1000 * study.pointing.timeout_s
     for k, condition in enumerate(study.conditions):
         if condition.cues or condition.jitter_ms or condition.loss:
             raise StudyDefinitionError(
                 f"conditions: condition {k + 1} ({condition.name}): a pointing study's conditions "
                 "are lags; give cues = [], jitter_ms = 0 and loss = 0, and round_trip_ms."
             )
+        if condition.round_trip_ms >= timeout_ms:
+            raise StudyDefinitionError(
+                f"conditions: condition {k + 1}: round_trip_ms = {condition.round_trip_ms:g}: "
+                f"expected less than pointing.timeout_s ({timeout_ms:g} ms), or every trial "
+                "times out."
+            )
     for f in fields(study):
-        if f.name in _POINTING_UNUSED:
+        if f.name in POINTING_UNUSED:
             default = f.default_factory() if f.default is MISSING else f.default  # type: ignore[misc]
             if getattr(study, f.name) != default:
                 value = getattr(study, f.name)
@@ -356,10 +363,12 @@ def _check_pointing(study: StudyConfig) -> None:
                     "table's, without practice, on the default camera and hand filter, and it is "
                     "not served to people); remove it."
                 )
-    people = len(study.participants) or study.cohort.size
-    if people > MOST_PEOPLE:
+    given = (f"participants: {len(study.participants)} listed" if study.participants
+             else f"cohort.size = {study.cohort.size}")  # fmt: skip
+    if (len(study.participants) or study.cohort.size) > MOST_PEOPLE:
         raise StudyDefinitionError(
-            f"a pointing study of {people} participants: at most {MOST_PEOPLE}."
+            f"{given}: a pointing study takes at most {MOST_PEOPLE} participants (each one's "
+            "trials have 10000 seeds of their own)."
         )
 
 

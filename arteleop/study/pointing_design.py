@@ -23,6 +23,8 @@ MOST_REPETITIONS = 99
 """Repetitions of a cell at most: a trial's seed gives them two decimal digits."""
 MOST_PEOPLE = 999
 """Participants of a pointing study at most: a trial's seed gives them 10000 seeds each."""
+LONGEST_TIMEOUT_S = 600.0
+"""A pointing trial's timeout at most (s): a pointing movement takes seconds."""
 DISTANCE_RANGE_M = (0.02, 0.4)
 """A target's distance from the start (m): from a hand's width to what the arm reaches from the
 pointing start over the table."""
@@ -88,9 +90,10 @@ class PointingDesign:
                 f"pointing.repetitions = {self.repetitions}: expected 2 to {MOST_REPETITIONS} "
                 "(an effective width needs a spread)."
             )
-        if not (math.isfinite(self.timeout_s) and self.timeout_s > 0):
+        if not (math.isfinite(self.timeout_s) and 0 < self.timeout_s <= LONGEST_TIMEOUT_S):
             raise StudyDefinitionError(
-                f"pointing.timeout_s = {self.timeout_s}: expected a positive time (s)."
+                f"pointing.timeout_s = {self.timeout_s}: expected a time above 0 and at most "
+                f"{LONGEST_TIMEOUT_S:g} s."
             )
 
     def block(self, person: int, study_seed: int = 0) -> tuple[PointingTrial, ...]:

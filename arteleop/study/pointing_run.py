@@ -8,18 +8,20 @@ next; a block begins with the belief from practice on the system (``familiar_lag
 ``benchmarks/bench_fitts.py`` has always run it. Blocks run side by side, each in a fresh worker
 process (a worker's memory grew about 13 MB a trial: benchmarks/README.md).
 
-The run folder holds ``study.toml``, ``manifest.json``, ``participants.csv`` and ``pointing.csv``
-(docs/reference/data-format.md#pointingcsv): the table ``arteleop analyze`` reports as ISO 9241-9
-asks, written whole once every block is in, in the plan's order, so that the same seed gives the
-same bytes.
+The run folder holds ``study.toml``, ``manifest.json``, ``participants.csv`` and, once every
+block is in, ``pointing.csv`` (docs/reference/data-format.md#pointingcsv): the table ``arteleop
+analyze`` reports as ISO 9241-9 asks, in the plan's order, so that the same seed gives the same
+bytes. Until then each finished block is kept in a file of its own (:data:`BLOCKS_DIR`), so that
+a stop loses only the blocks under way and ``arteleop study resume`` runs the rest.
 """
 
 from __future__ import annotations
 
 import math
 import os
+import shutil
 from collections.abc import Callable, Sequence
-from concurrent.futures import Executor, ProcessPoolExecutor
+from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -34,6 +36,7 @@ from arteleop.operator import (
 )
 from arteleop.study.cohort import participants
 from arteleop.study.definition import StudyConfig
+from arteleop.study.participants import ParticipantSpec
 from arteleop.study.plan import condition_orders
 from arteleop.study.pointing_design import PointingTrial
 from arteleop.study.protocol import operator_traits
@@ -41,12 +44,14 @@ from arteleop.study.run_folder import (
     PARTICIPANTS_FILE,
     STUDY_FILE,
     RunFolder,
+    csv_line,
     table_text,
     write_atomic,
 )
 from arteleop.study.run_lock import run_lock
-from arteleop.study.run_opening import new_manifest, utc_now
+from arteleop.study.run_opening import new_manifest, recorded_definition, utc_now
 from arteleop.study.runner import (
+    RunComplete,
     StudyRun,
     check_new,
     make_folder,
@@ -56,6 +61,9 @@ from arteleop.study.runner import (
 )
 from arteleop.study.study_writing import study_text
 
+BLOCKS_DIR = "pointing-blocks"
+"""Each finished block's rows, a CSV a block, until every block is in and pointing.csv is
+written: what a stop keeps, and what ``arteleop study resume`` carries on from."""
 RUN_COLUMNS = (*POINTING_COLUMNS, "block", "trial", "rep", "seed", "slips", "corrections",
                "looks", "believed_lag_s", "error_scale")  # fmt: skip
 """``pointing.csv`` of a simulated run: the analysed columns, then each trial's place (its
@@ -99,9 +107,12 @@ class PointingBlock:
         return self.first_trial + len(self.trials) - 1
 
 
-def pointing_blocks(study: StudyConfig) -> list[PointingBlock]:
-    """Every block of ``study``, participant by participant, in each one's order of lags."""
-    people = participants(study)
+def pointing_blocks(
+    study: StudyConfig, people: Sequence[ParticipantSpec] | None = None
+) -> list[PointingBlock]:
+    """Every block of ``study``, participant by participant (``people``: the study's), in each
+    one's order of lags."""
+    people = participants(study) if people is None else people
     lags = [c.round_trip_ms for c in study.planned_conditions]
     blocks = []
     for k, (person, order) in enumerate(
@@ -153,44 +164,49 @@ def run_blocks(
     workers: int | None = None,
     executor: Executor | None = None,
     progress: Callable[[PointingBlock, int, int], None] | None = None,
+    keep: Callable[[PointingBlock, list[dict[str, float | str]]], None] | None = None,
 ) -> list[dict[str, float | str]]:
     """The rows of every block, in the order of ``blocks`` whichever ends first; each block in a
-    fresh worker process (``workers``, default one per core; 1: in this process), or on
-    ``executor``. ``progress`` hears (the block, trials done, trials in all) as each ends."""
+    fresh worker process (``workers`` of them, default one per core), or on ``executor``; a
+    single block in this process. ``keep`` is given each block's rows as it ends, before
+    ``progress`` hears (the block, trials done, trials in all)."""
     total = sum(len(b.trials) for b in blocks)
     done = 0
-    results: list[list[dict[str, float | str]]] = []
+    results: dict[int, list[dict[str, float | str]]] = {}
 
-    def tell(block: PointingBlock, rows: list[dict[str, float | str]]) -> None:
+    def tell(k: int, rows: list[dict[str, float | str]]) -> None:
         nonlocal done
+        if keep is not None:
+            keep(blocks[k], rows)
         done += len(rows)
-        results.append(rows)
+        results[k] = rows
         if progress is not None:
-            progress(block, done, total)
+            progress(blocks[k], done, total)
 
-    workers = min(workers or os.cpu_count() or 1, max(len(blocks), 1))
-    if executor is None and workers == 1:
-        for block in blocks:
-            tell(block, run_pointing_block(block))
-        return [row for rows in results for row in rows]
+    if executor is None and len(blocks) <= 1:
+        for k, block in enumerate(blocks):
+            tell(k, run_pointing_block(block))
+        return [row for k in sorted(results) for row in results[k]]
     own = executor is None
+    # A fresh process for each block: a worker's memory grew about 13 MB a trial.
     pool = executor or ProcessPoolExecutor(
-        workers, initializer=start_worker, initargs=(os.getpid(),), max_tasks_per_child=1
-    )
-    futures = [pool.submit(run_pointing_block, block) for block in blocks]
+        min(workers or os.cpu_count() or 1, len(blocks)), initializer=start_worker,
+        initargs=(os.getpid(),), max_tasks_per_child=1,
+    )  # fmt: skip
+    futures = {pool.submit(run_pointing_block, block): k for k, block in enumerate(blocks)}
     try:
-        for block, future in zip(blocks, futures, strict=True):
-            tell(block, future.result())
+        for future in as_completed(futures):
+            tell(futures[future], future.result())
     except BaseException:
         for future in futures:
             future.cancel()
-        if own:  # a stop (Ctrl-C) must not wait for the blocks under way
+        if own:  # a stop (Ctrl-C, a failed write) must not wait for the blocks under way
             stop_workers(pool)  # type: ignore[arg-type]
         raise
     finally:
         if own:
             pool.shutdown(wait=True, cancel_futures=True)
-    return [row for rows in results for row in rows]
+    return [row for k in sorted(results) for row in results[k]]
 
 
 def run_pointing_study(
@@ -204,8 +220,8 @@ def run_pointing_study(
     docstring); the arguments as :func:`~arteleop.study.run_study`'s."""
     folder = RunFolder(out)
     check_new(folder)
-    blocks = pointing_blocks(study)
     people = participants(study)
+    blocks = pointing_blocks(study, people)
     text = study_text(study)
     manifest = new_manifest(study, text, (), len(people))
     manifest.update(task=study.task, trials_planned=sum(len(b.trials) for b in blocks))
@@ -216,9 +232,57 @@ def run_pointing_study(
         write_atomic(folder.path / STUDY_FILE, text)
         write_atomic(folder.path / PARTICIPANTS_FILE, participants_text(people))
         folder.write_manifest(manifest)
-        rows = run_blocks(blocks, workers, executor, progress)
-        table = [[row[c] for c in RUN_COLUMNS] for row in rows]
-        write_atomic(folder.path / POINTING_FILE, table_text(RUN_COLUMNS, table))
-        manifest["finished"] = utc_now()
-        folder.write_manifest(manifest)
-    return StudyRun(folder.path, pd.DataFrame(table, columns=list(RUN_COLUMNS)), len(rows), [])
+        return _execute(folder, blocks, workers, executor, progress)
+
+
+def resume_pointing_study(
+    folder: RunFolder,
+    study: StudyConfig | None = None,
+    workers: int | None = None,
+    executor: Executor | None = None,
+    progress: Callable[[PointingBlock, int, int], None] | None = None,
+) -> StudyRun:
+    """Run the blocks a pointing run cut short lacks, keeping those it finished; the caller
+    holds the folder's lock and has checked that it is a run folder. With ``study``, refuses a
+    folder made from another definition."""
+    manifest = folder.manifest()
+    recorded = recorded_definition(folder, manifest, study)
+    if manifest.get("finished"):
+        raise RunComplete(f"{folder.path} is complete: all its blocks are in; nothing to resume.")
+    return _execute(folder, pointing_blocks(recorded), workers, executor, progress)
+
+
+def _execute(
+    folder: RunFolder,
+    blocks: list[PointingBlock],
+    workers: int | None,
+    executor: Executor | None,
+    progress: Callable[[PointingBlock, int, int], None] | None,
+) -> StudyRun:
+    """The blocks not yet in ``folder``'s block files run, each kept as it ends; then
+    pointing.csv, in plan order, in their place."""
+    kept = folder.path / BLOCKS_DIR
+    kept.mkdir(exist_ok=True)
+    pending = [b for b in blocks if not (kept / _block_file(b)).is_file()]
+
+    def keep(block: PointingBlock, rows: list[dict[str, float | str]]) -> None:
+        write_atomic(kept / _block_file(block), _rows_text(rows))
+
+    run_blocks(pending, workers, executor, progress, keep)
+    lines = [(kept / _block_file(b)).read_text(encoding="utf-8").split("\n", 1)[1] for b in blocks]
+    write_atomic(folder.path / POINTING_FILE, csv_line(RUN_COLUMNS) + "".join(lines))
+    shutil.rmtree(kept)
+    manifest = folder.manifest()
+    manifest["finished"] = utc_now()
+    folder.write_manifest(manifest)
+    table = pd.read_csv(folder.path / POINTING_FILE, dtype={"participant": str})
+    return StudyRun(folder.path, table, sum(len(b.trials) for b in pending), [])
+
+
+def _block_file(block: PointingBlock) -> str:
+    """A finished block's file in :data:`BLOCKS_DIR`."""
+    return f"{block.participant}-{block.block}.csv"
+
+
+def _rows_text(rows: list[dict[str, float | str]]) -> str:
+    return table_text(RUN_COLUMNS, [[row[c] for c in RUN_COLUMNS] for row in rows])

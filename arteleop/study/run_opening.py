@@ -67,13 +67,7 @@ def open_run(
                 "files; put the file itself there, or start a new run in another folder."
             )
     manifest = folder.manifest()
-    recorded = _recorded_definition(folder, manifest)
-    if study is not None and (key := first_difference(study, recorded)) is not None:
-        raise RunFolderError(
-            f"{folder.path} was made from another definition: its key {key!r} is "
-            f"{_value(recorded, key)!r}, the given one {_value(study, key)!r}. Resume it "
-            "without a definition, or start a new run in another folder."
-        )
+    recorded = recorded_definition(folder, manifest, study)
     if manifest.get("format_version") != FORMAT_VERSION:
         raise RunFolderError(
             f"{folder.path / 'manifest.json'}: format_version "
@@ -107,9 +101,11 @@ def require_run_folder(folder: RunFolder) -> None:
         )
 
 
-def _recorded_definition(folder: RunFolder, manifest: dict[str, object]) -> StudyConfig:
+def recorded_definition(
+    folder: RunFolder, manifest: dict[str, object], study: StudyConfig | None = None
+) -> StudyConfig:
     """The run's definition: study.toml, refused if it no longer says what the run began with
-    (the manifest keeps the text it began with)."""
+    (the manifest keeps the text it began with), or, given ``study``, if it is another."""
     path = folder.path / STUDY_FILE
     try:
         text = path.read_text(encoding="utf-8")
@@ -127,6 +123,12 @@ def _recorded_definition(folder: RunFolder, manifest: dict[str, object]) -> Stud
                 "(manifest.json keeps the run's definition as 'definition'), or start a new run "
                 "in another folder."
             )
+    if study is not None and (key := first_difference(study, recorded)) is not None:
+        raise RunFolderError(
+            f"{folder.path} was made from another definition: its key {key!r} is "
+            f"{_value(recorded, key)!r}, the given one {_value(study, key)!r}. Resume it "
+            "without a definition, or start a new run in another folder."
+        )
     return recorded
 
 

@@ -54,7 +54,7 @@ class StudyRun:
 
     Attributes:
         folder: The run folder.
-        trials: trials.csv as a table.
+        trials: trials.csv as a table (a pointing study's: pointing.csv).
         ran: Trials run by this call (the rest were in the folder already).
         speed: (simulated s, wall s) of each trial run by this call, for benchmarks.
         notes: What the run set aside or repaired in the folder, to tell the user.
@@ -87,7 +87,7 @@ def run_study(
         progress: Told of each trial written.
     """
     if study.task == POINTING.name:
-        from arteleop.study.pointing_run import run_pointing_study  # it runs on this module's
+        from arteleop.study.pointing_run import run_pointing_study  # it imports this module
 
         return run_pointing_study(study, out, workers, executor, progress)  # type: ignore[arg-type]
     folder = RunFolder(out)
@@ -138,21 +138,16 @@ def resume_study(
     folder = RunFolder(out)
     require_run_folder(folder)
     with run_lock(folder.path):
-        site = StudySite()  # plans the run, then runs its trials: its robot model loads once
         if folder.manifest().get("cohort") == REAL:
             raise RunFolderError(
                 f"{folder.path} is a study served to people: 'arteleop study serve --out "
                 f"{folder.path}' continues it with the next participant."
             )
         if folder.manifest().get("task") == POINTING.name:
-            if folder.manifest().get("finished"):
-                raise RunComplete(f"{folder.path} is complete: nothing to resume.")
-            again = f"arteleop study run {folder.path / STUDY_FILE} --out NEW_DIR"
-            raise RunFolderError(
-                f"{folder.path} is a pointing study's run cut short, which cannot be resumed "
-                f"yet: run its study again into a new folder ('{again}'); the same seed gives "
-                "the same trials."
-            )
+            from arteleop.study.pointing_run import resume_pointing_study  # it imports this
+
+            return resume_pointing_study(folder, study, workers, executor, progress)  # type: ignore[arg-type]
+        site = StudySite()  # plans the run, then runs its trials: its robot model loads once
         recorded, plan, people, manifest = open_run(folder, study, site)
         if manifest.get("finished") and len(folder.done_rows(repair=True)) == len(plan):
             notes = "".join(f"\nnote: {note}" for note in folder.notes)

@@ -40,7 +40,7 @@ from arteleop.analysis.data import (
     TRIAL_COLUMNS,
 )
 from arteleop.ar_features.links import TOKEN_BYTES
-from arteleop.errors import ArteleopError, RunFolderError
+from arteleop.errors import ArteleopError, RunFolderError, StudyDefinitionError
 from arteleop.study.definition import StudyConfig
 from arteleop.study.participants import ParticipantSpec
 from arteleop.study.plan import TrialSpec
@@ -61,6 +61,7 @@ from arteleop.study.run_opening import new_manifest, open_run, plan_run, utc_now
 from arteleop.study.runner import check_new, make_folder
 from arteleop.study.sites import StudySite
 from arteleop.study.study_writing import study_text
+from arteleop.teleop.trial_task import POINTING
 
 INTERRUPTED_FILE = "interrupted.csv"
 BROWSER_FILE = "browser.csv"
@@ -76,6 +77,14 @@ GENDERS = ("female", "male", "diverse", "prefer not to say")
 HANDEDNESS = ("right", "left", "both")
 AGE_RANGE = (18, 99)
 """Ages a participant may give (years): adults, as an ethics board asks by default."""
+
+
+NOT_SERVED = (
+    'task = "pointing": serving a pointing study to people is not built yet (\'arteleop study '
+    "run' runs it with simulated participants); run your people with your own pointing software "
+    "and compare: docs/guides/analysing-data.md."
+)
+"""Why a pointing study is not served."""
 
 
 class SessionInputError(ArteleopError):
@@ -385,6 +394,8 @@ def served_run(out: Path, study: StudyConfig | None = None) -> Iterator[ServedRu
     """The served run in ``out``, its lock held: carried on where ``out`` holds one (made from
     ``study`` when given), else begun in the new or empty folder from ``study`` (the default
     study when none)."""
+    if study is not None and study.task == POINTING.name:
+        raise StudyDefinitionError(NOT_SERVED)
     folder = RunFolder(out)
     if folder.is_run_folder():
         with run_lock(folder.path):

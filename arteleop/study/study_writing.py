@@ -6,7 +6,7 @@ from __future__ import annotations
 import dataclasses
 from typing import Any
 
-from arteleop.study.definition import StudyConfig
+from arteleop.study.definition import POINTING_UNUSED, StudyConfig
 from arteleop.study.study_file import TABLES
 from arteleop.teleop.trial_task import POINTING
 
@@ -91,6 +91,13 @@ _HEADER = """\
 # Run it: arteleop study run THIS_FILE --out RUN_DIR
 """
 
+_POINTING_HEADER = """\
+# An arteleop pointing study: a Fitts task under lag, run with simulated participants. Beside
+# task and the lags (the [[conditions]]), every key is optional: a missing key takes the default
+# shown.
+# Run it: arteleop study run THIS_FILE --out RUN_DIR
+"""
+
 _CONDITIONS_HELP = """\
 # Conditions that cross network delay with AR cues replace modalities and delay_ms, e.g.
 # [[conditions]]
@@ -122,17 +129,21 @@ _PARTICIPANTS_HELP = """\
 
 
 def study_text(config: StudyConfig) -> str:
-    """The definition as commented TOML, every key written out."""
-    out = [_HEADER]
+    """The definition as commented TOML, every key it reads written out."""
+    pointing = config.task == POINTING.name
+    out = [_POINTING_HEADER if pointing else _HEADER]
     nested = {"participants", "conditions", "questionnaire", *TABLES}
     if config.conditions:  # they replace the modalities and the delay
         nested |= {"modalities", "delay_ms"}
+    # A pointing study's file leaves out what its trials do not read; a pick-and-place
+    # study's has no [pointing] table, as before pointing studies.
+    left_out = set(POINTING_UNUSED) if pointing else {"pointing"}
     for f in dataclasses.fields(config):
-        if f.name not in nested:
+        if f.name not in nested | left_out:
             out.append(_key_line(f.name, getattr(config, f.name), f.name))
     for table in TABLES:
-        if table == "pointing" and config.task != POINTING.name:
-            continue  # a pick-and-place study's file, as before pointing studies
+        if table in left_out:
+            continue
         out.append(f"\n[{table}]\n")
         sub = getattr(config, table)
         for f in dataclasses.fields(sub):
@@ -147,8 +158,9 @@ def study_text(config: StudyConfig) -> str:
             out.append("\n")
     else:
         out.append(_CONDITIONS_HELP)
-    out.append(_QUESTIONNAIRE_HELP)
-    for item in config.questionnaire:
+    if not pointing:
+        out.append(_QUESTIONNAIRE_HELP)
+    for item in () if pointing else config.questionnaire:
         out.append("[[questionnaire]]\n")
         for f in dataclasses.fields(item):
             out.append(f"{f.name} = {_toml_value(getattr(item, f.name))}\n")

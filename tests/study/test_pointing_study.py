@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import csv
 import json
-import shutil
 from dataclasses import replace
 from pathlib import Path
 
@@ -13,12 +12,14 @@ import numpy as np
 import pytest
 
 from arteleop.cli import main
-from arteleop.errors import RunFolderError, StudyDefinitionError
+from arteleop.errors import StudyDefinitionError
 from arteleop.operator import OperatorParams
 from arteleop.scene import SiteConfig
-from arteleop.study import RunComplete, parse_study, resume_study
+from arteleop.study import RunComplete, parse_study, resume_study, run_study
 from arteleop.study.pointing_design import PointingDesign
+from arteleop.study.pointing_run import BLOCKS_DIR
 from arteleop.study.protocol import operator_traits
+from arteleop.study.session import NOT_SERVED, served_run
 from arteleop.teleop import POINTING, PointingMonitor, trial_task
 from arteleop.teleop.pointing import run_pointing_trial
 
@@ -35,51 +36,57 @@ repetitions = 2
 [[conditions]]
 cues = []
 round_trip_ms = 150
+
+[[conditions]]
+cues = []
+round_trip_ms = 0
 """
 
 
-def test_a_pointing_study_runs_each_trial_as_the_pointing_trial_and_carries_the_block(
+def test_a_pointing_study_runs_each_trial_as_the_pointing_trial_and_keeps_what_a_stop_left(
     tmp_path: Path,
 ) -> None:
     """Each row of pointing.csv is the pointing trial of its seed, by the participant's traits,
-    under the condition's lag, bringing the belief and the outcome the trial before left; the
-    run's report is the pointing analysis; a finished run has nothing to resume."""
-    (tmp_path / "tiny.toml").write_text(TINY)
+    under its block's lag, bringing the belief and the outcome the trial before left. Stopped
+    after its first block (each in a worker process of its own), the run keeps that block, and
+    resume runs the other; the report is the pointing analysis; a finished run has nothing to
+    resume; the run's study.toml is the study."""
+    study = parse_study(TINY)
+
+    def stop(*_: object) -> None:
+        raise KeyboardInterrupt
+
     out = tmp_path / "run"
-    assert main(["study", "run", str(tmp_path / "tiny.toml"), "--out", str(out),
-                 "--workers", "1", "--quiet"]) == 0  # fmt: skip
+    with pytest.raises(KeyboardInterrupt):
+        run_study(study, out, workers=1, progress=stop)
+    assert [p.name for p in (out / BLOCKS_DIR).iterdir()] == ["F02-1.csv"]
+    assert not (out / "pointing.csv").exists()
+    assert main(["study", "resume", str(out), "--workers", "1", "--quiet"]) == 0
+    assert not (out / BLOCKS_DIR).exists()
     with open(out / "pointing.csv", newline="") as f:
         rows = list(csv.DictReader(f))
-    # Study seed 0: bench_fitts's seeds, 10000 x the participant's place + 100 x rep + cell.
-    assert [(r["participant"], r["trial"], r["seed"], r["round_trip_ms"]) for r in rows] == [
-        ("F02", "1", "0", "150.0"),
-        ("F02", "2", "100", "150.0"),
+    # Study seed 0: bench_fitts's seeds, 10000 x the participant's place + 100 x rep + cell;
+    # the Williams square's first order of the lags.
+    assert [(r["participant"], r["block"], r["trial"], r["seed"], r["round_trip_ms"])
+            for r in rows] == [
+        ("F02", "1", "1", "0", "150.0"), ("F02", "1", "2", "100", "150.0"),
+        ("F02", "2", "3", "0", "0.0"), ("F02", "2", "4", "100", "0.0"),
     ]  # fmt: skip
-    traits = operator_traits(parse_study(TINY), parse_study(TINY).participants[0])
+    traits = operator_traits(study, study.participants[0])
     fresh = OperatorParams()
     first = run_pointing_trial(0.1, 0.03, traits, 0, 0.15, 40.0, fresh)
     carried = replace(fresh, familiar_lag_s=first.believed_lag_s,
                       seen_outcomes=fresh.seen_outcomes.after(not first.hit))  # fmt: skip
     second = run_pointing_trial(0.1, 0.03, traits, 100, 0.15, 40.0, carried)
-    for row, trial in zip(rows, (first, second), strict=True):
+    for row, trial in zip(rows, (first, second), strict=False):
         assert float(row["movement_time_s"]) == trial.movement_time_s
         assert (float(row["along_m"]), float(row["across_m"])) == (trial.along_m, trial.across_m)
         assert float(row["hit"]) == float(trial.hit)
     assert json.loads((out / "manifest.json").read_text())["task"] == "pointing"
+    assert parse_study((out / "study.toml").read_text()) == study
     assert "## Lag 150 ms (round trip)" in (out / "report" / "report.md").read_text()
     with pytest.raises(RunComplete, match="is complete"):
         resume_study(out)
-    cut = tmp_path / "cut"
-    shutil.copytree(out, cut)
-    manifest = json.loads((cut / "manifest.json").read_text())
-    (cut / "manifest.json").write_text(json.dumps({**manifest, "finished": None}))
-    with pytest.raises(RunFolderError) as err:
-        resume_study(cut)
-    assert str(err.value) == (
-        f"{cut} is a pointing study's run cut short, which cannot be resumed yet: run its study "
-        f"again into a new folder ('arteleop study run {cut / 'study.toml'} --out NEW_DIR'); the "
-        "same seed gives the same trials."
-    )
 
 
 def test_a_block_is_every_cell_per_repetition_in_an_order_of_its_own() -> None:
@@ -140,10 +147,20 @@ UNUSED = (
         ('task = "pointing"\n[familiarization]\ntrials = 0\n' + CONDITION,
          "study.toml: familiarization: " + UNUSED),
         ('task = "pointing"\n[pointing]\ntimeout_s = 0\n' + CONDITION,
-         "study.toml line 3: pointing.timeout_s = 0.0: expected a positive time (s)."),
+         "study.toml line 3: pointing.timeout_s = 0.0: expected a time above 0 and at most 600 s."),
+        ('task = "pointing"\n[[conditions]]\ncues = []\nround_trip_ms = 40000\n',
+         "study.toml: conditions: condition 1: round_trip_ms = 40000: expected less than "
+         "pointing.timeout_s (40000 ms), or every trial times out."),
     ],
 )  # fmt: skip
 def test_a_pointing_design_out_of_range_is_refused_at_its_line(text: str, message: str) -> None:
     with pytest.raises(StudyDefinitionError) as err:
         parse_study(text, "study.toml")
     assert str(err.value) == message
+
+
+def test_a_pointing_study_is_not_served_to_people(tmp_path: Path) -> None:
+    with pytest.raises(StudyDefinitionError) as err, served_run(tmp_path, parse_study(TINY)):
+        pass
+    assert str(err.value) == NOT_SERVED
+    assert list(tmp_path.iterdir()) == [], "nothing begun"
