@@ -361,3 +361,32 @@ def test_the_ghost_poses_its_moving_joints_as_the_urdf_does(site: RemoteSite) ->
                     handle.wxyz, scalar_first=True
                 )
                 assert turn.magnitude() < 1e-9
+
+
+class _Layer:
+    """A layer that keeps the frames it draws, or whose draw raises ``message``: as the cloud's
+    met viser 1.1.1's sender racing its event loop in a served study (asyncio.Event.set from
+    the trial's thread)."""
+
+    cue = ""
+
+    def __init__(self, message: str = "") -> None:
+        self.message = message
+        self.drawn: list[DisplayFrame] = []
+
+    def draw(self, frame: DisplayFrame) -> None:
+        if self.message:
+            raise RuntimeError(self.message)
+        self.drawn.append(frame)
+
+
+def test_a_draw_raced_by_visers_sender_is_counted_and_the_frame_drawn_on() -> None:
+    with OperatorView(ViewConfig(port=0)) as view:
+        after = _Layer()
+        view.layers[:0] = [_Layer("deque mutated during iteration")]  # type: ignore[list-item]
+        view.layers.append(after)  # type: ignore[arg-type]
+        view.show(display_frame())
+        assert (view.races, view.updates, len(after.drawn)) == (1, 1, 1)
+        view.layers[0] = _Layer("another error")  # type: ignore[call-overload]
+        with pytest.raises(RuntimeError, match="another error"):
+            view.show(display_frame())
