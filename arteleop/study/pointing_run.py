@@ -51,6 +51,7 @@ from arteleop.study.run_folder import (
 from arteleop.study.run_lock import run_lock
 from arteleop.study.run_opening import new_manifest, recorded_definition, utc_now
 from arteleop.study.runner import (
+    Progress,
     RunComplete,
     StudyRun,
     check_new,
@@ -163,7 +164,7 @@ def run_blocks(
     blocks: Sequence[PointingBlock],
     workers: int | None = None,
     executor: Executor | None = None,
-    progress: Callable[[PointingBlock, int, int], None] | None = None,
+    progress: Progress | None = None,
     keep: Callable[[PointingBlock, list[dict[str, float | str]]], None] | None = None,
 ) -> list[dict[str, float | str]]:
     """The rows of every block, in the order of ``blocks`` whichever ends first; each block in a
@@ -214,7 +215,7 @@ def run_pointing_study(
     out: Path,
     workers: int | None = None,
     executor: Executor | None = None,
-    progress: Callable[[PointingBlock, int, int], None] | None = None,
+    progress: Progress | None = None,
 ) -> StudyRun:
     """Run the pointing study ``study`` in the new folder ``out``, to the end (see the module's
     docstring); the arguments as :func:`~arteleop.study.run_study`'s."""
@@ -240,7 +241,7 @@ def resume_pointing_study(
     study: StudyConfig | None = None,
     workers: int | None = None,
     executor: Executor | None = None,
-    progress: Callable[[PointingBlock, int, int], None] | None = None,
+    progress: Progress | None = None,
 ) -> StudyRun:
     """Run the blocks a pointing run cut short lacks, keeping those it finished; the caller
     holds the folder's lock and has checked that it is a run folder. With ``study``, refuses a
@@ -257,7 +258,7 @@ def _execute(
     blocks: list[PointingBlock],
     workers: int | None,
     executor: Executor | None,
-    progress: Callable[[PointingBlock, int, int], None] | None,
+    progress: Progress | None,
 ) -> StudyRun:
     """The blocks not yet in ``folder``'s block files run, each kept as it ends; then
     pointing.csv, in plan order, in their place."""

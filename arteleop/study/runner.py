@@ -21,6 +21,7 @@ from collections.abc import Callable, Sequence
 from concurrent.futures import FIRST_COMPLETED, Executor, Future, ProcessPoolExecutor, wait
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Protocol
 
 import pandas as pd
 
@@ -44,8 +45,20 @@ from arteleop.study.sites import StudySite
 from arteleop.study.study_writing import study_text
 from arteleop.teleop.trial_task import POINTING
 
-Progress = Callable[[TrialSpec, int, int], None]
-"""Called after each trial is written: (the trial, trials done, trials in the plan)."""
+
+class Done(Protocol):
+    """What progress is told of: a trial (:class:`TrialSpec`), or a pointing study's block
+    (its last trial)."""
+
+    @property
+    def participant(self) -> str: ...
+
+    @property
+    def trial_index(self) -> int: ...
+
+
+Progress = Callable[[Done, int, int], None]
+"""Called after each trial (or block) is written: (it, trials done, trials in the plan)."""
 
 
 @dataclass(frozen=True)
@@ -89,7 +102,7 @@ def run_study(
     if study.task == POINTING.name:
         from arteleop.study.pointing_run import run_pointing_study  # it imports this module
 
-        return run_pointing_study(study, out, workers, executor, progress)  # type: ignore[arg-type]
+        return run_pointing_study(study, out, workers, executor, progress)
     folder = RunFolder(out)
     check_new(folder)
     site = StudySite()
@@ -146,7 +159,7 @@ def resume_study(
         if folder.manifest().get("task") == POINTING.name:
             from arteleop.study.pointing_run import resume_pointing_study  # it imports this
 
-            return resume_pointing_study(folder, study, workers, executor, progress)  # type: ignore[arg-type]
+            return resume_pointing_study(folder, study, workers, executor, progress)
         site = StudySite()  # plans the run, then runs its trials: its robot model loads once
         recorded, plan, people, manifest = open_run(folder, study, site)
         if manifest.get("finished") and len(folder.done_rows(repair=True)) == len(plan):
