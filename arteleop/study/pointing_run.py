@@ -21,7 +21,7 @@ import math
 import os
 import shutil
 from collections.abc import Callable, Sequence
-from concurrent.futures import Executor, ProcessPoolExecutor, as_completed
+from concurrent.futures import Executor, Future, as_completed
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -57,8 +57,7 @@ from arteleop.study.runner import (
     check_new,
     make_folder,
     participants_text,
-    start_worker,
-    stop_workers,
+    worker_pool,
 )
 from arteleop.study.study_writing import study_text
 
@@ -188,25 +187,13 @@ def run_blocks(
         for k, block in enumerate(blocks):
             tell(k, run_pointing_block(block))
         return [row for k in sorted(results) for row in results[k]]
-    own = executor is None
+    futures: dict[Future[list[dict[str, float | str]]], int] = {}
     # A fresh process for each block: a worker's memory grew about 13 MB a trial.
-    pool = executor or ProcessPoolExecutor(
-        min(workers or os.cpu_count() or 1, len(blocks)), initializer=start_worker,
-        initargs=(os.getpid(),), max_tasks_per_child=1,
-    )  # fmt: skip
-    futures = {pool.submit(run_pointing_block, block): k for k, block in enumerate(blocks)}
-    try:
+    workers = min(workers or os.cpu_count() or 1, len(blocks))
+    with worker_pool(executor, futures, workers, max_tasks_per_child=1) as pool:
+        futures.update({pool.submit(run_pointing_block, b): k for k, b in enumerate(blocks)})
         for future in as_completed(futures):
             tell(futures[future], future.result())
-    except BaseException:
-        for future in futures:
-            future.cancel()
-        if own:  # a stop (Ctrl-C, a failed write) must not wait for the blocks under way
-            stop_workers(pool)  # type: ignore[arg-type]
-        raise
-    finally:
-        if own:
-            pool.shutdown(wait=True, cancel_futures=True)
     return [row for k in sorted(results) for row in results[k]]
 
 

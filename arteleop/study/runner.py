@@ -10,6 +10,7 @@ Ray's equivalent). Whatever the order, the finished folder's CSVs are the same b
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import math
 import multiprocessing
@@ -17,11 +18,11 @@ import os
 import signal
 import threading
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Collection, Iterator, Sequence
 from concurrent.futures import FIRST_COMPLETED, Executor, Future, ProcessPoolExecutor, wait
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Protocol
+from typing import Any, Protocol
 
 import pandas as pd
 
@@ -221,26 +222,20 @@ def _execute(
         for spec in pending:  # plan order: each participant's trials in order
             keep(run_planned_trial(study, site, by_id[spec.participant], spec, brought(spec)))
     else:
-        own = executor is None
-        pool = executor or ProcessPoolExecutor(
-            workers,
-            mp_context=multiprocessing.get_context("fork"),
-            initializer=start_worker,
-            initargs=(os.getpid(),),
-        )
         # A participant's trials run one after the other, each bringing the last one's belief
         # of the lag; participants run side by side.
         waiting = {p: [s for s in pending if s.participant == p] for p in by_id}
         running: dict[Future[TrialRecord], str] = {}
+        fork = multiprocessing.get_context("fork")
+        with worker_pool(executor, running, workers, mp_context=fork) as pool:
 
-        def submit_next(participant: str) -> None:
-            if waiting[participant]:
-                spec = waiting[participant].pop(0)
-                future = pool.submit(_run_in_worker, study, by_id[participant], spec,
-                                     brought(spec))  # fmt: skip
-                running[future] = participant
+            def submit_next(participant: str) -> None:
+                if waiting[participant]:
+                    spec = waiting[participant].pop(0)
+                    future = pool.submit(_run_in_worker, study, by_id[participant], spec,
+                                         brought(spec))  # fmt: skip
+                    running[future] = participant
 
-        try:
             for participant in by_id:
                 submit_next(participant)
             while running:
@@ -248,15 +243,6 @@ def _execute(
                 for future in finished:
                     keep(future.result())
                     submit_next(running.pop(future))
-        except BaseException:
-            for future in running:
-                future.cancel()
-            if own:  # a stop (Ctrl-C, a failed write) must not wait for the trials under way
-                stop_workers(pool)  # type: ignore[arg-type]
-            raise
-        finally:
-            if own:
-                pool.shutdown(wait=True, cancel_futures=True)
     order = [spec.key for spec in plan]
     folder.finish(order)
     # Answers come from the finished trials.csv, so they depend only on its bytes.
@@ -279,6 +265,30 @@ _WORKER_SITE: StudySite | None = None
 
 PARENT_CHECK_S = 0.5
 """How often a worker checks that the process that started it is still there (s)."""
+
+
+@contextlib.contextmanager
+def worker_pool(
+    executor: Executor | None, running: Collection[Future[Any]], workers: int, **options: Any
+) -> Iterator[Executor]:
+    """``executor``, or a pool of ``workers`` processes of its own (``options`` go to
+    :class:`ProcessPoolExecutor`), each begun by :func:`start_worker`. A stop (Ctrl-C, a failed
+    write) cancels the futures ``running`` and does not wait for the work under way: a pool of
+    its own has its workers ended at once."""
+    pool = executor or ProcessPoolExecutor(
+        workers, initializer=start_worker, initargs=(os.getpid(),), **options
+    )
+    try:
+        yield pool
+    except BaseException:
+        for future in running:
+            future.cancel()
+        if executor is None:
+            stop_workers(pool)  # type: ignore[arg-type]
+        raise
+    finally:
+        if executor is None:
+            pool.shutdown(wait=True, cancel_futures=True)
 
 
 def start_worker(parent_pid: int) -> None:
