@@ -13,7 +13,9 @@ import ipaddress
 import logging
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 import viser
@@ -128,6 +130,28 @@ class ViewConfig:
 _log = logging.getLogger(__name__)
 
 
+def _wake_senders(server: viser.ViserServer) -> None:
+    """Wake each of ``server``'s senders (the broadcast's, each browser's) from its own event
+    loop: one may wait on an event set from another thread (:meth:`OperatorView._send`). A
+    sender woken for nothing sends an empty window. viser's internals, as 1.1.1 has them (it is
+    pinned); absent, nothing is done."""
+    websock = getattr(server, "_websock_server", None)
+    clients = getattr(websock, "_client_state_from_id", {})
+    buffers = [getattr(websock, "_broadcast_buffer", None)]
+    buffers += [getattr(state, "message_buffer", None) for state in list(clients.values())]
+    for buffer in buffers:
+        event, loop = getattr(buffer, "message_event", None), getattr(buffer, "event_loop", None)
+        if event is None or loop is None:
+            continue
+
+        def wake(event: Any = event) -> None:
+            event.clear()
+            event.set()
+
+        with contextlib.suppress(RuntimeError):  # a loop already closed has no sender to wake
+            loop.call_soon_threadsafe(wake)
+
+
 class OperatorView(Closeable):
     """A running viser server that draws display frames, layer by layer; a context manager.
 
@@ -230,23 +254,29 @@ class OperatorView(Closeable):
             self._egocentric(move_clients=True)
         if (cues := self.cues) is not None:
             frame = replace(frame, cues=cues)
-        elif self._panel is not None:
-            self._panel.follow(frame.cues)
+        elif (panel := self._panel) is not None:
+            self._send(lambda: panel.follow(frame.cues))
         for layer in self.layers:
-            try:
-                layer.draw(frame)
-            except RuntimeError as err:
-                if "deque mutated during iteration" not in str(err):
-                    raise
-                # viser 1.1.1 sets its asyncio.Event from the sending thread, racing the event
-                # loop's waiters, after the message is buffered: it is sent, and the layer's
-                # next frame draws the rest. Raised, it ended a served study (once in some ten
-                # suite runs under load).
-                self.races += 1
-                _log.warning("viser's sender raced its event loop (%d so far); frame drawn on",
-                             self.races)  # fmt: skip
+            self._send(lambda layer=layer: layer.draw(frame))  # type: ignore[misc]
         self.server.flush()
         self.updates += 1
+
+    def _send(self, draw: Callable[[], None]) -> None:
+        """``draw``, whose messages viser sends. viser 1.1.1 sets its asyncio.Event from the
+        sending thread (this one), racing the event loop's waiters: the message is buffered
+        when "deque mutated during iteration" is raised, but the sender may be left waiting on
+        an event already set, so it is woken again from its own loop. Raised, the race ended a
+        served study (once in some ten suite runs under load); now it is counted and logged,
+        and the frame drawn on."""
+        try:
+            draw()
+        except RuntimeError as err:
+            if "deque mutated during iteration" not in str(err):
+                raise
+            self.races += 1
+            _log.warning("viser's sender raced its event loop (%d so far); frame drawn on",
+                         self.races)  # fmt: skip
+            _wake_senders(self.server)
 
     def _egocentric(self, move_clients: bool) -> None:
         """The initial camera (and, if asked, every connected browser's) at the head camera."""

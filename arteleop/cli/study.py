@@ -150,12 +150,14 @@ def _study_done(run: Any) -> int:
 
 def _pointing_done(run: Any) -> int:
     trials = run.trials
-    print(f"{len(trials)} pointing trials in {run.folder}")
+    print(f"{len(trials)} pointing trials in {run.folder} ({run.ran} run now)")
     print(f"{'lag (ms)':>8}{'trials':>8}{'selected':>10}{'hits':>6}{'median MT (s)':>15}")
     for lag, group in trials.groupby("round_trip_ms"):
         selected = group["movement_time_s"].notna()
         print(f"{lag:>8g}{len(group):>8}{int(selected.sum()):>10}{int(group['hit'].sum()):>6}"
               f"{group['movement_time_s'].median():>15.2f}")  # fmt: skip
+    for note in run.notes:
+        print(f"note: {note}")
     return _write_run_report(run.folder)
 
 

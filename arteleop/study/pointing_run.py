@@ -24,6 +24,7 @@ from collections.abc import Callable, Sequence
 from concurrent.futures import Executor, Future, as_completed
 from dataclasses import dataclass, field, replace
 from pathlib import Path
+from typing import Any
 
 import pandas as pd
 
@@ -49,7 +50,7 @@ from arteleop.study.run_folder import (
     write_atomic,
 )
 from arteleop.study.run_lock import run_lock
-from arteleop.study.run_opening import new_manifest, recorded_definition, utc_now
+from arteleop.study.run_opening import check_plan, new_manifest, opened_definition, utc_now
 from arteleop.study.runner import (
     Progress,
     RunComplete,
@@ -164,20 +165,22 @@ def run_blocks(
     workers: int | None = None,
     executor: Executor | None = None,
     progress: Progress | None = None,
-    keep: Callable[[PointingBlock, list[dict[str, float | str]]], None] | None = None,
+    keep: Callable[[int, list[dict[str, float | str]]], None] | None = None,
+    done_before: int = 0,
 ) -> list[dict[str, float | str]]:
     """The rows of every block, in the order of ``blocks`` whichever ends first; each block in a
     fresh worker process (``workers`` of them, default one per core), or on ``executor``; a
-    single block in this process. ``keep`` is given each block's rows as it ends, before
-    ``progress`` hears (the block, trials done, trials in all)."""
-    total = sum(len(b.trials) for b in blocks)
-    done = 0
+    single block in this process. ``keep`` is given each block's place in ``blocks`` and its
+    rows as it ends, also when another block fails, before ``progress`` hears (the block, trials
+    done, trials in all: ``done_before`` more, run earlier)."""
+    total = done_before + sum(len(b.trials) for b in blocks)
+    done = done_before
     results: dict[int, list[dict[str, float | str]]] = {}
 
     def tell(k: int, rows: list[dict[str, float | str]]) -> None:
         nonlocal done
         if keep is not None:
-            keep(blocks[k], rows)
+            keep(k, rows)
         done += len(rows)
         results[k] = rows
         if progress is not None:
@@ -191,10 +194,22 @@ def run_blocks(
     # A fresh process for each block: a worker's memory grew about 13 MB a trial.
     workers = min(workers or os.cpu_count() or 1, len(blocks))
     with worker_pool(executor, futures, workers, max_tasks_per_child=1) as pool:
-        futures.update({pool.submit(run_pointing_block, b): k for k, b in enumerate(blocks)})
-        for future in as_completed(futures):
-            tell(futures[future], future.result())
+        for k, block in enumerate(blocks):
+            futures[pool.submit(run_pointing_block, block)] = k
+        try:
+            for future in as_completed(futures):
+                tell(futures[future], future.result())
+        except BaseException:
+            # Blocks that ended beside the one that failed (or a stop) are kept all the same.
+            for future, k in futures.items():
+                if keep is not None and k not in results and _succeeded(future):
+                    keep(k, future.result())
+            raise
     return [row for k in sorted(results) for row in results[k]]
+
+
+def _succeeded(future: Future[Any]) -> bool:
+    return future.done() and not future.cancelled() and future.exception() is None
 
 
 def run_pointing_study(
@@ -211,9 +226,8 @@ def run_pointing_study(
     people = participants(study)
     blocks = pointing_blocks(study, people)
     text = study_text(study)
-    manifest = new_manifest(study, text, (), len(people))
+    manifest = new_manifest(study, text, blocks, len(people))
     manifest.update(task=study.task, trials_planned=sum(len(b.trials) for b in blocks))
-    del manifest["plan_sha256"]  # a pick-and-place plan's: a pointing run's plan is its blocks
     make_folder(folder)
     with run_lock(folder.path):
         check_new(folder)
@@ -230,14 +244,17 @@ def resume_pointing_study(
     executor: Executor | None = None,
     progress: Progress | None = None,
 ) -> StudyRun:
-    """Run the blocks a pointing run cut short lacks, keeping those it finished; the caller
-    holds the folder's lock and has checked that it is a run folder. With ``study``, refuses a
-    folder made from another definition."""
-    manifest = folder.manifest()
-    recorded = recorded_definition(folder, manifest, study)
+    """Run the blocks a pointing run cut short lacks, keeping those it finished; the folder
+    checked as a pick-and-place run's is (:func:`~arteleop.study.run_opening.opened_definition`),
+    and its blocks against the plan it began with. With ``study``, refuses a folder made from
+    another definition. The caller holds the folder's lock."""
+    recorded, manifest = opened_definition(folder, study)
     if manifest.get("finished"):
+        shutil.rmtree(folder.path / BLOCKS_DIR, ignore_errors=True)  # left by a stop at the end
         raise RunComplete(f"{folder.path} is complete: all its blocks are in; nothing to resume.")
-    return _execute(folder, pointing_blocks(recorded), workers, executor, progress)
+    blocks = pointing_blocks(recorded)
+    check_plan(folder, manifest, blocks)
+    return _execute(folder, blocks, workers, executor, progress)
 
 
 def _execute(
@@ -247,30 +264,51 @@ def _execute(
     executor: Executor | None,
     progress: Progress | None,
 ) -> StudyRun:
-    """The blocks not yet in ``folder``'s block files run, each kept as it ends; then
-    pointing.csv, in plan order, in their place."""
+    """The blocks not yet kept in ``folder`` run, each kept as it ends; then pointing.csv, in
+    plan order, and the manifest says the run is finished; last the kept blocks go."""
     kept = folder.path / BLOCKS_DIR
     kept.mkdir(exist_ok=True)
-    pending = [b for b in blocks if not (kept / _block_file(b)).is_file()]
+    bodies = [_kept_body(folder, kept / _block_file(n), block) for n, block in enumerate(blocks)]
+    pending = [n for n, body in enumerate(bodies) if body is None]
 
-    def keep(block: PointingBlock, rows: list[dict[str, float | str]]) -> None:
-        write_atomic(kept / _block_file(block), _rows_text(rows))
+    def keep(n: int, rows: list[dict[str, float | str]]) -> None:
+        text = table_text(RUN_COLUMNS, [[row[c] for c in RUN_COLUMNS] for row in rows])
+        write_atomic(kept / _block_file(n), text)
+        bodies[n] = text.split("\n", 1)[1]
 
-    run_blocks(pending, workers, executor, progress, keep)
-    lines = [(kept / _block_file(b)).read_text(encoding="utf-8").split("\n", 1)[1] for b in blocks]
-    write_atomic(folder.path / POINTING_FILE, csv_line(RUN_COLUMNS) + "".join(lines))
-    shutil.rmtree(kept)
+    done_before = sum(len(blocks[n].trials) for n in range(len(blocks)) if n not in pending)
+    run_blocks([blocks[n] for n in pending], workers, executor, progress,
+               lambda k, rows: keep(pending[k], rows), done_before)  # fmt: skip
+    write_atomic(folder.path / POINTING_FILE, csv_line(RUN_COLUMNS) + "".join(map(str, bodies)))
     manifest = folder.manifest()
     manifest["finished"] = utc_now()
     folder.write_manifest(manifest)
+    shutil.rmtree(kept, ignore_errors=True)  # pointing.csv holds them now
     table = pd.read_csv(folder.path / POINTING_FILE, dtype={"participant": str})
-    return StudyRun(folder.path, table, sum(len(b.trials) for b in pending), [])
+    ran = sum(len(blocks[n].trials) for n in pending)
+    return StudyRun(folder.path, table, ran, [], tuple(folder.notes))
 
 
-def _block_file(block: PointingBlock) -> str:
-    """A finished block's file in :data:`BLOCKS_DIR`."""
-    return f"{block.participant}-{block.block}.csv"
+def _block_file(n: int) -> str:
+    """The file of the plan's block ``n`` (from 0) in :data:`BLOCKS_DIR`: named by its place,
+    as participants' ids may differ in case alone."""
+    return f"block-{n + 1:05d}.csv"
 
 
-def _rows_text(rows: list[dict[str, float | str]]) -> str:
-    return table_text(RUN_COLUMNS, [[row[c] for c in RUN_COLUMNS] for row in rows])
+def _kept_body(folder: RunFolder, path: Path, block: PointingBlock) -> str | None:
+    """The rows of ``block`` kept in ``path``, without the header; None if it is not there
+    whole (with this header and a row per trial), and then a note when something else is."""
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        return None
+    except (OSError, UnicodeDecodeError) as err:
+        text = f"unreadable: {err}"
+    header, _, body = text.partition("\n")
+    if header + "\n" == csv_line(RUN_COLUMNS) and body.count("\n") == len(block.trials):
+        return body
+    folder.notes.append(
+        f"{path}: not the rows of participant {block.participant}'s block {block.block} as "
+        "this arteleop writes them; that block ran again."
+    )
+    return None

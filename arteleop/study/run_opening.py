@@ -10,6 +10,7 @@ import platform
 from collections.abc import Sequence
 from datetime import UTC, datetime
 from importlib import metadata
+from typing import Any
 
 from arteleop.blas_kernel import blas_description
 from arteleop.errors import RunFolderError, StudyDefinitionError
@@ -28,9 +29,10 @@ PACKAGES = ("arteleop", "pybullet", "pin", "mink", "mujoco", "ruckig", "numpy", 
 
 
 def new_manifest(
-    study: StudyConfig, text: str, plan: Sequence[TrialSpec], participants: int
+    study: StudyConfig, text: str, plan: Sequence[Any], participants: int
 ) -> dict[str, object]:
-    """A new run's manifest.json: what it is and what it ran on."""
+    """A new run's manifest.json: what it is and what it ran on. ``plan``: its trials, or a
+    pointing study's blocks (frozen dataclasses)."""
     return {
         "format_version": FORMAT_VERSION,
         "seed": study.seed,
@@ -59,6 +61,18 @@ def open_run(
     """A run folder to continue, checked: its definition, plan and participants, and its
     manifest. With ``study``, refuses a folder made from another definition; ``site`` plans
     it (see :func:`plan_run`). The caller holds the folder's lock."""
+    recorded, manifest = opened_definition(folder, study)
+    plan, people = plan_run(recorded, site)
+    check_plan(folder, manifest, plan)
+    return recorded, plan, people, manifest
+
+
+def opened_definition(
+    folder: RunFolder, study: StudyConfig | None = None
+) -> tuple[StudyConfig, dict[str, object]]:
+    """A run folder's definition and manifest, checked before it is continued: no symbolic
+    link, study.toml as the run began it (and, with ``study``, the same), this arteleop's
+    format, and the manifest's digests there. The caller holds the folder's lock."""
     require_run_folder(folder)
     for entry in folder.path.iterdir():
         if entry.is_symlink():  # it would be read, or appended to, wherever it points
@@ -83,14 +97,18 @@ def open_run(
             "'plan_sha256' is missing, null or edited, so the run cannot be checked against "
             "what it began with. Restore manifest.json from a backup."
         )
-    plan, people = plan_run(recorded, site)
+    return recorded, manifest
+
+
+def check_plan(folder: RunFolder, manifest: dict[str, object], plan: Sequence[Any]) -> None:
+    """Refuse to continue a run whose ``plan`` (trials, or a pointing study's blocks: frozen
+    dataclasses) this arteleop makes otherwise than the version that began it."""
     if manifest.get("plan_sha256") != _plan_digest(plan):
         raise RunFolderError(
             f"{folder.path}: this arteleop plans the run's definition otherwise than the "
             "version that began it (its plan's digest differs); resume it with that version "
             f"({_get(manifest, 'packages', {}).get('arteleop', 'unknown')})."
         )
-    return recorded, plan, people, manifest
 
 
 def require_run_folder(folder: RunFolder) -> None:
@@ -136,7 +154,7 @@ def _digest(text: str) -> str:
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
-def _plan_digest(plan: Sequence[TrialSpec]) -> str:
+def _plan_digest(plan: Sequence[Any]) -> str:
     return _digest("\n".join(repr(dataclasses.astuple(spec)) for spec in plan))
 
 

@@ -96,7 +96,8 @@ def run_study(
 
     Args:
         workers: Processes for the trials when no ``executor`` is given; default one per core;
-            1 runs them in this process.
+            1 runs them in this process (a pointing study's blocks, each in a process of its
+            own: :mod:`arteleop.study.pointing_run`).
         executor: Runs the trials (any :class:`concurrent.futures.Executor`).
         progress: Told of each trial written.
     """

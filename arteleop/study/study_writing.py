@@ -160,11 +160,11 @@ def study_text(config: StudyConfig) -> str:
         out.append(_CONDITIONS_HELP)
     if not pointing:
         out.append(_QUESTIONNAIRE_HELP)
-    for item in () if pointing else config.questionnaire:
-        out.append("[[questionnaire]]\n")
-        for f in dataclasses.fields(item):
-            out.append(f"{f.name} = {_toml_value(getattr(item, f.name))}\n")
-        out.append("\n")
+        for item in config.questionnaire:
+            out.append("[[questionnaire]]\n")
+            for f in dataclasses.fields(item):
+                out.append(f"{f.name} = {_toml_value(getattr(item, f.name))}\n")
+            out.append("\n")
     if config.participants:
         for person in config.participants:
             out.append("[[participants]]\n")

@@ -44,7 +44,7 @@ round_trip_ms = 0
 
 
 def test_a_pointing_study_runs_each_trial_as_the_pointing_trial_and_keeps_what_a_stop_left(
-    tmp_path: Path,
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     """Each row of pointing.csv is the pointing trial of its seed, by the participant's traits,
     under its block's lag, bringing the belief and the outcome the trial before left. Stopped
@@ -59,9 +59,14 @@ def test_a_pointing_study_runs_each_trial_as_the_pointing_trial_and_keeps_what_a
     out = tmp_path / "run"
     with pytest.raises(KeyboardInterrupt):
         run_study(study, out, workers=1, progress=stop)
-    assert [p.name for p in (out / BLOCKS_DIR).iterdir()] == ["F02-1.csv"]
+    assert [p.name for p in (out / BLOCKS_DIR).iterdir()] == ["block-00001.csv"]
     assert not (out / "pointing.csv").exists()
+    cut = out / BLOCKS_DIR / "block-00002.csv"  # a block file not whole: that block runs again
+    cut.write_text("participant,round_trip_ms\nF02,0.0\n")
     assert main(["study", "resume", str(out), "--workers", "1", "--quiet"]) == 0
+    printed = capsys.readouterr().out
+    assert printed.startswith(f"4 pointing trials in {out} (2 run now)\nlag (ms)"), printed
+    assert f"note: {cut}: not the rows of participant F02's block 2" in printed
     assert not (out / BLOCKS_DIR).exists()
     with open(out / "pointing.csv", newline="") as f:
         rows = list(csv.DictReader(f))
@@ -78,7 +83,7 @@ def test_a_pointing_study_runs_each_trial_as_the_pointing_trial_and_keeps_what_a
     carried = replace(fresh, familiar_lag_s=first.believed_lag_s,
                       seen_outcomes=fresh.seen_outcomes.after(not first.hit))  # fmt: skip
     second = run_pointing_trial(0.1, 0.03, traits, 100, 0.15, 40.0, carried)
-    for row, trial in zip(rows, (first, second), strict=False):
+    for row, trial in zip(rows[:2], (first, second), strict=True):
         assert float(row["movement_time_s"]) == trial.movement_time_s
         assert (float(row["along_m"]), float(row["across_m"])) == (trial.along_m, trial.across_m)
         assert float(row["hit"]) == float(trial.hit)
