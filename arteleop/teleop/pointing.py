@@ -15,12 +15,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from arteleop.errors import SimulationError
-from arteleop.operator import OperatorParams, OperatorTraits, PointingTask, SyntheticSource
+from arteleop.operator import OperatorParams, OperatorTraits, SyntheticSource
 from arteleop.robot.mapping import HandToGripper
 from arteleop.scene import RemoteSite, SiteConfig, Workspace
 from arteleop.teleop.loop import run_trial
 from arteleop.teleop.network import NetworkConfig
 from arteleop.teleop.trial import TrialConfig
+from arteleop.teleop.trial_task import pointing_task
 
 POINTING_START_XY_M = (0.68, -0.55)
 """Where each pointing movement starts (over the table, m); targets lie along +y from it."""
@@ -145,8 +146,7 @@ def pointing_source(
     task of ``config`` (from :func:`pointing_config`), the gripper resting at
     ``rest_gripper_m`` (base frame, m), as a ``source_type`` (a :class:`SyntheticSource`, or one
     that also records what it saw)."""
-    width_m = 2 * config.site.workspace.target_circle_radius_m
-    task = PointingTask(width_m=width_m, rest_gripper_m=rest_gripper_m)
+    task = pointing_task(config.site.workspace, rest_gripper_m)
     to_hand = HandToGripper(config.controller.mapping).hand_position_for
     rng = np.random.default_rng([config.seed, 1])
     return source_type(task, to_hand, rng, params=params, traits=traits)

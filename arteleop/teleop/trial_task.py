@@ -72,10 +72,15 @@ PICK_AND_PLACE = TrialTask(
 (docs/explanation/study.md)."""
 
 
+def pointing_task(workspace: Workspace, rest_gripper_m: NDArray[np.float64]) -> PointingTask:
+    """The pointing task of ``workspace``: its target circle's diameter is the target's width;
+    the gripper rests at ``rest_gripper_m`` (base frame, m)."""
+    width_m = 2 * workspace.target_circle_radius_m
+    return PointingTask(width_m=width_m, rest_gripper_m=rest_gripper_m)
+
+
 def _pointing(site: TaskSite) -> Task:
-    """The target circle's diameter is the target's width."""
-    width_m = 2 * site.workspace.target_circle_radius_m
-    return PointingTask(width_m=width_m, rest_gripper_m=site.rest_gripper_m)
+    return pointing_task(site.workspace, site.rest_gripper_m)
 
 
 POINTING = TrialTask("pointing", _pointing, lambda ws: PointingMonitor(ws, BowlTracker(ws.bowl)))
