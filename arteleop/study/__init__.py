@@ -18,6 +18,7 @@ from arteleop.study.definition import (
     FamiliarizationConfig,
     StudyConfig,
 )
+from arteleop.study.demographics import Demographics, SessionInputError
 from arteleop.study.participants import CohortConfig, ParticipantSpec
 from arteleop.study.plan import PracticePoints, TrialSpec, plan_study, trial_seed
 from arteleop.study.protocol import TrialRecord, operator_traits, run_planned_trial
@@ -26,13 +27,7 @@ from arteleop.study.questionnaire_items import ORIGINAL_QUESTIONNAIRE, Questionn
 from arteleop.study.run_folder import FORMAT_VERSION, TRIAL_COLUMNS, RunFolder
 from arteleop.study.run_lock import run_lock
 from arteleop.study.runner import RunComplete, StudyRun, resume_study, run_study
-from arteleop.study.session import (
-    BrowserCheck,
-    Demographics,
-    ServedRun,
-    SessionInputError,
-    served_run,
-)
+from arteleop.study.session import BrowserCheck, ServedRun, served_run
 from arteleop.study.sites import StudySite
 from arteleop.study.study_file import first_difference, load_study_file, parse_study
 from arteleop.study.study_writing import study_text

@@ -38,17 +38,11 @@ from arteleop.errors import ArteleopError, RunFolderError
 from arteleop.lifetime import Closeable
 from arteleop.operator import HandTarget, live_source
 from arteleop.scene import HeadCameraConfig, RemoteSite
+from arteleop.study.demographics import GENDERS, HANDEDNESS, Demographics, SessionInputError
 from arteleop.study.plan import FAMILIARIZATION, TrialSpec
 from arteleop.study.protocol import trial_config, trial_record
 from arteleop.study.questionnaire import classes_shown
-from arteleop.study.session import (
-    GENDERS,
-    HANDEDNESS,
-    BrowserCheck,
-    Demographics,
-    ServedRun,
-    SessionInputError,
-)
+from arteleop.study.session import BrowserCheck, ServedRun
 from arteleop.study.session_tabs import SessionStopped, SessionTabs
 from arteleop.study.session_words import (
     AGREE,

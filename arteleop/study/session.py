@@ -40,8 +40,9 @@ from arteleop.analysis.data import (
     TRIAL_COLUMNS,
 )
 from arteleop.ar_features.links import TOKEN_BYTES
-from arteleop.errors import ArteleopError, RunFolderError, StudyDefinitionError
+from arteleop.errors import RunFolderError, StudyDefinitionError
 from arteleop.study.definition import StudyConfig
+from arteleop.study.demographics import Demographics, check_whole
 from arteleop.study.participants import ParticipantSpec
 from arteleop.study.plan import TrialSpec
 from arteleop.study.protocol import TrialRecord, trial_row
@@ -73,87 +74,12 @@ BROWSER_COLUMNS_0_3 = BROWSER_COLUMNS[:6]
 empty."""
 LINKS_KEY_FILE = "links.key"
 LINKS_KEY_BYTES = 32
-GENDERS = ("female", "male", "diverse", "prefer not to say")
-HANDEDNESS = ("right", "left", "both")
-AGE_RANGE = (18, 99)
-"""Ages a participant may give (years): adults, as an ethics board asks by default."""
-
-
 NOT_SERVED = (
     'task = "pointing": serving a pointing study to people is not built yet (\'arteleop study '
     "run' runs it with simulated participants); run your people with your own pointing software "
     "and compare: docs/guides/analysing-data.md."
 )
 """Why a pointing study is not served."""
-
-
-class SessionInputError(ArteleopError):
-    """A participant's answer is out of its range; the message names the question."""
-
-
-@dataclass(frozen=True)
-class Demographics:
-    """A participant's answers to the questions before the trials (docs/explanation/study.md §4).
-
-    Attributes:
-        age: Years.
-        gender: One of :data:`GENDERS`.
-        handedness: One of :data:`HANDEDNESS`.
-        avr_experience: Experience with AR/VR, Likert 1-7.
-        avr_hours: Weekly AR/VR hours: 1 = under 2 h, 2 = 2-5 h, 3 = over 5 h.
-        games_experience: Experience with video games, Likert 1-7.
-        games_hours: Weekly video-game hours, the same buckets.
-    """
-
-    age: int
-    gender: str
-    handedness: str
-    avr_experience: int
-    avr_hours: int
-    games_experience: int
-    games_hours: int
-
-    def __post_init__(self) -> None:
-        _whole("age", self.age, *AGE_RANGE, "years")
-        _choice("gender", self.gender, GENDERS)
-        _choice("handedness", self.handedness, HANDEDNESS)
-        for name in ("avr_experience", "games_experience"):
-            _whole(name, getattr(self, name), 1, 7, "on the 1-7 scale")
-        for name in ("avr_hours", "games_hours"):
-            _whole(name, getattr(self, name), 1, 3, "a weekly-hours bucket")
-
-    @classmethod
-    def from_form(cls, form: Mapping[str, object]) -> Demographics:
-        """The answers as the page gave them (``age`` as typed, an unanswered choice empty or
-        0); :class:`SessionInputError` names the first question to answer again."""
-        age = str(form.get("age", "")).strip()
-        # isdecimal, not isdigit: '²' and '③' are digits that int() refuses.
-        _whole("age", int(age) if age.isdecimal() else age, *AGE_RANGE, "years")
-        for key, label in (("gender", "gender"), ("handedness", "handedness"),
-                           ("avr_experience", "AR/VR experience"),
-                           ("avr_hours", "AR/VR per week"),
-                           ("games_experience", "video-game experience"),
-                           ("games_hours", "video games per week")):  # fmt: skip
-            if form.get(key) in ("", 0, None):
-                raise SessionInputError(f"{label}: choose one of the answers.")
-        keys = ("gender", "handedness", "avr_experience", "avr_hours", "games_experience",
-                "games_hours")  # fmt: skip
-        return cls(int(age), **{key: form[key] for key in keys})  # type: ignore[arg-type]
-
-    def row(self, participant: str) -> tuple[object, ...]:
-        """The participant's row of ``participants.csv``."""
-        return (participant, self.age, self.gender, self.handedness, self.avr_experience,
-                self.avr_hours, self.games_experience, self.games_hours, REAL)  # fmt: skip
-
-
-def _whole(name: str, value: object, low: int, high: int, unit: str) -> None:
-    if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
-        raise SessionInputError(f"{name} {value!r}: expected a whole number {low}-{high} ({unit}).")
-
-
-def _choice(name: str, value: object, options: tuple[str, ...]) -> None:
-    if value not in options:
-        raise SessionInputError(f"{name} {value!r}: expected one of {', '.join(options)}.")
 
 
 @dataclass(frozen=True)
@@ -353,7 +279,7 @@ class ServedRun:
         for ar_class in classes_shown(self.study):
             for item in (i.id for i in self.study.questionnaire):
                 score = ratings.get((ar_class, item))
-                _whole(f"{item} of {ar_class}", score, 1, 7, "on the 1-7 scale")
+                check_whole(f"{item} of {ar_class}", score, 1, 7, "on the 1-7 scale")
                 rows.append((participant, ar_class, item, score))
         path = self.folder.path / QUESTIONNAIRE_FILE
         kept = [row for row in self._rows(path, QUESTIONNAIRE_COLUMNS) if row[0] != participant]

@@ -20,8 +20,8 @@ from arteleop.study import (
     study_text,
 )
 from arteleop.study.answers import merge_answers
+from arteleop.study.demographics import Demographics
 from arteleop.study.questionnaire_items import modelled_items
-from arteleop.study.session import Demographics
 
 ITEMS = """\
 [[questionnaire]]

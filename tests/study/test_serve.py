@@ -20,6 +20,7 @@ from arteleop.study import (
     classes_shown,
     plan_study,
 )
+from arteleop.study.demographics import Demographics, SessionInputError
 from arteleop.study.plan import EXPERIMENTAL
 from arteleop.study.runner import resume_study
 from arteleop.study.serve import ROUND_TRIP_TIMEOUT_S, StudyServer
@@ -28,9 +29,7 @@ from arteleop.study.session import (
     INTERRUPTED_FILE,
     LINKS_KEY_FILE,
     BrowserCheck,
-    Demographics,
     ServedRun,
-    SessionInputError,
     served_run,
 )
 from arteleop.study.session_words import AR_CLASS_TEXT, IN_PROGRESS, OBSERVING
