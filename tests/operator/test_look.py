@@ -32,3 +32,17 @@ def test_when_looking_no_longer_helps_an_error_judged_within_the_criterion_is_ac
 def test_sure_either_way_decides_whatever_the_judged_error() -> None:
     assert _verdicts([4e-4], 0.99, judged_within=False) == [True]
     assert _verdicts([4e-4], 0.01, judged_within=True) == [False]
+
+
+@pytest.mark.parametrize("judged_within", [True, False])
+def test_a_look_cut_at_its_longest_decides_on_the_judged_error(judged_within: bool) -> None:
+    # Glances still helping (the variance halving), unsure either way, until the look's
+    # longest: an error judged within the criterion is accepted, as when glances no longer
+    # help; correcting it would leave the next look as unsure (a look averages afresh).
+    look = Look(OperatorTraits(), max_look_s=0.6)
+    look.start(0.0)
+    verdicts = []
+    for k, variance in enumerate([4e-4, 2e-4]):
+        look.glanced(0.3 * k, 0.3)
+        verdicts.append(look.verdict(0.3 * (k + 1), 0.5, variance, judged_within))
+    assert verdicts == [None, judged_within]

@@ -11,11 +11,14 @@ class Look:
     """A look's glances and what looks have come to cost the person (s).
 
     Glances go on until the probability that the error is within the criterion reaches the
-    person's confidence (accept) or falls to ``1 - confidence`` (correct), or looking longer no
-    longer helps (the averaged noise is small beside what lasts, or a remembered mark's drift
-    grows: then accept if the judged error is within the criterion, since neither a look nor a
-    correction of an error within it makes the person surer, else correct), or the look has
-    lasted ``max_look_s`` (accept only if sure enough).
+    person's confidence (accept) or falls to ``1 - confidence`` (correct), or the look ends
+    unsure: looking longer no longer helps (the averaged noise is small beside what lasts, or a
+    remembered mark's drift grows), or the look has lasted ``max_look_s``. A look that ends
+    unsure accepts an error judged within the criterion, else corrects: a correction of an
+    error within it makes the person no surer, and the next look averages afresh. (Until 0.4 a
+    look cut at ``max_look_s`` corrected whatever it judged: a person whose glances stayed noisy
+    beside the criterion nudged the hand by that noise, look after look, until urgency had
+    loosened the criterion; 19 looks in one 70 s trial of the delay example.)
     """
 
     def __init__(self, traits: OperatorTraits, max_look_s: float) -> None:
@@ -53,7 +56,8 @@ class Look:
             self._first_variance_m2 = variance_m2
         saturated = averaging_saturated(self._first_variance_m2, variance_m2, glances)
         accept = sure >= confidence
-        if not (accept or sure <= 1.0 - confidence or saturated or looked >= self.max_look_s):
+        ended_unsure = saturated or looked >= self.max_look_s
+        if not (accept or sure <= 1.0 - confidence or ended_unsure):
             return None
         self.cost_s = 0.5 * self.cost_s + 0.5 * looked
-        return accept or (saturated and judged_within)
+        return accept or (ended_unsure and judged_within)
