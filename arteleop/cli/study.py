@@ -130,9 +130,9 @@ def _study_progress(run_dir: Path, quiet: bool) -> Iterator[Any]:
 
 
 def _study_done(run: Any) -> int:
-    trials = run.trials
-    if "phase" not in trials:  # a pointing study's table
+    if run.task == "pointing":
         return _pointing_done(run)
+    trials = run.trials
     experimental = trials[trials["phase"] == "experimental"]
     print(f"{len(trials)} trials in {run.folder} ({run.ran} run now)")
     print("outcomes: " + ", ".join(f"{k} {v}" for k, v in trials["outcome"].value_counts().items()))

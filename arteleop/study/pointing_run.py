@@ -286,7 +286,7 @@ def _execute(
     shutil.rmtree(kept, ignore_errors=True)  # pointing.csv holds them now
     table = pd.read_csv(folder.path / POINTING_FILE, dtype={"participant": str})
     ran = sum(len(blocks[n].trials) for n in pending)
-    return StudyRun(folder.path, table, ran, [], tuple(folder.notes))
+    return StudyRun(folder.path, table, ran, [], tuple(folder.notes), "pointing")
 
 
 def _block_file(n: int) -> str:

@@ -72,6 +72,7 @@ class StudyRun:
         ran: Trials run by this call (the rest were in the folder already).
         speed: (simulated s, wall s) of each trial run by this call, for benchmarks.
         notes: What the run set aside or repaired in the folder, to tell the user.
+        task: The study's task (``task`` in the study file): what ``trials`` holds.
     """
 
     folder: Path
@@ -79,6 +80,7 @@ class StudyRun:
     ran: int
     speed: list[tuple[float, float]]
     notes: tuple[str, ...] = ()
+    task: str = "pick-and-place"
 
 
 class RunComplete(RunFolderError):
@@ -258,7 +260,8 @@ def _execute(
     manifest = folder.manifest()
     manifest["finished"] = utc_now()
     folder.write_manifest(manifest)
-    return StudyRun(folder.path, folder.trials(), len(pending), speed, tuple(folder.notes))
+    return StudyRun(folder.path, folder.trials(), len(pending), speed, tuple(folder.notes),
+                    study.task)  # fmt: skip
 
 
 _WORKER_SITE: StudySite | None = None
