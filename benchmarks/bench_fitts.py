@@ -28,13 +28,13 @@ settle, looking and waiting, with its corrections and looks.
 
     python benchmarks/bench_fitts.py [--people 16] [--reps 5] [--lags 0,75,150,225,450]
                                      [--quick] [--fresh] [--depth-aids] [--workers 2]
-                                     [--own-error-prior-sd SD]
+                                     [--own-error-prior-sd SD] [--max-look-s S]
                                      [--json OUT.json] [--csv pointing.csv]
 
 The design is a pointing study's (``arteleop.study.pointing_run``; at the defaults,
 docs/examples/fitts_lag.toml, which ``arteleop study run`` runs to the same trials): this script
 adds its timing, the model's own account (slips, through a block, where the time goes) and
-options a study file has not (``--fresh``, ``--own-error-prior-sd``).
+options a study file has not (``--fresh``, ``--own-error-prior-sd``, ``--max-look-s``).
 
 What it prints is what the model predicts: no constant of the operator is fitted to it.
 """
@@ -133,6 +133,9 @@ def main() -> None:
     parser.add_argument("--own-error-prior-sd", type=float, metavar="SD",
                         help="the operator's prior SD on the log of its error scale, in place "
                              "of its own (a sensitivity run; above 0)")  # fmt: skip
+    parser.add_argument("--max-look-s", type=float, metavar="S",
+                        help="the longest look (s), in place of the operator's own (a "
+                             "sensitivity run; above 0)")  # fmt: skip
     parser.add_argument("--workers", type=int, default=len(os.sched_getaffinity(0)))
     parser.add_argument("--json", help="write the lag table, the fits and the cells to this file")
     parser.add_argument("--csv", help="write the trials to this file as a pointing study's table "
@@ -146,12 +149,17 @@ def main() -> None:
     sd = args.own_error_prior_sd
     if sd is not None and not (np.isfinite(sd) and sd > 0):
         parser.error(f"--own-error-prior-sd {sd}: give a number above 0 (the SD of a log)")
+    look_s = args.max_look_s
+    if look_s is not None and not (np.isfinite(look_s) and look_s > 0):
+        parser.error(f"--max-look-s {look_s}: give a number of seconds above 0")
     if args.workers < 1:
         parser.error(f"--workers {args.workers}: give 1 or more")
     people, reps, lags = (4, 3, [0.0, 225.0]) if args.quick else (args.people, args.reps, args.lags)
     params = OperatorParams()
     if sd is not None:
         params = replace(params, own_error_prior_sd=sd)
+    if look_s is not None:
+        params = replace(params, max_look_s=look_s)
     blocks = [replace(b, fresh=args.fresh, params=params)
               for b in pointing_blocks(fitts_study(people, reps, lags, args.depth_aids))]  # fmt: skip
     t0 = time.perf_counter()
