@@ -130,7 +130,9 @@ def _study_progress(run_dir: Path, quiet: bool) -> Iterator[Any]:
 
 
 def _study_done(run: Any) -> int:
-    if run.task == "pointing":
+    from arteleop.teleop import POINTING
+
+    if run.task == POINTING.name:
         return _pointing_done(run)
     trials = run.trials
     experimental = trials[trials["phase"] == "experimental"]

@@ -61,6 +61,7 @@ from arteleop.study.runner import (
     worker_pool,
 )
 from arteleop.study.study_writing import study_text
+from arteleop.teleop.trial_task import POINTING
 
 BLOCKS_DIR = "pointing-blocks"
 """Each finished block's rows, a CSV a block, until every block is in and pointing.csv is
@@ -286,7 +287,7 @@ def _execute(
     shutil.rmtree(kept, ignore_errors=True)  # pointing.csv holds them now
     table = pd.read_csv(folder.path / POINTING_FILE, dtype={"participant": str})
     ran = sum(len(blocks[n].trials) for n in pending)
-    return StudyRun(folder.path, table, ran, [], tuple(folder.notes), "pointing")
+    return StudyRun(folder.path, table, ran, [], tuple(folder.notes), POINTING.name)
 
 
 def _block_file(n: int) -> str:

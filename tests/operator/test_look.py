@@ -39,7 +39,7 @@ def test_a_look_cut_at_its_longest_decides_on_the_judged_error(judged_within: bo
     # Glances still helping (the variance halving), unsure either way, until the look's
     # longest: an error judged within the criterion is accepted, as when glances no longer
     # help; correcting it would leave the next look as unsure (a look averages afresh).
-    look = Look(OperatorTraits(), max_look_s=0.6)
+    look = Look(OperatorTraits(), max_look_s=0.5)
     look.start(0.0)
     verdicts = []
     for k, variance in enumerate([4e-4, 2e-4]):
