@@ -172,10 +172,13 @@ def test_pointing_starts_over_the_cross_it_sees() -> None:
     assert task.goal(TO_START, unmarked) is None
 
 
-def test_a_mark_the_display_does_not_draw_is_refused_naming_those_it_does() -> None:
-    errors = PerceptualErrors(np.random.default_rng(0), 1, 0.5)
+def test_a_task_judging_a_mark_the_display_does_not_draw_is_refused_when_given() -> None:
+    # Refused as the operator is given the task, naming the marks drawn: not at a glance.
+    task = _Press(np.array([0.68, -0.45, -0.2]), np.array([0.6, -0.4, 0.0]))
+    task.marks = ("finish",)  # type: ignore[attr-defined]
     with pytest.raises(ConfigurationError) as err:
-        perceive(display_frame(), OperatorParams().perception, errors, judged=("finish",))
+        SyntheticOperator(task, lambda p: p, ArmModel(), CalibrationPosture(),
+                          np.random.default_rng(0))  # fmt: skip
     assert str(err.value) == "The task judges a mark 'finish'; the display draws start."
 
 

@@ -37,17 +37,17 @@ knows how precise a judgement is (its covariance, :class:`Perceived`), not its o
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field, replace
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
 
 from arteleop.ar_features import DISTANCE_LABEL_STEP_M, DisplayFrame
 from arteleop.checks import Bounds, check_fields
-from arteleop.errors import ConfigurationError
 from arteleop.operator.simulated.acuity import Acuities, DisplayGeometry, reading_sd_m
 from arteleop.operator.simulated.judging import Judge, Mark, combined, shown_gripper_m
+from arteleop.operator.simulated.mark_judging import MARK_JUDGEMENTS, judgeable_marks
 from arteleop.operator.simulated.mark_memory import MarkMemory
 from arteleop.operator.simulated.perceptual_errors import PerceptualErrors
 
@@ -58,7 +58,7 @@ __all__ = [
     "PlacementJudgement",
     "judge_grasp",
     "judge_placement",
-    "judge_start",
+    "judgeable_marks",
     "perceive",
     "shown_gripper_m",
 ]
@@ -183,7 +183,7 @@ def perceive(
     the person sees a depth interval in the rendered scene (1: true), a lasting error the person
     does not know of, so it is not in the believed covariances. Where the task ``aims_gripper``
     (pointing), the target is judged against the gripper shown over it, not the bowl. ``judged``
-    names the marks the task judges besides it (:data:`MARK_JUDGEMENTS`: pointing's start). A
+    names the marks the task judges besides it (:func:`judgeable_marks`: pointing's start). A
     mark the display does not draw is judged from ``marks``, the operator's memory of the marks,
     which this glance's judgements update (a fresh memory: none seen yet)."""
     judge = Judge(view, params, errors, depth_factor, depth_scale, marks)
@@ -196,10 +196,6 @@ def perceive(
     placement = judge_placement(judge, gripper_seen, bowl, bowl_cov, grasp, aims_gripper)
     judged_marks = {}
     for name in judged:
-        if name not in MARK_JUDGEMENTS:
-            raise ConfigurationError(
-                f"The task judges a mark {name!r}; the display draws {', '.join(MARK_JUDGEMENTS)}."
-            )
         mark = MARK_JUDGEMENTS[name](judge, gripper_seen, grasp)
         if mark is not None:
             judged_marks[name] = mark
@@ -359,41 +355,3 @@ def judge_placement(
     by_gripper = bowl_cov is None
     cov = marker.cov + (grasp.gripper_cov if by_gripper else bowl_cov)
     return PlacementJudgement(marker.mark_m, cov, by_gripper, marker.fixations)
-
-
-def judge_start(judge: Judge, gripper_seen: bool, grasp: GraspJudgement) -> Mark | None:
-    """The start cross, drawn in the cloud: its centre is where its arms cross, so there is no
-    circle to bisect. Judged against the gripper over it; while the gripper is not shown,
-    against what is (the gripper then felt, not seen). The judged start (m) with its believed
-    covariance relative to the judged gripper (m^2); None where the display gives no start."""
-    view = judge.view
-    if view.start_m is None:
-        return None
-    cross = view.in_cloud(view.start_m)
-    if gripper_seen:
-
-        def against_gripper() -> Mark:
-            mark, cov = judge.seen("start", cross, judge.shown_gripper, judge.cloud_grain)
-            mark, cov, fixations = judge.with_aids(
-                "start", cross, mark, cov, judge.cloud_grain, read_height=True
-            )
-            return Mark(grasp.gripper_m + mark - judge.shown_gripper, cov, fixations)
-
-        return judge.mark("start", view.start_drawn, judge.shown_gripper, against_gripper)
-    mark_point = view.target_m if view.cues.target_mesh else view.in_cloud(view.target_m)
-    against = view.bowl_m if view.bowl_m is not None else mark_point
-
-    def against_scene() -> Mark:
-        start, mark_cov = judge.seen("start", cross, against, judge.cloud_grain)
-        return Mark(start, mark_cov, judge.fixated(cross, against))
-
-    seen = judge.mark("start", view.start_drawn, against, against_scene)
-    return replace(seen, cov=seen.cov + grasp.cov)
-
-
-MARK_JUDGEMENTS: dict[str, Callable[[Judge, bool, GraspJudgement], Mark | None]] = {
-    "start": judge_start,
-}
-"""The marks a task may judge besides the target (:attr:`~arteleop.operator.Task.marks`), each
-from one glance: who judges it, given the glance, whether the gripper is shown, and the
-gripper's judgement."""

@@ -33,7 +33,7 @@ from arteleop.operator.simulated.hand import Hand, Tremor
 from arteleop.operator.simulated.look import Look
 from arteleop.operator.simulated.mark_memory import MarkMemory
 from arteleop.operator.simulated.params import OperatorParams
-from arteleop.operator.simulated.perception import Perceived, perceive
+from arteleop.operator.simulated.perception import Perceived, judgeable_marks, perceive
 from arteleop.operator.simulated.perceptual_errors import PerceptualErrors
 from arteleop.operator.simulated.phase_log import PhaseLog, PhaseRecord
 from arteleop.operator.simulated.submovements import planned_submovement
@@ -68,7 +68,7 @@ class SyntheticOperator:
         self.p = params or OperatorParams()
         self.traits = traits or OperatorTraits()
         self.task = task
-        self._judged = getattr(task, "marks", ())  # optional in a task of one's own
+        self._judged = judgeable_marks(getattr(task, "marks", ()))  # optional in one's own
         self._to_hand = hand_for_gripper
         # The mapping is affine: the hand's step for each of the gripper's is the same from
         # anywhere, and so is its inverse.

@@ -83,7 +83,7 @@ class Task(Protocol):
             circle, and the marks it judges (``marks``), are judged against the gripper, not
             the object (``Perceived.target_m``, ``Perceived.marks``).
         marks: The marks the task judges besides the target, by name
-            (:data:`~arteleop.operator.simulated.perception.MARK_JUDGEMENTS`: ``"start"``, the
+            (:data:`~arteleop.operator.simulated.mark_judging.MARK_JUDGEMENTS`: ``"start"``, the
             start's cross); a task without the attribute judges none. What is seen of them is
             ``Perceived.marks``: a task's own judgements are not fields of every glance.
     """
