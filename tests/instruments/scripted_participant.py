@@ -414,12 +414,18 @@ class ScriptedParticipant:
         self, coordinate: Callable[[Spot], float], before: float, expected_px: float
     ) -> float:
         """Where the bowl stands (``coordinate`` of :meth:`bowl`) once it has moved at least
-        half of ``expected_px`` from ``before``, or after :data:`MOVE_WAIT_S`: on a busy machine
-        the arm lags the presses and the page the arm, and two looks at a stale frame agree."""
+        half of ``expected_px`` from ``before`` and then stands still (two looks within
+        :data:`STILL_PX`), or after :data:`MOVE_WAIT_S`: on a busy machine the arm lags the
+        presses and the page the arm, and two looks at a stale frame agree."""
         end = time.monotonic() + MOVE_WAIT_S
         now = coordinate(self.bowl())
         while abs(now - before) < abs(expected_px) / 2 and time.monotonic() < end:
             now = coordinate(self.bowl())
+        # Then until it stands (two looks alike), as a person waits for the arm to settle: a
+        # look while it still moved made the next go overshoot, or a step seem reversed.
+        last = None
+        while (last is None or abs(now - last) > STILL_PX) and time.monotonic() < end:
+            last, now = now, coordinate(self.bowl())
         return now
 
     def do_trial(self) -> str:
