@@ -77,6 +77,7 @@ def study_file_reference() -> str:
     """docs/reference/study-file.md: every key of a study definition, with its default and
     meaning, as ``arteleop study init`` writes them."""
     from arteleop.study import StudyConfig, study_text
+    from arteleop.study.study_file import OPERATOR_PARAMS_KEYS
 
     return "\n".join([
         "# Study files",
@@ -109,6 +110,23 @@ def study_file_reference() -> str:
         "```toml",
         _pointing_table(),
         "```",
+        "",
+        "## The simulated participant's constants: a sensitivity run",
+        "",
+        "Every constant of the simulated participant has a value and a source",
+        "([the operator model](../explanation/operator-model.md)), fixed before a study runs. To",
+        "see how far a study's answer rests on one (an assumption's above all), run the study again",
+        "with the constant at half and at twice its value, in an `[operator_params]` table; a",
+        "file written from such a study says each changed constant beside the model's value, and",
+        "`arteleop analyze` pools its run with the model's only with `--allow-different-designs`.",
+        "A study may change these, the plain numbers of `OperatorParams`:",
+        "",
+        "```toml",
+        "[operator_params]",
+        "max_look_s = 3.0  # the model's: 1.5",
+        "```",
+        "",
+        ", ".join(f"`{key}`" for key in OPERATOR_PARAMS_KEYS) + ".",
     ]) + "\n"  # fmt: skip
 
 

@@ -19,6 +19,7 @@ from typing import Any
 from arteleop.analysis.data import network_label
 from arteleop.ar_features import LAYER_NAMES, MODALITIES, STUDY_MODALITIES, modality_cues
 from arteleop.errors import ConfigurationError, StudyDefinitionError
+from arteleop.operator.simulated.params import OperatorParams
 from arteleop.operator.simulated.traits import TraitDistribution
 from arteleop.scene.camera_config import HeadCameraConfig
 from arteleop.study.participants import CohortConfig, ParticipantSpec
@@ -172,6 +173,11 @@ class StudyConfig:
         operator: Where the simulated participants' lasting traits come from (their accuracy
             criterion, confidence, urgency, glance, expertise's effects); each participant's are
             drawn from it, the study's seed and their id.
+        operator_params: The simulated participants' constants, the same for every person
+            (:class:`~arteleop.operator.OperatorParams`, docs/explanation/operator-model.md):
+            the model's by default. A study file changes one (``[operator_params]``, its
+            plain numbers only) to see how far an answer rests on it, the constant at half and
+            at twice its value: a sensitivity run, not another model.
         hand_filter: The 1€ filter on the operator's reconstructed hand, in every trial.
         pointing: With ``task = "pointing"``: the targets' distances and widths and the
             repetitions of each cell under each lag (the conditions, met in blocks).
@@ -199,6 +205,7 @@ class StudyConfig:
     cohort: CohortConfig = field(default_factory=CohortConfig)
     participants: tuple[ParticipantSpec, ...] = ()
     operator: TraitDistribution = field(default_factory=TraitDistribution)
+    operator_params: OperatorParams = field(default_factory=OperatorParams)
     hand_filter: HandFilterConfig = field(default_factory=HandFilterConfig)
     conditions: tuple[ConditionSpec, ...] = ()
     pointing: PointingDesign = field(default_factory=PointingDesign)

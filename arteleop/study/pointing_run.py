@@ -125,7 +125,8 @@ def pointing_blocks(
         for place, c in enumerate(order):
             blocks.append(PointingBlock(person.id, traits, lags[c], trials, place + 1,
                                         place * len(trials) + 1, study.pointing.timeout_s,
-                                        study.depth_aids))  # fmt: skip
+                                        study.depth_aids,
+                                        params=study.operator_params))  # fmt: skip
     return blocks
 
 

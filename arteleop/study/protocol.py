@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from arteleop.errors import SimulationError
-from arteleop.operator import Expertise, OperatorParams, OperatorTraits
+from arteleop.operator import Expertise, OperatorTraits
 from arteleop.scene import RemoteSite
 from arteleop.study.definition import StudyConfig
 from arteleop.study.participants import ParticipantSpec
@@ -93,7 +93,7 @@ def run_planned_trial(
     display's lag as it believed it at the end of its last trial (``believed_lag_s``, s; None
     for its first: the lag it knows from practice on the system, ``familiar_lag_s``)."""
     config = trial_config(study, site, spec)
-    params = OperatorParams()
+    params = study.operator_params
     if believed_lag_s is not None:
         params = replace(params, familiar_lag_s=believed_lag_s)
     start = time.perf_counter()

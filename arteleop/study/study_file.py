@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Any, get_type_hints
 
 from arteleop.errors import ConfigurationError, FrameGraphError, StudyDefinitionError
+from arteleop.operator.simulated.params import OperatorParams
 from arteleop.operator.simulated.traits import TraitDistribution
 from arteleop.study.definition import (
     CohortConfig,
@@ -29,10 +30,16 @@ TABLES: dict[str, type] = {
     "familiarization": FamiliarizationConfig,
     "cohort": CohortConfig,
     "operator": TraitDistribution,
+    "operator_params": OperatorParams,
     "hand_filter": HandFilterConfig,
     "pointing": PointingDesign,
 }
 """The study file's tables and what each is read into."""
+OPERATOR_PARAMS_KEYS = tuple(
+    name for name, hint in get_type_hints(OperatorParams).items() if hint in (float, int)
+)
+"""The constants a study file may change in ``[operator_params]``: the plain numbers (a
+movement's scatter and perception's constants stay the model's)."""
 QUESTIONNAIRE_FILE_KEY = "questionnaire_file"
 """Not a field: a TOML file of ``[[questionnaire]]`` tables, read into ``questionnaire``."""
 CAMERA_GRAPH_KEY = "camera_graph"
@@ -81,6 +88,8 @@ def parse_study(text: str, source: str = "<study>") -> StudyConfig:
     top: dict[str, Any] = {}
     for key, value in data.items():
         if key in TABLES:
+            if key == "operator_params":
+                _check_operator_params(value, where)
             top[key] = _build(TABLES[key], value, key, where)
         elif key == "conditions":
             if not isinstance(value, list):
@@ -154,6 +163,18 @@ def parse_study(text: str, source: str = "<study>") -> StudyConfig:
         else:
             top[key] = value
     return _build(StudyConfig, top, "", where)
+
+
+def _check_operator_params(values: Any, where: _Locator) -> None:
+    if not isinstance(values, dict):
+        return  # _build says it must be a table
+    for key in values:
+        if key not in OPERATOR_PARAMS_KEYS:
+            raise StudyDefinitionError(
+                f"{where.at('operator_params', key)}: unknown key 'operator_params.{key}'. A "
+                f"study may change these of the model's constants: "
+                f"{', '.join(OPERATOR_PARAMS_KEYS)}."
+            )
 
 
 def _read_text(path: Path, named: str, missing: str) -> str:

@@ -6,8 +6,9 @@ from __future__ import annotations
 import dataclasses
 from typing import Any
 
+from arteleop.operator.simulated.params import OperatorParams
 from arteleop.study.definition import POINTING_UNUSED, StudyConfig
-from arteleop.study.study_file import TABLES
+from arteleop.study.study_file import OPERATOR_PARAMS_KEYS, TABLES
 from arteleop.teleop.trial_task import POINTING
 
 
@@ -98,6 +99,11 @@ _POINTING_HEADER = """\
 # Run it: arteleop study run THIS_FILE --out RUN_DIR
 """
 
+_OPERATOR_PARAMS_HELP = """
+# The simulated participants' constants changed from the model's
+# (docs/explanation/operator-model.md): a sensitivity run, to see how far an answer rests on one.
+"""
+
 _CONDITIONS_HELP = """\
 # Conditions that cross network delay with AR cues replace modalities and delay_ms, e.g.
 # [[conditions]]
@@ -144,8 +150,11 @@ def study_text(config: StudyConfig) -> str:
     for table in TABLES:
         if table in left_out:
             continue
-        out.append(f"\n[{table}]\n")
         sub = getattr(config, table)
+        if table == "operator_params":
+            out.append(_operator_params_text(sub))
+            continue
+        out.append(f"\n[{table}]\n")
         for f in dataclasses.fields(sub):
             out.append(_key_line(f.name, getattr(sub, f.name), f"{table}.{f.name}"))
     out.append("\n")
@@ -174,6 +183,19 @@ def study_text(config: StudyConfig) -> str:
     else:
         out.append(_PARTICIPANTS_HELP)
     return "".join(out)
+
+
+def _operator_params_text(params: OperatorParams) -> str:
+    """The model's constants the study changes, as a table; nothing where it changes none: a
+    study file does not invite a change of the model."""
+    model = OperatorParams()
+    changed = [k for k in OPERATOR_PARAMS_KEYS if getattr(params, k) != getattr(model, k)]
+    if not changed:
+        return ""
+    lines = [_OPERATOR_PARAMS_HELP, "[operator_params]\n"]
+    lines += [f"{k} = {_toml_value(getattr(params, k))}  # the model's: "
+              f"{_toml_value(getattr(model, k))}\n" for k in changed]  # fmt: skip
+    return "".join(lines)
 
 
 def _key_line(key: str, value: Any, path: str) -> str:

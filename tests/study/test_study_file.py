@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -18,6 +19,7 @@ from arteleop.study import (
     parse_study,
     study_text,
 )
+from arteleop.study.study_file import OPERATOR_PARAMS_KEYS
 
 
 def test_the_written_definition_reads_back_as_the_same_study() -> None:
@@ -53,6 +55,50 @@ def test_the_operator_and_filter_tables_reach_the_participants_and_trials() -> N
     assert trial_config(strict, StudySite(), spec).controller.hand_filter.min_cutoff_hz == 2.5
 
 
+def test_a_study_changes_a_constant_of_the_model_and_its_file_says_so() -> None:
+    """A sensitivity run's file names each changed constant beside the model's value; the
+    model's own study files are as before, without the table."""
+    from arteleop.operator import OperatorParams
+
+    changed = parse_study("[operator_params]\nmax_look_s = 3.0\nmax_setbacks = 4\n")
+    assert changed.operator_params == replace(OperatorParams(), max_look_s=3.0, max_setbacks=4)
+    text = study_text(changed)
+    assert "max_look_s = 3.0  # the model's: 1.5\nmax_setbacks = 4  # the model's: 2\n" in text
+    assert parse_study(text) == changed
+    assert first_difference(StudyConfig(), changed) == "operator_params.max_look_s"
+    assert "operator_params" not in study_text(StudyConfig())
+
+
+def test_the_constants_reach_each_trial_and_pointing_block(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """Each planned trial's operator has the study's constants, with the lag it believes
+    carried from its last trial; each pointing block begins with them."""
+    from arteleop.study import protocol
+    from arteleop.study.plan import plan_study
+    from arteleop.study.pointing_run import pointing_blocks
+    from arteleop.study.sites import StudySite
+
+    class Started(Exception):
+        pass
+
+    given = []
+
+    def operator(*_: object, params: object, **__: object) -> None:
+        given.append(params)
+        raise Started
+
+    monkeypatch.setattr(protocol, "trial_operator", operator)
+    study = parse_study("[familiarization]\ntrials = 0\n[operator_params]\nmax_look_s = 3.0\n")
+    with pytest.raises(Started):
+        protocol.run_planned_trial(study, StudySite(), ParticipantSpec("P01"),
+                                   plan_study(study)[0], believed_lag_s=0.4)  # fmt: skip
+    assert given == [replace(study.operator_params, familiar_lag_s=0.4)]
+    pointing = parse_study('task = "pointing"\n[[conditions]]\ncues = []\n'
+                           "[operator_params]\nmax_look_s = 3.0\n")  # fmt: skip
+    assert {b.params for b in pointing_blocks(pointing)} == {pointing.operator_params}
+
+
 def test_study_init_writes_the_commented_default(tmp_path: Path, capsys) -> None:
     path = tmp_path / "study.toml"
     assert main(["study", "init", str(path)]) == 0
@@ -72,7 +118,7 @@ def test_study_init_writes_the_commented_default(tmp_path: Path, capsys) -> None
          "questionnaire, seed, modalities, order, "
          "orders, trials_per_modality, timeout_s, delay_ms, depth_aids, camera_offset_mm, "
          "camera_offset_deg, camera_pose, start_xy_m, target_xy_m, familiarization, cohort, "
-         "participants, operator, hand_filter, conditions, pointing."),
+         "participants, operator, operator_params, hand_filter, conditions, pointing."),
         ("camera_offset_mm = [600, 0, 0]\n",
          "s.toml line 1: camera_offset_mm = [600.0, 0.0, 0.0]: expected three numbers (mm, "
          "camera frame) whose length is at most 500 mm."),
@@ -122,6 +168,16 @@ def test_study_init_writes_the_commented_default(tmp_path: Path, capsys) -> None
          "plain low-pass filter)."),
         ("[hand_filter]\nmin_cutoff_hz = 0\n",
          "s.toml line 2: hand_filter.min_cutoff_hz = 0.0: expected a cutoff of 0.01-100 Hz."),
+        ("[operator_params]\nmax_look_s = 0\n",
+         "s.toml line 2: operator_params.max_look_s = 0.0: expected > 0."),
+        ("\n[operator_params]\nhand_pitch_rad = 2\n",
+         "s.toml line 3: operator_params.hand_pitch_rad = 2.0: expected -1.571 to 1.571 (rad: a "
+         "quarter turn either way)."),
+        ("[operator_params]\nmax_setbacks = 1.5\n",
+         "s.toml line 2: operator_params.max_setbacks must be a whole number, got 1.5."),
+        ("[operator_params]\nperception = 1\n",
+         "s.toml line 2: unknown key 'operator_params.perception'. A study may change these of "
+         "the model's constants: " + ", ".join(OPERATOR_PARAMS_KEYS) + "."),
     ],
 )  # fmt: skip
 def test_bad_definitions_are_refused_naming_line_and_key(text: str, message: str) -> None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 from arteleop.checks import Bounds, check_fields
@@ -82,8 +83,11 @@ class OperatorParams:
             **dict.fromkeys(("peak_speed_m_s", "arrival_window_s",
                              "arrival_speed_m_s", "arrival_timeout_s", "gross_criterion_m",
                              "max_look_s", "grip_ramp_s", "own_error_prior_sd"), positive),
-            **dict.fromkeys(("motor_delay_s", "visuomotor_delay_s",
-                             "familiar_lag_s", "max_setbacks"), non_negative),
+            **dict.fromkeys(("motor_delay_s", "visuomotor_delay_s", "familiar_lag_s",
+                             "max_setbacks", "tremor_amplitude_m", "grip_wait_known_s",
+                             "grip_wait_unknown_s"), non_negative),
+            "hand_pitch_rad": Bounds(-math.pi / 2, math.pi / 2,
+                                     text="-1.571 to 1.571 (rad: a quarter turn either way)"),
             "lag_learning_rate": Bounds(0, 1, "a share"),
             "timing_weber": Bounds(0, 1, "a share of the wait"),
             "motion_threshold_m": Bounds(0, above=True),
