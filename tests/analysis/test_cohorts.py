@@ -156,3 +156,32 @@ def test_cohorts_of_other_designs_are_pooled_only_when_asked(tmp_path: Path, cap
         f"arteleop: error: {b / 'study.toml'}: not a study file (Invalid value (at end of "
         "document))\n"
     )
+
+
+def test_a_sensitivity_run_is_said_so_and_pooled_with_the_models_only_when_asked(
+    tmp_path: Path, capsys
+) -> None:
+    model, changed = (make_run(tmp_path / f"run{k}", seed=k, n=8, trajectories=False)
+                      for k in (1, 2))  # fmt: skip
+    (model / "study.toml").write_text(STUDY.format(name="s", seed=1, timeout=120.0, size=8))
+    (changed / "study.toml").write_text(
+        STUDY.format(name="s", seed=2, timeout=120.0, size=8)
+        + "[operator_params]\nmax_look_s = 3.0  # the model's: 1.5\n"
+    )
+    said = f"operator_params.max_look_s (missing in {model}, 3.0 here)"
+    assert _refusal([str(model), str(changed), "--out", str(tmp_path / "r")], capsys) == (
+        f"arteleop: error: {changed / 'study.toml'}: not the design of {model}: {said}. Cohorts "
+        "pooled must differ only in seed and size; give --allow-different-designs to compare "
+        "the designs deliberately\n"
+    )
+    where = changed / "study.toml"
+    note = (f"A sensitivity run: {changed}'s simulated participants have constants changed from "
+            f"the model's (max_look_s = 3.0; {where} [operator_params]).")  # fmt: skip
+    args = [str(model), str(changed), "--out", str(tmp_path / "r"), "--allow-different-designs"]
+    assert main(["analyze", *args]) == 0
+    assert f"note: {note}\n" in capsys.readouterr().out
+    assert main(["analyze", str(changed), "--out", str(tmp_path / "one")]) == 0
+    assert f"note: {note}\n" in capsys.readouterr().out
+    assert f"- {note}" in (tmp_path / "one" / "report.md").read_text()
+    assert main(["analyze", str(model), "--out", str(tmp_path / "model")]) == 0
+    assert "A sensitivity run" not in capsys.readouterr().out
