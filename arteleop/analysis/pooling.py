@@ -61,22 +61,25 @@ def check_cohorts(
     return notes
 
 
-def changed_constants_note(folder: Path) -> str | None:
-    """What a report on ``folder`` says when its study changed the simulated participant's
-    constants (its study.toml's ``[operator_params]``): a sensitivity run, not the model;
-    None for the model's own, or without a study.toml."""
-    path = folder / "study.toml"
-    if not path.is_file():
-        return None
-    try:
-        changed = tomllib.loads(path.read_text(encoding="utf-8")).get("operator_params")
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as err:
-        raise AnalysisInputError(f"{path}: not a study file ({err})") from None
-    if not changed:
-        return None
-    said = ", ".join(f"{k} = {v}" for k, v in changed.items())
-    return (f"A sensitivity run: {folder}'s simulated participants have constants changed from "
-            f"the model's ({said}; {path} [operator_params]).")  # fmt: skip
+def changed_constants_notes(folders: Sequence[Path]) -> list[str]:
+    """What a report on ``folders`` says where their studies changed the simulated
+    participant's constants (a study.toml's ``[operator_params]``): a sensitivity run, not the
+    model. One note for the folders that changed the same ones; none for the model's own."""
+    changed: dict[str, list[str]] = {}
+    for folder in folders:
+        path = folder / "study.toml"
+        if not path.is_file():
+            continue
+        try:
+            table = tomllib.loads(path.read_text(encoding="utf-8")).get("operator_params")
+        except (tomllib.TOMLDecodeError, UnicodeDecodeError) as err:
+            raise AnalysisInputError(f"{path}: not a study file ({err})") from None
+        if table:
+            said = ", ".join(f"{k} = {v}" for k, v in table.items())
+            changed.setdefault(said, []).append(str(folder))
+    return [f"A sensitivity run: the simulated participants of {', '.join(names)} have constants "
+            f"changed from the model's ({said}; study.toml's [operator_params])."
+            for said, names in changed.items()]  # fmt: skip
 
 
 def _check_not_repeated(a: Path, b: Path) -> None:

@@ -109,14 +109,12 @@ def check_report_folder(out: Path, sources: tuple[Path, ...], force: bool) -> No
 
 def _analyse_one(cmd: AnalyzeCommand, options: AnalysisOptions) -> int:
     from arteleop.analysis import analyse, load_study, write_report
-    from arteleop.analysis.pooling import changed_constants_note
+    from arteleop.analysis.pooling import changed_constants_notes
 
     study = load_study(cmd.sources[0], cmd.participants)
     result = analyse(study, options)
     source = cmd.sources[0]
-    changed = changed_constants_note(source if source.is_dir() else source.parent)
-    if changed is not None:
-        result.notes.insert(0, changed)
+    result.notes[:0] = changed_constants_notes([source if source.is_dir() else source.parent])
     files = write_report(study, result, options, cmd.out)
     n_people = result.trials["participant"].nunique()
     said = ", ".join(f"{outcome} {n}" for outcome, n in result.left_out.items())
@@ -182,7 +180,7 @@ def _analyse_pointing(tables: list[Path], out: Path) -> int:
 
 def _pool(cmd: AnalyzeCommand) -> int:
     from arteleop.analysis import check_cohorts, load_study, pool_cohorts, write_cohort_report
-    from arteleop.analysis.pooling import changed_constants_note
+    from arteleop.analysis.pooling import changed_constants_notes
 
     if cmd.participants is not None:
         raise ConfigurationError(
@@ -198,7 +196,7 @@ def _pool(cmd: AnalyzeCommand) -> int:
         seen[path.resolve()] = path
     studies = [load_study(path) for path in cmd.sources]
     notes = check_cohorts(cmd.sources, studies, cmd.allow_different_designs)
-    notes += [n for f in cmd.sources if (n := changed_constants_note(f)) is not None]
+    notes += changed_constants_notes(cmd.sources)
     trials = pool_cohorts(studies)
     files = write_cohort_report(cmd.sources, trials, cmd.out, notes)
     print(f"pooled {len(cmd.sources)} cohorts: {len(trials)} experimental trials of "

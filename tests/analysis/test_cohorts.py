@@ -174,9 +174,8 @@ def test_a_sensitivity_run_is_said_so_and_pooled_with_the_models_only_when_asked
         "pooled must differ only in seed and size; give --allow-different-designs to compare "
         "the designs deliberately\n"
     )
-    where = changed / "study.toml"
-    note = (f"A sensitivity run: {changed}'s simulated participants have constants changed from "
-            f"the model's (max_look_s = 3.0; {where} [operator_params]).")  # fmt: skip
+    note = (f"A sensitivity run: the simulated participants of {changed} have constants changed "
+            "from the model's (max_look_s = 3.0; study.toml's [operator_params]).")  # fmt: skip
     args = [str(model), str(changed), "--out", str(tmp_path / "r"), "--allow-different-designs"]
     assert main(["analyze", *args]) == 0
     assert f"note: {note}\n" in capsys.readouterr().out
@@ -185,3 +184,11 @@ def test_a_sensitivity_run_is_said_so_and_pooled_with_the_models_only_when_asked
     assert f"- {note}" in (tmp_path / "one" / "report.md").read_text()
     assert main(["analyze", str(model), "--out", str(tmp_path / "model")]) == 0
     assert "A sensitivity run" not in capsys.readouterr().out
+    # Cohorts of one sensitivity run: one note for them all.
+    again = make_run(tmp_path / "run3", seed=3, n=8, trajectories=False)
+    shutil.copy(changed / "study.toml", again / "study.toml")
+    assert main(["analyze", str(changed), str(again), "--out", str(tmp_path / "both")]) == 0
+    notes = [line for line in capsys.readouterr().out.splitlines() if line.startswith("note:")]
+    assert notes == [f"note: A sensitivity run: the simulated participants of {changed}, {again} "
+                     "have constants changed from the model's (max_look_s = 3.0; study.toml's "
+                     "[operator_params])."]  # fmt: skip
