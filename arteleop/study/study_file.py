@@ -16,6 +16,7 @@ from arteleop.errors import ConfigurationError, FrameGraphError, StudyDefinition
 from arteleop.operator.simulated.params import OperatorParams
 from arteleop.operator.simulated.traits import TraitDistribution
 from arteleop.study.definition import (
+    OPERATOR_PARAMS_KEYS,
     CohortConfig,
     ConditionSpec,
     FamiliarizationConfig,
@@ -35,11 +36,6 @@ TABLES: dict[str, type] = {
     "pointing": PointingDesign,
 }
 """The study file's tables and what each is read into."""
-OPERATOR_PARAMS_KEYS = tuple(
-    name for name, hint in get_type_hints(OperatorParams).items() if hint in (float, int)
-)
-"""The constants a study file may change in ``[operator_params]``: the plain numbers (a
-movement's scatter and perception's constants stay the model's)."""
 QUESTIONNAIRE_FILE_KEY = "questionnaire_file"
 """Not a field: a TOML file of ``[[questionnaire]]`` tables, read into ``questionnaire``."""
 CAMERA_GRAPH_KEY = "camera_graph"

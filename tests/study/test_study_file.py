@@ -67,6 +67,9 @@ def test_a_study_changes_a_constant_of_the_model_and_its_file_says_so() -> None:
     assert parse_study(text) == changed
     assert first_difference(StudyConfig(), changed) == "operator_params.max_look_s"
     assert "operator_params" not in study_text(StudyConfig())
+    # What a study file cannot say, a study cannot hold: its run folder would not record it.
+    with pytest.raises(StudyDefinitionError, match="a study may change only the plain-number"):
+        StudyConfig(operator_params=replace(OperatorParams(), tremor_hz=(5.0, 6.0)))
 
 
 def test_the_constants_reach_each_trial_and_pointing_block(
