@@ -77,7 +77,7 @@ def study_file_reference() -> str:
     """docs/reference/study-file.md: every key of a study definition, with its default and
     meaning, as ``arteleop study init`` writes them."""
     from arteleop.study import StudyConfig, study_text
-    from arteleop.study.study_file import OPERATOR_PARAMS_KEYS
+    from arteleop.study.study_constants import OPERATOR_PARAMS_KEYS
 
     return "\n".join([
         "# Study files",

@@ -13,8 +13,8 @@ mirror the original study (docs/explanation/study.md §4) and the operator model
 from __future__ import annotations
 
 import math
-from dataclasses import MISSING, dataclass, field, fields, replace
-from typing import Any, get_type_hints
+from dataclasses import MISSING, dataclass, field, fields
+from typing import Any
 
 from arteleop.analysis.data import network_label
 from arteleop.ar_features import LAYER_NAMES, MODALITIES, STUDY_MODALITIES, modality_cues
@@ -29,6 +29,7 @@ from arteleop.study.questionnaire_items import (
     QuestionnaireItem,
     check_items,
 )
+from arteleop.study.study_constants import check_study_constants
 from arteleop.teleop.hand_filter import HandFilterConfig
 from arteleop.teleop.trial_task import POINTING, trial_task
 
@@ -106,13 +107,6 @@ class ConditionSpec:
     def name(self) -> str:
         """The condition's name: its cue set and network profile (``predictive@500ms``)."""
         return f"{self.modality}@{network_label(self.round_trip_ms, self.jitter_ms, self.loss)}"
-
-
-OPERATOR_PARAMS_KEYS = tuple(
-    name for name, hint in get_type_hints(OperatorParams).items() if hint in (float, int)
-)
-"""The constants a study may change in ``[operator_params]``: the plain numbers (a movement's
-scatter, perception's constants and the outcomes seen stay the model's)."""
 
 
 @dataclass(frozen=True)
@@ -232,14 +226,7 @@ class StudyConfig:
         if self.seed < 0:
             raise StudyDefinitionError(f"seed = {self.seed}: expected a whole number, 0 or more.")
         check_items(self.questionnaire)
-        model = OperatorParams()
-        plain = {key: getattr(model, key) for key in OPERATOR_PARAMS_KEYS}
-        if replace(self.operator_params, **plain) != model:  # it differs in more than these
-            raise StudyDefinitionError(
-                "operator_params: a study may change only the plain-number constants "
-                f"({', '.join(OPERATOR_PARAMS_KEYS)}); a movement's scatter, perception's "
-                "constants and the outcomes seen stay the model's."
-            )
+        check_study_constants(self.operator_params)
         unknown = [m for m in self.modalities if not _is_cue_set(m)]
         if unknown or not self.modalities:
             raise StudyDefinitionError(

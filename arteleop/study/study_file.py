@@ -16,7 +16,6 @@ from arteleop.errors import ConfigurationError, FrameGraphError, StudyDefinition
 from arteleop.operator.simulated.params import OperatorParams
 from arteleop.operator.simulated.traits import TraitDistribution
 from arteleop.study.definition import (
-    OPERATOR_PARAMS_KEYS,
     CohortConfig,
     ConditionSpec,
     FamiliarizationConfig,
@@ -25,6 +24,7 @@ from arteleop.study.definition import (
 )
 from arteleop.study.pointing_design import PointingDesign
 from arteleop.study.questionnaire_items import QuestionnaireItem
+from arteleop.study.study_constants import refuse_unknown_constants
 from arteleop.teleop.hand_filter import HandFilterConfig
 
 TABLES: dict[str, type] = {
@@ -84,8 +84,8 @@ def parse_study(text: str, source: str = "<study>") -> StudyConfig:
     top: dict[str, Any] = {}
     for key, value in data.items():
         if key in TABLES:
-            if key == "operator_params":
-                _check_operator_params(value, where)
+            if key == "operator_params" and isinstance(value, dict):
+                refuse_unknown_constants(value, lambda k: where.at("operator_params", k))
             top[key] = _build(TABLES[key], value, key, where)
         elif key == "conditions":
             if not isinstance(value, list):
@@ -159,18 +159,6 @@ def parse_study(text: str, source: str = "<study>") -> StudyConfig:
         else:
             top[key] = value
     return _build(StudyConfig, top, "", where)
-
-
-def _check_operator_params(values: Any, where: _Locator) -> None:
-    if not isinstance(values, dict):
-        return  # _build says it must be a table
-    for key in values:
-        if key not in OPERATOR_PARAMS_KEYS:
-            raise StudyDefinitionError(
-                f"{where.at('operator_params', key)}: unknown key 'operator_params.{key}'. A "
-                f"study may change these of the model's constants: "
-                f"{', '.join(OPERATOR_PARAMS_KEYS)}."
-            )
 
 
 def _read_text(path: Path, named: str, missing: str) -> str:

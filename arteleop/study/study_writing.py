@@ -8,7 +8,8 @@ from typing import Any
 
 from arteleop.operator.simulated.params import OperatorParams
 from arteleop.study.definition import POINTING_UNUSED, StudyConfig
-from arteleop.study.study_file import OPERATOR_PARAMS_KEYS, TABLES
+from arteleop.study.study_constants import OPERATOR_PARAMS_KEYS
+from arteleop.study.study_file import TABLES
 from arteleop.teleop.trial_task import POINTING
 
 

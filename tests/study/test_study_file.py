@@ -19,7 +19,7 @@ from arteleop.study import (
     parse_study,
     study_text,
 )
-from arteleop.study.study_file import OPERATOR_PARAMS_KEYS
+from arteleop.study.study_constants import OPERATOR_PARAMS_KEYS
 
 
 def test_the_written_definition_reads_back_as_the_same_study() -> None:
