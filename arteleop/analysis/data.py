@@ -46,7 +46,7 @@ TRIAL_COLUMNS = (
     "completion_time_s", "placement_error_m", "placement_error_true_m", "normalized_jerk_xy",
     "ldlj_xy", "sparc_xy", "submovements_xy", "idle_share_xy", "grasp_attempts",
     "hand_path_length_m", "latency_median_ms", "colocation_error_px", "colocation_error_m",
-    "round_trip_ms", "jitter_ms", "loss", "believed_lag_s", "trajectory_file",
+    "round_trip_ms", "jitter_ms", "loss", "believed_lag_s", "saw_miss", "trajectory_file",
 )  # fmt: skip
 NETWORK_COLUMNS = ("round_trip_ms", "jitter_ms", "loss")
 """A trial's network profile; empty reads as none (0)."""
@@ -61,7 +61,7 @@ TRIAL_NUMERIC = (
     "placement_error_true_m", "normalized_jerk_xy", "ldlj_xy", "sparc_xy", "submovements_xy",
     "idle_share_xy", "grasp_attempts", "hand_path_length_m", "latency_median_ms",
     "colocation_error_px", "colocation_error_m", "round_trip_ms", "jitter_ms", "loss",
-    "believed_lag_s",
+    "believed_lag_s", "saw_miss",
 )  # fmt: skip
 PARTICIPANT_COLUMNS = (
     "participant", "age", "gender", "handedness", "avr_experience", "avr_hours",

@@ -17,6 +17,7 @@ from numpy.typing import NDArray
 from arteleop.errors import SimulationError
 from arteleop.operator import Expertise, OperatorTraits
 from arteleop.scene import RemoteSite
+from arteleop.study.carry import Carried
 from arteleop.study.definition import StudyConfig
 from arteleop.study.participants import ParticipantSpec
 from arteleop.study.plan import TrialSpec
@@ -24,6 +25,7 @@ from arteleop.study.sites import StudySite
 from arteleop.teleop import (
     ControllerConfig,
     NetworkConfig,
+    Outcome,
     TrialConfig,
     TrialResult,
     run_trial,
@@ -87,15 +89,16 @@ def run_planned_trial(
     site: StudySite,
     person: ParticipantSpec,
     spec: TrialSpec,
-    believed_lag_s: float | None = None,
+    brought: Carried | None = None,
 ) -> TrialRecord:
-    """Run one planned trial with the participant's synthetic operator, who brings to it the
-    display's lag as it believed it at the end of its last trial (``believed_lag_s``, s; None
-    for its first: the lag it knows from practice on the system, ``familiar_lag_s``)."""
+    """Run one planned trial with the participant's synthetic operator, who brings to it what
+    it carried from its last trial (None for its first: the lag it knows from practice on the
+    system, ``familiar_lag_s``, and no outcome seen); at the end it sees whether it missed
+    (:meth:`~arteleop.operator.SyntheticOperator.saw_miss`; a failure is a miss it knows)."""
     config = trial_config(study, site, spec)
     params = study.operator_params
-    if believed_lag_s is not None:
-        params = replace(params, familiar_lag_s=believed_lag_s)
+    if brought is not None:
+        params = replace(params, familiar_lag_s=brought.lag_s, seen_outcomes=brought.outcomes)
     start = time.perf_counter()
     with RemoteSite(config.site) as remote:
         source = trial_operator(
@@ -105,24 +108,37 @@ def run_planned_trial(
             traits=operator_traits(study, person),
         )
         result = run_trial(source, config, remote)
-    return trial_record(spec, result, time.perf_counter() - start, source.operator.lag_s)
+    operator, frame = source.operator, result.final_frame
+    missed = result.outcome is not Outcome.SUCCESS or (
+        frame is not None and operator.saw_miss(frame)
+    )
+    return trial_record(spec, result, time.perf_counter() - start, operator.lag_s, missed)
 
 
 def trial_record(
-    spec: TrialSpec, result: TrialResult, wall_s: float, believed_lag_s: float = float("nan")
+    spec: TrialSpec,
+    result: TrialResult,
+    wall_s: float,
+    believed_lag_s: float = float("nan"),
+    saw_miss: bool | None = None,
 ) -> TrialRecord:
     """What a study keeps of a planned trial's result, whoever the participant was; a synthetic
-    one's ``believed_lag_s`` (s) at the trial's end, NaN for a person."""
+    one's ``believed_lag_s`` (s) at the trial's end and whether it ``saw_miss``, NaN and None
+    (empty) for a person."""
     if result.trace is None:
         raise SimulationError("The trial recorded no trace although its config asked for one.")
-    row = trial_row(spec, {**result.to_row(), "believed_lag_s": believed_lag_s})
+    seen = {
+        "believed_lag_s": believed_lag_s,
+        "saw_miss": None if saw_miss is None else int(saw_miss),
+    }
+    row = trial_row(spec, {**result.to_row(), **seen})
     return TrialRecord(spec, row, result.trace, result.duration_s, wall_s)
 
 
 def trial_row(spec: TrialSpec, measured: dict[str, object]) -> dict[str, object]:
     """A planned trial's row of ``trials.csv``: the plan's columns around what was measured
-    (:meth:`~arteleop.teleop.TrialResult.to_row`'s columns and the operator's belief of the
-    lag; absent ones stay empty)."""
+    (:meth:`~arteleop.teleop.TrialResult.to_row`'s columns, the operator's belief of the lag and
+    whether it saw a miss; absent ones stay empty)."""
     return {
         "participant": spec.participant,
         "phase": spec.phase,

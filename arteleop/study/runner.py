@@ -11,8 +11,6 @@ Ray's equivalent). Whatever the order, the finished folder's CSVs are the same b
 from __future__ import annotations
 
 import contextlib
-import csv
-import math
 import multiprocessing
 import os
 import signal
@@ -26,8 +24,9 @@ from typing import Any, Protocol
 
 import pandas as pd
 
-from arteleop.analysis.data import PARTICIPANT_COLUMNS, QUESTIONNAIRE_COLUMNS, TRIAL_COLUMNS
+from arteleop.analysis.data import PARTICIPANT_COLUMNS, QUESTIONNAIRE_COLUMNS
 from arteleop.errors import RunFolderError
+from arteleop.study.carry import Carried, carried_after, line_carried, row_carried
 from arteleop.study.definition import StudyConfig
 from arteleop.study.participants import ParticipantSpec
 from arteleop.study.plan import EXPERIMENTAL, TrialSpec
@@ -202,22 +201,27 @@ def _execute(
     by_id = {p.id: p for p in people}
     count = len(plan) - len(pending)
     speed: list[tuple[float, float]] = []
-    ends = {key: _believed_lag_s(folder, key, line) for key, line in done.items()}
     previous = _previous_trials(plan)
+    ends: dict[tuple[str, int], Carried | None] = {}
+
+    def brought(spec: TrialSpec) -> Carried | None:
+        """What the participant brings to the trial: what it carried from its last one."""
+        before = previous[spec.key]
+        return None if before is None else ends.get(before)
+
+    for spec in plan:  # in each participant's order: each trial carries on from the last
+        if spec.key in done:
+            where = f"{folder.trials_path}, participant {spec.key[0]} trial {spec.key[1]}"
+            ends[spec.key] = carried_after(brought(spec), *line_carried(done[spec.key], where))
 
     def keep(record: TrialRecord) -> None:
         nonlocal count
         folder.append_trial(record.row, record.trace)
-        ends[record.spec.key] = _row_lag_s(record.row)
+        ends[record.spec.key] = carried_after(brought(record.spec), *row_carried(record.row))
         speed.append((record.duration_s, record.wall_s))
         count += 1
         if progress is not None:
             progress(record.spec, count, len(plan))
-
-    def brought(spec: TrialSpec) -> float | None:
-        """The lag the participant believes as the trial starts: its last trial's end."""
-        before = previous[spec.key]
-        return None if before is None else ends[before]
 
     # More processes than trials only costs memory (each holds a simulator).
     workers = min(workers or os.cpu_count() or 1, max(len(pending), 1))
@@ -318,13 +322,13 @@ def stop_workers(pool: ProcessPoolExecutor) -> None:
 
 
 def _run_in_worker(
-    study: StudyConfig, person: ParticipantSpec, spec: TrialSpec, believed_lag_s: float | None
+    study: StudyConfig, person: ParticipantSpec, spec: TrialSpec, brought: Carried | None
 ) -> TrialRecord:
     """One trial in a worker process; the worker keeps its :class:`StudySite` between trials."""
     global _WORKER_SITE
     if _WORKER_SITE is None:
         _WORKER_SITE = StudySite()
-    return run_planned_trial(study, _WORKER_SITE, person, spec, believed_lag_s)
+    return run_planned_trial(study, _WORKER_SITE, person, spec, brought)
 
 
 def _previous_trials(plan: Sequence[TrialSpec]) -> dict[tuple[str, int], tuple[str, int] | None]:
@@ -336,31 +340,6 @@ def _previous_trials(plan: Sequence[TrialSpec]) -> dict[tuple[str, int], tuple[s
         previous[spec.key] = last.get(spec.participant)
         last[spec.participant] = spec.key
     return previous
-
-
-def _row_lag_s(row: dict[str, object]) -> float | None:
-    """A trial's row's belief of the lag at its end (s); None for a person's (NaN)."""
-    value = float(row.get("believed_lag_s", math.nan))  # type: ignore[arg-type]
-    return None if math.isnan(value) else value
-
-
-def _believed_lag_s(folder: RunFolder, key: tuple[str, int], line: str) -> float | None:
-    """The lag the participant believed at the end of the trial ``key`` whose row of
-    trials.csv is ``line`` (s); None where the column is empty (a person's trial)."""
-    value = dict(zip(TRIAL_COLUMNS, next(csv.reader([line])), strict=True))["believed_lag_s"]
-    if value == "":
-        return None
-    try:
-        lag = float(value)
-    except ValueError:
-        lag = float("nan")
-    if not 0 <= lag < float("inf"):
-        raise RunFolderError(
-            f"{folder.trials_path}, participant {key[0]} trial {key[1]}, column believed_lag_s: "
-            f"{value!r}; expected seconds (0 or more) or empty. Correct the row or move it out "
-            "of the file, then resume."
-        )
-    return lag
 
 
 def participants_text(people: Sequence[ParticipantSpec]) -> str:

@@ -283,6 +283,11 @@ class DisplayFeed:
                 return frame
         return self._history[0]
 
+    @property
+    def last_frame(self) -> DisplayFrame | None:
+        """The newest camera frame's display content; None before the first."""
+        return self._history[-1] if self._history else None
+
     def _request(self, frame: DisplayFrame, applied_sample_time_s: float) -> None:
         # Thinned in the render process: the display shows no more, and a quarter of the
         # pixels is a quarter of the copying and the sensor model on the loop's core.

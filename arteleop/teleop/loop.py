@@ -232,10 +232,8 @@ class _Loop:
         the robot holds while the bowl settles and is tracked. ``state``: the site now.
         """
         control, timer = self.control, self.timer
-        frame = self.feed.seen_by_operator(t)
+        frame = self._as_seen(self.feed.seen_by_operator(t))
         predictor = self.predictor
-        if predictor is not None and predictor.predicted is not None:
-            frame = replace(frame, predicted=predictor.predicted)
         created_wall = time.perf_counter()
         with timer.stage("operator_input"):
             sample = self.source.sample(t, frame)
@@ -276,6 +274,13 @@ class _Loop:
                 state.gripper_m, state.gripper_closure, state.arm_q_rad, state.bowl_m,
             )  # fmt: skip
         return True
+
+    def _as_seen(self, frame: DisplayFrame) -> DisplayFrame:
+        """``frame`` as the operator sees it: with the newest prediction of the arm, if any."""
+        predictor = self.predictor
+        if predictor is not None and predictor.predicted is not None:
+            return replace(frame, predicted=predictor.predicted)
+        return frame
 
     def _status(self, t: float) -> TrialProgress:
         control, monitor = self.control, self.monitor
@@ -327,4 +332,5 @@ class _Loop:
             stages=self.timer.summary(),
             counts=counts,
             trace=None if self.trace is None else self.trace.columns(),
+            final_frame=None if (last := self.feed.last_frame) is None else self._as_seen(last),
         )

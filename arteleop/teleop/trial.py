@@ -22,7 +22,7 @@ from arteleop.analysis import (
     spectral_arc_length,
     submovement_count,
 )
-from arteleop.ar_features import modality_cues
+from arteleop.ar_features import DisplayFrame, modality_cues
 from arteleop.arrays import frozen_array
 from arteleop.errors import ConfigurationError
 from arteleop.scene import SiteConfig
@@ -177,6 +177,9 @@ class TrialResult:
             held samples; camera frames skipped; tracker renders skipped.
         trace: With ``TrialConfig.record_trace``, every control tick by the columns of
             :data:`~arteleop.teleop.trace.TRACE_COLUMNS`; else None.
+        final_frame: The display frame the trial ended on, as it reaches the operator a return
+            trip later: what a person sees of the outcome (without the point cloud unless the
+            camera was rendered); None before the first camera frame.
     """
 
     modality: str
@@ -199,6 +202,7 @@ class TrialResult:
     stages: list[StageStats]
     counts: dict[str, int]
     trace: dict[str, NDArray[np.float64]] | None = None
+    final_frame: DisplayFrame | None = None
 
     def __post_init__(self) -> None:
         for name in (

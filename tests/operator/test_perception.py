@@ -22,6 +22,7 @@ from arteleop.operator import (
     Perceived,
     PerceptionParams,
     PerceptualErrors,
+    PickAndPlace,
     perceive,
 )
 from arteleop.operator.simulated.acuity import (
@@ -32,6 +33,8 @@ from arteleop.operator.simulated.acuity import (
     judgement_sd,
     reading_sd_m,
 )
+from arteleop.operator.simulated.tasks.task import phase_named
+from arteleop.scene import BowlSpec
 from arteleop.transforms import make_transform
 from tests.ar_features.frames import display_frame
 
@@ -438,9 +441,32 @@ def test_the_operator_remembers_a_hidden_bowl_and_carries_it_with_the_hand() -> 
     carried = memory.bowl_m(look([0.7, 0.0, 0.1], None))
     np.testing.assert_allclose(carried, [0.8, -0.1, -0.1])  # moved with the gripper
     assert not memory.left_behind(look([0.7, 0.0, 0.1], [0.8, -0.1, -0.1]))
-    assert memory.left_behind(look([0.7, 0.0, 0.1], [0.6, -0.4, -0.2]))  # the grasp missed
+    # The grasp missed: the bowl is far below the lifted hand.
+    assert memory.left_behind(look([0.7, 0.0, 0.1], [0.6, -0.4, -0.2]))
+    # Lowered again elsewhere, the hand carries it at the left bowl's height, but far from it.
+    assert memory.left_behind(look([0.9, 0.1, 0.0], [0.6, -0.4, -0.2]))
+    # Held by its rim, the bowl hangs under the gripper, as far from it as the grasp found it.
+    assert not memory.left_behind(look([0.5, -0.3, 0.0], [0.5, -0.3, -0.245]))
     memory.release()
     np.testing.assert_array_equal(memory.bowl_m(look([0.7, 0.0, 0.1], None)), [0.6, -0.4, -0.2])
+
+
+def test_a_bowl_left_on_the_table_is_gone_back_for_while_lowering_too() -> None:
+    """Lowering over the target, the hand is near the table, so a bowl a missed grasp left
+    behind is no longer far below it, but a rim's radius away in the plane: reach for it."""
+    task = PickAndPlace(BowlSpec().grasp_offset_m(), np.zeros(3))
+    eye = np.eye(3) * 1e-4
+    at_grasp = Perceived(
+        np.array([0.6, -0.32, 0.05]), np.array([0.6, -0.4, 0.0]), np.zeros(3), True, True,
+        eye, eye, False,
+    )  # fmt: skip
+    task.gripped(phase_named(task, "close"), at_grasp)
+    lowering = replace(at_grasp, gripper_m=np.array([0.6, -0.12, 0.05]))  # 28 cm on
+    assert task.setback(phase_named(task, "lower"), lowering) == "reach"
+    carried = replace(lowering, bowl_m=np.array([0.6, -0.2, 0.0]))
+    assert task.setback(phase_named(task, "lower"), carried) is None
+    hanging = replace(lowering, bowl_m=np.array([0.6, -0.12, -0.044]))  # under the gripper
+    assert task.setback(phase_named(task, "lower"), hanging) is None
 
 
 def test_a_carried_bowl_is_judged_within_its_own_frame_under_the_predictive_ghost() -> None:

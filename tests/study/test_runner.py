@@ -17,7 +17,7 @@ import pytest
 from arteleop.blas_kernel import blas_description
 from arteleop.cli import main
 from arteleop.errors import RunFolderError
-from arteleop.operator import OperatorParams
+from arteleop.operator import OperatorParams, SeenOutcomes
 from arteleop.study import (
     CohortConfig,
     FamiliarizationConfig,
@@ -28,6 +28,7 @@ from arteleop.study import (
     run_study,
     study_text,
 )
+from arteleop.study.carry import Carried
 from arteleop.study.protocol import run_planned_trial
 
 # Two participants, two modalities, one practice trial: six trials of a few simulated seconds,
@@ -60,9 +61,9 @@ def chained(tmp_path_factory: pytest.TempPathFactory) -> tuple[dict[str, bytes],
     folder = tmp_path_factory.mktemp("series") / "run"
     given = []
 
-    def spy(study, site, person, spec, believed_lag_s=None):
-        given.append((spec.key, believed_lag_s))
-        return run_planned_trial(study, site, person, spec, believed_lag_s)
+    def spy(study, site, person, spec, brought=None):
+        given.append((spec.key, brought))
+        return run_planned_trial(study, site, person, spec, brought)
 
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr("arteleop.study.runner.run_planned_trial", spy)
@@ -76,16 +77,23 @@ def series(chained: tuple[dict[str, bytes], list, Path]) -> dict[str, bytes]:
     return chained[0]
 
 
-def test_each_trial_brings_the_lag_believed_at_the_end_of_the_one_before(
+def test_each_trial_brings_the_lag_and_the_misses_seen_in_the_ones_before(
     chained: tuple[dict[str, bytes], list, Path],
 ) -> None:
     files, given, _ = chained
     lines = files["trials.csv"].decode().splitlines()
-    column = lines[0].split(",").index("believed_lag_s")
-    ends = {(f[0], int(f[2])): float(f[column]) for f in (x.split(",") for x in lines[1:])}
+    header = lines[0].split(",")
+    rows = [dict(zip(header, line.split(","), strict=True)) for line in lines[1:]]
+    ends = {(r["participant"], int(r["trial_index"])): float(r["believed_lag_s"]) for r in rows}
+    # Every trial of 8 s or less times out: a failure is a miss the participant knows.
+    assert [(r["outcome"], r["saw_miss"]) for r in rows] == [("timeout", "1")] * 6
+
+    def carried(person: str, last: int) -> Carried:
+        return Carried(ends[person, last], SeenOutcomes(trials=last, misses=last))
+
     assert given == [
-        (("P01", 1), None), (("P01", 2), ends["P01", 1]), (("P01", 3), ends["P01", 2]),
-        (("P02", 1), None), (("P02", 2), ends["P02", 1]), (("P02", 3), ends["P02", 2]),
+        (("P01", 1), None), (("P01", 2), carried("P01", 1)), (("P01", 3), carried("P01", 2)),
+        (("P02", 1), None), (("P02", 2), carried("P02", 1)), (("P02", 3), carried("P02", 2)),
     ]  # fmt: skip
     familiar = OperatorParams().familiar_lag_s
     # The practice trial is too short to teach it anything; the next ones teach it a little.
@@ -189,22 +197,29 @@ def test_a_run_killed_at_a_random_moment_resumes_to_the_same_bytes(
     assert (folder / "report" / "report.md").is_file()
 
 
-def test_resume_refuses_a_belief_of_the_lag_that_is_not_seconds(
-    chained: tuple[dict[str, bytes], list, Path], tmp_path: Path
+@pytest.mark.parametrize(
+    ("column", "value", "expected"),
+    [("believed_lag_s", "soon", "seconds (0 or more) or empty"), ("saw_miss", "2", "0 or 1")],
+)
+def test_resume_refuses_what_a_participant_carried_that_cannot_be_read(
+    chained: tuple[dict[str, bytes], list, Path],
+    tmp_path: Path,
+    column: str,
+    value: str,
+    expected: str,
 ) -> None:
     folder = tmp_path / "run"
     shutil.copytree(chained[2], folder)
     trials = folder / "trials.csv"
     header, *rows = trials.read_text().splitlines()
-    column = header.split(",").index("believed_lag_s")
     fields = rows[1].split(",")
-    fields[column] = "soon"
+    fields[header.split(",").index(column)] = value
     trials.write_text("\n".join([header, rows[0], ",".join(fields), *rows[2:5]]) + "\n")
     with pytest.raises(RunFolderError) as err:
         resume_study(folder, workers=1)
     assert str(err.value) == (
-        f"{trials}, participant P01 trial 2, column believed_lag_s: 'soon'; expected seconds (0 "
-        "or more) or empty. Correct the row or move it out of the file, then resume."
+        f"{trials}, participant P01 trial 2, column {column}: {value!r}; expected {expected}. "
+        "Correct the row or move it out of the file, then resume."
     )
     assert trials.read_text().count("\n") == 1 + 5  # nothing run, nothing set aside
 

@@ -10,6 +10,7 @@ import pytest
 
 from arteleop.cli import main
 from arteleop.errors import StudyDefinitionError
+from arteleop.operator import SeenOutcomes
 from arteleop.study import (
     CohortConfig,
     ParticipantSpec,
@@ -19,6 +20,7 @@ from arteleop.study import (
     parse_study,
     study_text,
 )
+from arteleop.study.carry import Carried
 from arteleop.study.study_constants import OPERATOR_PARAMS_KEYS
 
 
@@ -95,8 +97,10 @@ def test_the_constants_reach_each_trial_and_pointing_block(
     study = parse_study("[familiarization]\ntrials = 0\n[operator_params]\nmax_look_s = 3.0\n")
     with pytest.raises(Started):
         protocol.run_planned_trial(study, StudySite(), ParticipantSpec("P01"),
-                                   plan_study(study)[0], believed_lag_s=0.4)  # fmt: skip
-    assert given == [replace(study.operator_params, familiar_lag_s=0.4)]
+                                   plan_study(study)[0],
+                                   Carried(0.4, SeenOutcomes(3, 1)))  # fmt: skip
+    carried = {"familiar_lag_s": 0.4, "seen_outcomes": SeenOutcomes(3, 1)}
+    assert given == [replace(study.operator_params, **carried)]
     pointing = parse_study('task = "pointing"\n[[conditions]]\ncues = []\n'
                            "[operator_params]\nmax_look_s = 3.0\n")  # fmt: skip
     assert {b.params for b in pointing_blocks(pointing)} == {pointing.operator_params}

@@ -36,6 +36,9 @@ def test_full_ar_places_the_bowl_within_5_cm_in_5_of_6_trials(site_config: SiteC
     for result in run_each(_full_trial, [(site_config, seed) for seed in range(6)]):
         outcomes.append(result.outcome.value)
         assert result.to_row()["colocation_error_px"] == 0.0  # a perfect registration
+        # What the operator sees of the outcome: the camera frame the trial ended on.
+        frame = result.final_frame
+        assert frame is not None and 0 <= result.duration_s - frame.time_s < 1 / 30, frame
         errors.append(result.placement_error_true_m if result.placed else np.inf)
     within = sum(e <= 0.05 for e in errors)
     assert within >= 5, f"outcomes {outcomes}, errors (m) {np.round(errors, 3)}"

@@ -49,11 +49,17 @@ class BowlMemory:
         self.in_hand_cov = np.zeros((3, 3))
 
     def left_behind(self, seen: Perceived, drop_m: float = 0.07) -> bool:
-        """A look shows the bowl held a moment ago more than ``drop_m`` below where the hand
-        should carry it: the grasp missed and the bowl stayed on the table. (Judged in height:
-        a held bowl tilts and the estimates err by centimetres, but a lift is 15 cm.)"""
+        """A look shows the bowl held a moment ago away from where the hand holds it: more than
+        ``drop_m`` below where the hand should carry it, or farther than ``drop_m`` beyond the
+        reach of the hold from the gripper (the bowl's frame is where the grasp found it from
+        the grasp point, however the bowl swings about it). The grasp missed and the bowl
+        stayed on the table. (A held bowl hangs from its rim and the estimates err by
+        centimetres, but a lift is 15 cm; and lowering, a bowl left on the table is no longer
+        far below the hand, but as far from it as it was from the target.)"""
         if seen.bowl_m is None or self._in_hand_m is None:
             return False
         # Compared within the frame the bowl is seen in: its own gripper, not the lead's.
-        expected = seen.gripper_m - seen.lead_m + self._in_hand_m
-        return bool(expected[2] - seen.bowl_m[2] > drop_m)
+        gripper = seen.gripper_m - seen.lead_m
+        below = (gripper + self._in_hand_m)[2] - seen.bowl_m[2]
+        beyond = np.linalg.norm(seen.bowl_m - gripper) - np.linalg.norm(self._in_hand_m)
+        return bool(below > drop_m or beyond > drop_m)

@@ -29,6 +29,8 @@ class PhaseCriterion:
         factor (at least 1) its covariance falls short by, the same all trial."""
         self._phase: TaskPhase | None = None
         self._correcting_from_s: float | None = None  # the primary's arrival in this phase
+        self.accepted_m: dict[str, float] = {}
+        """The criterion (m) each of the task's phases was last accepted at, by name."""
 
     def enter(self, phase: TaskPhase | None) -> None:
         """A phase begins (None: one of the operator's own): no effort spent in it yet."""
@@ -39,6 +41,11 @@ class PhaseCriterion:
         """The phase's movement has come to rest at ``t`` (s): correcting starts, once."""
         if self._correcting_from_s is None:
             self._correcting_from_s = t
+
+    def accept(self, t: float) -> None:
+        """The operator is sure enough at ``t`` (s) that the phase's goal is met."""
+        if self._phase is not None:
+            self.accepted_m[self._phase.name] = self.at(t)
 
     def task_m(self) -> float | None:
         """The task's own criterion for the phase (m); None where it demands no precision."""

@@ -1,18 +1,15 @@
 """A synthetic operator who does a task through the teleoperation system: a model of a person,
 not a replayed path (docs/explanation/operator-model.md gives every constant with its source).
 
-What is to be done is the task's (:mod:`arteleop.operator.simulated.tasks`: phases, goals judged
-from the display, criteria); how, the operator's, the same for every task. It **moves** in
-minimum-jerk submovements timed to minimise the expected time to the criterion
-(:mod:`.submovements`), **watches** the display until the gripper it shows is still (:mod:`.watch`),
-**looks**, glance after glance, until it is sure either way (:mod:`.look`, :mod:`.perception`,
-:mod:`.belief`), and **homes in** during a movement where the display shows the gripper and the
-goal, with corrections spaced so that each one's effect is on the display before the next
-(intermittent control), acting on what it sees, a round trip old, and predicting from its efference
-copy over the lag it believes. Before the task it holds the calibration posture, aligns its hand on
-the resting gripper and waits for the display to show the robot engaged. A cue changes it only
-through what the display lets it see. Its output is a hand pose in the torso frame and a grip value;
-the loop turns them into IMU signals.
+What is to be done is the task's (:mod:`arteleop.operator.simulated.tasks`); how, the
+operator's, the same for every task. It **moves** in minimum-jerk submovements timed to minimise
+the expected time to the criterion (:mod:`.submovements`), **watches** the display until the
+gripper it shows is still (:mod:`.watch`), **looks**, glance after glance, until it is sure
+either way (:mod:`.look`, :mod:`.perception`, :mod:`.belief`), and **homes in** during a movement
+where the display shows the gripper and the goal, with corrections spaced so that each one's
+effect is on the display before the next (intermittent control), predicting from its efference
+copy over the lag it believes; after the task it sees whether it missed (:mod:`.outcome`). A cue
+changes it only through what the display lets it see. Its output: a hand pose and a grip.
 """
 
 from __future__ import annotations
@@ -32,6 +29,7 @@ from arteleop.operator.simulated.criterion import PhaseCriterion
 from arteleop.operator.simulated.hand import Hand, Tremor
 from arteleop.operator.simulated.look import Look
 from arteleop.operator.simulated.mark_memory import MarkMemory
+from arteleop.operator.simulated.outcome import sure_missed
 from arteleop.operator.simulated.params import OperatorParams
 from arteleop.operator.simulated.perception import Perceived, judgeable_marks, perceive
 from arteleop.operator.simulated.perceptual_errors import PerceptualErrors
@@ -117,6 +115,12 @@ class SyntheticOperator:
         """Start time (s) of the movement under way; None between movements."""
         return self.hand.moves[0].start_s if self.hand.moves else None
 
+    def saw_miss(self, view: DisplayFrame) -> bool:
+        """Whether a look at the display the trial ended on shows a sure miss (:mod:`.outcome`)."""
+        self._errors.new_look()
+        c = self._criterion
+        return sure_missed(self.task, self._glance(view), self.traits, c.error_scale, c.accepted_m)
+
     def stopped(self, time_s: float) -> bool:
         """Whether the task, one that ends the trial, is done, its last wait over at ``time_s``."""
         return self.task.ends_trial and self.phase == DONE and time_s >= self._wait_until
@@ -141,10 +145,6 @@ class SyntheticOperator:
         return p.arrival_window_s + self.lag_s + self._look.cost_s + p.motor_delay_s
 
     # -- moving ----------------------------------------------------------------------------------
-    def _hand_delta(self, gripper_delta_m: NDArray[np.float64]) -> NDArray[np.float64]:
-        """The hand's step (m) that moves the gripper by ``gripper_delta_m`` (m)."""
-        return self._hand_per_gripper @ gripper_delta_m
-
     def _move(self, t: float, hand_delta: NDArray[np.float64], start_s: float) -> None:
         """Add a submovement of the hand by ``hand_delta`` (m) from ``start_s`` (s), timed by the
         planner, its endpoint scattered by its speed."""
@@ -213,6 +213,7 @@ class SyntheticOperator:
         if accept is None:  # not sure either way: look again
             return
         if accept:
+            self._criterion.accept(t)
             self._advance(t)
         else:
             self._correct(t, error)
@@ -223,7 +224,7 @@ class SyntheticOperator:
         if self._moved_in_phase:
             self.corrections_total += 1
         self._moved_in_phase = True
-        self._move(t, self._hand_delta(error), t + self.p.motor_delay_s)
+        self._move(t, self._hand_per_gripper @ error, t + self.p.motor_delay_s)
         primary = self.hand.moves[-1]
         self._homing_from_s = primary.start_s + 0.5 * primary.duration_s
         self._homing_until_s = primary.start_s + primary.duration_s
@@ -271,15 +272,14 @@ class SyntheticOperator:
             return
         self.corrections_total += 1
         self._last_amend_s = t
-        self._move(t, self._hand_delta(error), t + p.motor_delay_s)
+        self._move(t, self._hand_per_gripper @ error, t + p.motor_delay_s)
 
     def _set_back(self, t: float, name: str) -> None:
         """A look shows the task went wrong: open the hand and go back to phase ``name``."""
         self.setbacks += 1
         self._grip = 0.0
         self._enter(phase_named(self.task, name), t)
-        self._mode = _Mode.WAIT
-        self._wait_until = t + self.p.grip_ramp_s
+        self._mode, self._wait_until = _Mode.WAIT, t + self.p.grip_ramp_s
 
     def _enter(self, phase: TaskPhase | str, t: float) -> None:
         """Begin one of the task's phases, or one of the operator's own (a name)."""

@@ -27,6 +27,7 @@ RETRACT = TaskPhase("retract")  # straight up from where the hand let go, to cle
 HOME = TaskPhase("home")  # back to rest: the arm leaves the camera's view of the bowl
 _GRASP = (REACH, DESCEND)
 _PLACE = (TRANSPORT, LOWER)
+_CARRY = (LIFT, TRANSPORT, LOWER)  # the bowl should be in the hand
 _UP = np.array([0.0, 0.0, 1.0])
 
 
@@ -53,6 +54,7 @@ class PickAndPlace:
     ends_trial = False
     aims_gripper = False
     marks: tuple[str, ...] = ()
+    outcome_phase = LOWER  # the bowl resting off the target is a miss the person can see
 
     def __init__(
         self,
@@ -112,7 +114,7 @@ class PickAndPlace:
             self.memory.release()
 
     def setback(self, phase: TaskPhase, seen: Perceived) -> str | None:
-        if phase not in (LIFT, TRANSPORT) or not self.memory.left_behind(seen):
+        if phase not in _CARRY or not self.memory.left_behind(seen):
             return None
         # The bowl stayed on the table: reach for it again, where it was seen just now.
         self.memory.release()

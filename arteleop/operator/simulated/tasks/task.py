@@ -86,6 +86,9 @@ class Task(Protocol):
             (:data:`~arteleop.operator.simulated.mark_judging.MARK_JUDGEMENTS`: ``"start"``, the
             start's cross); a task without the attribute judges none. What is seen of them is
             ``Perceived.marks``: a task's own judgements are not fields of every glance.
+        outcome_phase: The phase whose goal, judged on the display the trial ended on, says
+            whether the person sees that it missed (:mod:`~arteleop.operator.simulated.outcome`);
+            a task without the attribute, or with None, leaves its misses to be told.
     """
 
     phases: tuple[TaskPhase, ...]
