@@ -94,7 +94,9 @@ def run_planned_trial(
     """Run one planned trial with the participant's synthetic operator, who brings to it what
     it carried from its last trial (None for its first: the lag it knows from practice on the
     system, ``familiar_lag_s``, and no outcome seen); at the end it sees whether it missed
-    (:meth:`~arteleop.operator.SyntheticOperator.saw_miss`; a failure is a miss it knows)."""
+    (:meth:`~arteleop.operator.SyntheticOperator.saw_miss`: a bowl let go on the table is judged
+    on the display; a trial that ended before, in time or with the bowl dropped, is a miss it
+    knows)."""
     config = trial_config(study, site, spec)
     params = study.operator_params
     if brought is not None:
@@ -109,9 +111,10 @@ def run_planned_trial(
         )
         result = run_trial(source, config, remote)
     operator, frame = source.operator, result.final_frame
-    missed = result.outcome is not Outcome.SUCCESS or (
-        frame is not None and operator.saw_miss(frame)
-    )
+    # Let go on the table, the bowl is judged where the display shows it (the tracker that lost
+    # it is the system's failure, not one the person sees); any other failure it knows.
+    looks = result.outcome in (Outcome.SUCCESS, Outcome.TRACKING_LOST) and frame is not None
+    missed = operator.saw_miss(frame) if looks else result.outcome is not Outcome.SUCCESS
     return trial_record(spec, result, time.perf_counter() - start, operator.lag_s, missed)
 
 

@@ -1,11 +1,12 @@
 """Run a study: plan it, run its trials through an executor, keep every trial as it ends.
 
 Each trial has its own site and seed; a participant's trials run one after the other, each
-bringing what the participant believed of the display's lag at the end of the one before (a
-person adapts to a delay over many trials), and participants run side by side on any worker: a
-process per core by default, or any :class:`concurrent.futures.Executor`, such as a Dask
-cluster's (``distributed.Client(...).get_executor()``; docs/guides/running-a-study.md shows
-Ray's equivalent). Whatever the order, the finished folder's CSVs are the same bytes.
+bringing what the participant carried from the one before (its belief of the display's lag, as
+a person adapts to a delay over many trials, and the misses it has seen), and participants run
+side by side on any worker: a process per core by default, or any
+:class:`concurrent.futures.Executor`, such as a Dask cluster's
+(``distributed.Client(...).get_executor()``; docs/guides/running-a-study.md shows Ray's
+equivalent). Whatever the order, the finished folder's CSVs are the same bytes.
 """
 
 from __future__ import annotations
@@ -202,22 +203,38 @@ def _execute(
     count = len(plan) - len(pending)
     speed: list[tuple[float, float]] = []
     previous = _previous_trials(plan)
+    following = {before: key for key, before in previous.items() if before is not None}
     ends: dict[tuple[str, int], Carried | None] = {}
+    # What each trial already in trials.csv ended with: read once, carried on from in order.
+    ended = {
+        key: line_carried(line, f"{folder.trials_path}, participant {key[0]} trial {key[1]}")
+        for key, line in done.items()
+    }
 
-    def brought(spec: TrialSpec) -> Carried | None:
+    def brought(key: tuple[str, int]) -> Carried | None:
         """What the participant brings to the trial: what it carried from its last one."""
-        before = previous[spec.key]
-        return None if before is None else ends.get(before)
+        before = previous[key]
+        return None if before is None else ends[before]
 
-    for spec in plan:  # in each participant's order: each trial carries on from the last
-        if spec.key in done:
-            where = f"{folder.trials_path}, participant {spec.key[0]} trial {spec.key[1]}"
-            ends[spec.key] = carried_after(brought(spec), *line_carried(done[spec.key], where))
+    def carry_on(key: tuple[str, int] | None) -> None:
+        """What the participant carries from the trial ``key``, and from each trial after it
+        already in trials.csv (one set aside and run again reaches those after it)."""
+        while key is not None and key in ended:
+            before = previous[key]
+            if before is not None and before not in ends:
+                return  # it carries on once the trial before it has run again
+            ends[key] = carried_after(brought(key), *ended[key])
+            key = following.get(key)
+
+    for spec in plan:
+        carry_on(spec.key)
 
     def keep(record: TrialRecord) -> None:
         nonlocal count
         folder.append_trial(record.row, record.trace)
-        ends[record.spec.key] = carried_after(brought(record.spec), *row_carried(record.row))
+        key = record.spec.key
+        ends[key] = carried_after(brought(key), *row_carried(record.row))
+        carry_on(following.get(key))
         speed.append((record.duration_s, record.wall_s))
         count += 1
         if progress is not None:
@@ -227,10 +244,10 @@ def _execute(
     workers = min(workers or os.cpu_count() or 1, max(len(pending), 1))
     if executor is None and (workers == 1 or len(pending) <= 1):
         for spec in pending:  # plan order: each participant's trials in order
-            keep(run_planned_trial(study, site, by_id[spec.participant], spec, brought(spec)))
+            keep(run_planned_trial(study, site, by_id[spec.participant], spec, brought(spec.key)))
     else:
-        # A participant's trials run one after the other, each bringing the last one's belief
-        # of the lag; participants run side by side.
+        # A participant's trials run one after the other, each bringing what the last one
+        # ended with (the lag believed, the misses seen); participants run side by side.
         waiting = {p: [s for s in pending if s.participant == p] for p in by_id}
         running: dict[Future[TrialRecord], str] = {}
         fork = multiprocessing.get_context("fork")
@@ -240,7 +257,7 @@ def _execute(
                 if waiting[participant]:
                     spec = waiting[participant].pop(0)
                     future = pool.submit(_run_in_worker, study, by_id[participant], spec,
-                                         brought(spec))  # fmt: skip
+                                         brought(spec.key))  # fmt: skip
                     running[future] = participant
 
             for participant in by_id:

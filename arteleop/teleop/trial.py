@@ -178,8 +178,8 @@ class TrialResult:
         trace: With ``TrialConfig.record_trace``, every control tick by the columns of
             :data:`~arteleop.teleop.trace.TRACE_COLUMNS`; else None.
         final_frame: The display frame the trial ended on, as it reaches the operator a return
-            trip later: what a person sees of the outcome (without the point cloud unless the
-            camera was rendered); None before the first camera frame.
+            trip later: what a person sees of the outcome (the frame's content, without its
+            point cloud); None before the first camera frame.
     """
 
     modality: str

@@ -3,10 +3,24 @@
 from dataclasses import replace
 
 import numpy as np
+import pytest
 
-from arteleop.operator import OperatorTraits, Perceived, PickAndPlace, PointingTask
+from arteleop.ar_features import ArCues
+from arteleop.operator import (
+    ArmModel,
+    CalibrationPosture,
+    OperatorParams,
+    OperatorTraits,
+    Perceived,
+    PickAndPlace,
+    PointingTask,
+    SyntheticOperator,
+)
+from arteleop.operator.simulated.criterion import PhaseCriterion
 from arteleop.operator.simulated.outcome import sure_missed
 from arteleop.scene import BowlSpec
+from arteleop.transforms import make_transform
+from tests.ar_features.frames import display_frame
 
 TARGET = np.array([0.70, -0.20, 0.0])
 TRAITS = OperatorTraits()  # stops within 10 mm of the target, 95 % sure
@@ -49,3 +63,31 @@ def test_a_task_without_an_outcome_to_judge_sees_no_miss() -> None:
     told = PickAndPlace(BowlSpec().grasp_offset_m(), np.zeros(3))
     told.outcome_phase = None  # type: ignore[assignment]
     assert not sure_missed(told, seen, TRAITS, 1.0, {})
+
+
+def test_the_last_look_judges_the_bowl_drawn_against_the_target_mesh() -> None:
+    """Through the operator, on display frames: the bowl let go on the target mesh, or 30 mm off
+    it, the gripper risen 10 cm above it."""
+    task = PickAndPlace(BowlSpec().grasp_offset_m(), np.zeros(3))
+    rng = np.random.default_rng(0)
+    operator = SyntheticOperator(task, lambda p: p, ArmModel(), CalibrationPosture(), rng,
+                                 OperatorParams(), TRAITS)  # fmt: skip
+
+    def resting(off_m: float):
+        bowl = np.array([0.68, -0.10 + off_m, -0.2])
+        gripper = make_transform(np.diag([1.0, -1.0, -1.0]), bowl + [0.0, 0.078, 0.155])
+        cues = ArCues(target_mesh=True)
+        return display_frame(bowl_m=bowl, T_base_gripper=gripper, cues=cues)
+
+    assert not operator.saw_miss(resting(0.0))
+    assert operator.saw_miss(resting(0.030))
+
+
+def test_the_criterion_a_phase_was_accepted_at_is_kept_loosened_by_the_effort_spent() -> None:
+    task = PickAndPlace(BowlSpec().grasp_offset_m(), np.zeros(3))
+    criterion = PhaseCriterion(task, TRAITS, OperatorParams())
+    lower = next(p for p in task.phases if p.name == "lower")
+    criterion.enter(lower)
+    criterion.arrived(2.0)
+    criterion.accept(6.0)  # 4 s of correcting at urgency 8 s: half as loose again
+    assert criterion.accepted_m == {"lower": pytest.approx(0.010 * 1.5)}

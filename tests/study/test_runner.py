@@ -197,6 +197,32 @@ def test_a_run_killed_at_a_random_moment_resumes_to_the_same_bytes(
     assert (folder / "report" / "report.md").is_file()
 
 
+def test_resume_carries_on_through_a_trial_run_again(
+    chained: tuple[dict[str, bytes], list, Path], tmp_path: Path
+) -> None:
+    """P01's first trial lost its trajectory (set aside, run again) and its third is not run
+    yet: the third brings what the second carried, the misses of the first among them."""
+    files, given, original = chained
+    folder = tmp_path / "run"
+    shutil.copytree(original, folder)
+    (folder / "trajectories" / "P01" / "1.csv").unlink()
+    (folder / "trajectories" / "P01" / "3.csv").unlink()
+    trials = folder / "trials.csv"
+    header, *rows = trials.read_text().splitlines()
+    trials.write_text("\n".join([header, rows[0], rows[1], *rows[3:]]) + "\n")
+    again = []
+
+    def spy(study, site, person, spec, brought=None):
+        again.append((spec.key, brought))
+        return run_planned_trial(study, site, person, spec, brought)
+
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr("arteleop.study.runner.run_planned_trial", spy)
+        resume_study(folder, workers=1)
+    assert again == [given[0], given[2]]
+    assert {k: v for k, v in _files(folder).items() if k != "trials-set-aside.csv"} == files
+
+
 @pytest.mark.parametrize(
     ("column", "value", "expected"),
     [("believed_lag_s", "soon", "seconds (0 or more) or empty"), ("saw_miss", "2", "0 or 1")],

@@ -8,9 +8,9 @@ cues, against the criterion it accepted that phase at (loosened by the effort it
 it settled for is no miss to it), and counts a miss only where it is as sure that the outcome
 is outside it as it must be sure, to stop, that it is inside (its ``confidence``): a miss it
 cannot see on the display it does not learn of, and one the display shows clearly it does. A
-trial that did not end in success (the bowl not placed in time, dropped) is a miss it knows
-without looking. What it learns it carries to the next trial
-(:class:`~arteleop.operator.SeenOutcomes`).
+trial that ended before the bowl was let go on the table (in time, or dropped) is a miss it
+knows without looking (:func:`~arteleop.study.protocol.run_planned_trial`). What it learns it
+carries to the next trial (:class:`~arteleop.operator.SeenOutcomes`).
 """
 
 from __future__ import annotations
