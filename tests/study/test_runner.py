@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import shutil
@@ -9,6 +10,7 @@ import signal
 import subprocess
 import sys
 import time
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -59,7 +61,17 @@ def chained(tmp_path_factory: pytest.TempPathFactory) -> tuple[dict[str, bytes],
     """The small study in series: its files, each trial's (participant, trial_index) with the
     lag its operator was given to believe at the start, and the run folder."""
     folder = tmp_path_factory.mktemp("series") / "run"
-    given = []
+    given: list = []
+    with _brought_to(given):
+        run = run_study(SMALL, folder, workers=1)
+    assert run.ran == 6 and len(run.trials) == 6
+    return _files(folder), given, folder
+
+
+@contextlib.contextmanager
+def _brought_to(given: list) -> Iterator[None]:
+    """Within: each trial the runner runs adds its (participant, trial_index) and what its
+    participant brought to it to ``given``."""
 
     def spy(study, site, person, spec, brought=None):
         given.append((spec.key, brought))
@@ -67,9 +79,7 @@ def chained(tmp_path_factory: pytest.TempPathFactory) -> tuple[dict[str, bytes],
 
     with pytest.MonkeyPatch.context() as patch:
         patch.setattr("arteleop.study.runner.run_planned_trial", spy)
-        run = run_study(SMALL, folder, workers=1)
-    assert run.ran == 6 and len(run.trials) == 6
-    return _files(folder), given, folder
+        yield
 
 
 @pytest.fixture(scope="module")
@@ -210,14 +220,8 @@ def test_resume_carries_on_through_a_trial_run_again(
     trials = folder / "trials.csv"
     header, *rows = trials.read_text().splitlines()
     trials.write_text("\n".join([header, rows[0], rows[1], *rows[3:]]) + "\n")
-    again = []
-
-    def spy(study, site, person, spec, brought=None):
-        again.append((spec.key, brought))
-        return run_planned_trial(study, site, person, spec, brought)
-
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setattr("arteleop.study.runner.run_planned_trial", spy)
+    again: list = []
+    with _brought_to(again):
         resume_study(folder, workers=1)
     assert again == [given[0], given[2]]
     assert {k: v for k, v in _files(folder).items() if k != "trials-set-aside.csv"} == files
