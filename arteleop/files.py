@@ -4,8 +4,16 @@ from __future__ import annotations
 
 import contextlib
 import os
+import re
 import tempfile
 from pathlib import Path
+
+
+def is_temporary(path: Path) -> bool:
+    """Whether ``path`` is a temporary file of :func:`write_atomic` (``.NAME.XXXXXXXX.tmp``
+    beside the file it writes): one a crash or a kill left behind holds nothing the file it
+    was to become does not."""
+    return re.fullmatch(r"\..+\.[a-z0-9_]{8}\.tmp", path.name) is not None
 
 
 def write_atomic(path: Path, text: str, *, private: bool = False, exclusive: bool = False) -> None:

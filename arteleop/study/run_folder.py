@@ -228,6 +228,13 @@ class RunFolder:
         name = f"trajectories/{row['participant']}/{row['trial_index']}.csv"
         return row["trajectory_file"] == name and (self.path / name).is_file()
 
+    def remove_cut_writes(self) -> None:
+        """Remove the temporary files of writes a kill cut short (the writer, holding the
+        lock): each file they were to replace is whole, or absent and written again."""
+        for path in self.path.rglob(".*.tmp"):
+            if files.is_temporary(path):
+                path.unlink(missing_ok=True)
+
     def set_aside(self, lines: Sequence[str], why: str) -> None:
         """Move ``lines`` of trials.csv to :data:`SET_ASIDE_FILE` (appended, whole lines) and
         say so in :attr:`notes`."""

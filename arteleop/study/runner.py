@@ -25,6 +25,7 @@ from typing import Any, Protocol
 
 import pandas as pd
 
+from arteleop import files
 from arteleop.analysis.data import PARTICIPANT_COLUMNS, QUESTIONNAIRE_COLUMNS
 from arteleop.errors import RunFolderError
 from arteleop.study.carry import Carried, carried_after, line_carried, row_carried
@@ -180,8 +181,7 @@ def _begun_only(folder: RunFolder) -> bool:
     manifest (a start cut short: no trial has run), its temporary files, and the lock."""
     begun = {LOCK_FILE, STUDY_FILE, "participants.csv", "trials.csv"}
     for entry in folder.path.iterdir():
-        temporary = entry.name.startswith(".") and entry.name.endswith(".tmp")
-        if entry.name not in begun and not temporary:
+        if entry.name not in begun and not files.is_temporary(entry):
             return False
     trials = folder.trials_path
     return not trials.exists() or trials.read_text(encoding="utf-8").count("\n") <= 1
@@ -197,6 +197,7 @@ def _execute(
     executor: Executor | None,
     progress: Progress | None,
 ) -> StudyRun:
+    folder.remove_cut_writes()
     done = folder.done_rows(repair=True)
     pending = [spec for spec in plan if spec.key not in done]
     by_id = {p.id: p for p in people}

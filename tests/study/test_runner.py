@@ -227,6 +227,26 @@ def test_resume_carries_on_through_a_trial_run_again(
     assert {k: v for k, v in _files(folder).items() if k != "trials-set-aside.csv"} == files
 
 
+def test_resume_removes_what_a_write_cut_short_left(
+    chained: tuple[dict[str, bytes], list, Path], tmp_path: Path
+) -> None:
+    """Killed while writing P02's third trajectory: its temporary file stays beside it, the
+    trial's row never written. Resume runs the trial and leaves the folder as a whole run's."""
+    files, _, original = chained
+    folder = tmp_path / "run"
+    shutil.copytree(original, folder)
+    (folder / "trajectories" / "P02" / "3.csv").rename(
+        folder / "trajectories" / "P02" / ".3.csv.dhp1_l2s.tmp"
+    )
+    trials = folder / "trials.csv"
+    trials.write_text("".join(trials.read_text().splitlines(keepends=True)[:-1]))
+    kept = folder / "trajectories" / ".notes.tmp"  # not one of arteleop's: kept
+    kept.write_text("mine")
+    assert resume_study(folder, workers=1).ran == 1
+    assert {k: v for k, v in _files(folder).items() if k != "trajectories/.notes.tmp"} == files
+    assert kept.read_text() == "mine"
+
+
 @pytest.mark.parametrize(
     ("column", "value", "expected"),
     [("believed_lag_s", "soon", "seconds (0 or more) or empty"), ("saw_miss", "2", "0 or 1")],
