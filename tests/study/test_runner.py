@@ -58,8 +58,8 @@ def _files(folder: Path) -> dict[str, bytes]:
 
 @pytest.fixture(scope="module")
 def chained(tmp_path_factory: pytest.TempPathFactory) -> tuple[dict[str, bytes], list, Path]:
-    """The small study in series: its files, each trial's (participant, trial_index) with the
-    lag its operator was given to believe at the start, and the run folder."""
+    """The small study in series: its files, each trial's (participant, trial_index) with what
+    its participant brought to it (the lag believed, the misses seen), and the run folder."""
     folder = tmp_path_factory.mktemp("series") / "run"
     given: list = []
     with _brought_to(given):
