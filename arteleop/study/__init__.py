@@ -6,6 +6,7 @@ pulls in viser's server)."""
 import importlib
 from typing import TYPE_CHECKING, Any
 
+from arteleop.study.carry import Carried
 from arteleop.study.cohort import participants
 from arteleop.study.counterbalancing import (
     cyclic_sequences,
@@ -42,6 +43,7 @@ __all__ = [
     "ORIGINAL_QUESTIONNAIRE",
     "TRIAL_COLUMNS",
     "BrowserCheck",
+    "Carried",
     "CohortConfig",
     "Demographics",
     "FamiliarizationConfig",
