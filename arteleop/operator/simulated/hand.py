@@ -1,4 +1,5 @@
-"""The synthetic operator's hand: the submovements that move it and the path it took."""
+"""The synthetic operator's hand: the submovements that move it and the path it took, its
+tremor, its rotation (the wrist) and its squeeze of the pinch sensor."""
 
 from __future__ import annotations
 
@@ -7,8 +8,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy.spatial.transform import Rotation, Slerp
 
 from arteleop.operator.minimum_jerk import minimum_jerk_profile
+from arteleop.operator.output import ALIGN, CALIBRATE
 
 MIN_JERK_PEAK = 1.875
 """Peak speed of a minimum-jerk movement, in units of its mean speed."""
@@ -150,3 +153,31 @@ class Tremor:
     def at(self, t: float) -> NDArray[np.float64]:
         """The tremor's displacement at ``t`` (s; m)."""
         return self.amplitude_m * np.sin(self._w[:, None] * t + self._phase).sum(axis=0) / 2
+
+
+class Wrist:
+    """The hand's rotation (torso frame): held in the calibration posture, turned along ``path``
+    (0: that posture, 1: the working one) as the hand aligns on the gripper, at the alignment's
+    minimum-jerk progress, and the working one, pitched ``hand_pitch_rad`` about the torso's y,
+    from then on."""
+
+    def __init__(self, path: Slerp, hand_pitch_rad: float) -> None:
+        self._path = path
+        self._work = Rotation.from_euler("y", hand_pitch_rad).as_matrix()
+
+    def rotation(self, phase: str, hand: Hand, t: float) -> NDArray[np.float64]:
+        """The (3, 3) rotation at ``t`` (s) in the operator's ``phase``, its hand ``hand``."""
+        if phase == CALIBRATE:
+            return np.asarray(self._path(0.0).as_matrix())
+        if phase == ALIGN and hand.moving:
+            m = hand.moves[0]
+            progress = float(minimum_jerk_profile((t - m.start_s) / m.duration_s))
+            return np.asarray(self._path(progress).as_matrix())
+        return self._work
+
+
+def ramped_grip(held: float, squeezed: float, t: float, ramp_end_s: float, ramp_s: float) -> float:
+    """The pinch sensor at ``t`` (s), 0 open to 1 squeezed: from ``held`` to ``squeezed`` over
+    the ``ramp_s`` (s) that end at ``ramp_end_s`` (s)."""
+    ramp = min(1.0, (t - (ramp_end_s - ramp_s)) / ramp_s)
+    return held + (squeezed - held) * ramp

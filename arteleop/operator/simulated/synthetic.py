@@ -19,14 +19,12 @@ from enum import Enum
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.spatial.transform import Rotation
 
 from arteleop.ar_features import DisplayFrame
 from arteleop.moved import moved_names
-from arteleop.operator.minimum_jerk import minimum_jerk_profile
 from arteleop.operator.output import ALIGN, CALIBRATE, DONE, ENGAGE, OperatorOutput
 from arteleop.operator.simulated.criterion import PhaseCriterion
-from arteleop.operator.simulated.hand import Hand, Tremor
+from arteleop.operator.simulated.hand import Hand, Tremor, Wrist, ramped_grip
 from arteleop.operator.simulated.look import Look
 from arteleop.operator.simulated.mark_memory import MarkMemory
 from arteleop.operator.simulated.outcome import sure_missed
@@ -74,8 +72,8 @@ class SyntheticOperator:
         self._hand_per_gripper = np.column_stack([hand_for_gripper(e) - origin for e in np.eye(3)])
         self._gripper_per_hand = np.linalg.inv(self._hand_per_gripper)
         self._rng = rng
-        calib_pos, self._rot_path = hand_from_calibration(arm, calibration, self.p.hand_pitch_rad)
-        self._work_R = Rotation.from_euler("y", self.p.hand_pitch_rad).as_matrix()
+        calib_pos, turn = hand_from_calibration(arm, calibration, self.p.hand_pitch_rad)
+        self._wrist = Wrist(turn, self.p.hand_pitch_rad)
         self.phase = CALIBRATE
         self._task_phase: TaskPhase | None = None  # the task's phase under way, if any
         self._log = PhaseLog()
@@ -377,19 +375,12 @@ class SyntheticOperator:
     def _output(self, t: float) -> OperatorOutput:
         tremor = self._tremor.at(t)
         if self.phase == CALIBRATE:
-            rot = self._rot_path(0.0).as_matrix()
             tremor = np.zeros(3)  # the posture is held against a support during calibration
-        elif self.phase == ALIGN and self.hand.moving:
-            m = self.hand.moves[0]
-            rot = self._rot_path(float(minimum_jerk_profile((t - m.start_s) / m.duration_s)))
-            rot = rot.as_matrix()
-        else:
-            rot = self._work_R
         grip, phase = self._grip, self._task_phase
         if phase is not None and phase.action is not Action.MOVE:  # ramped over the grip's wait
             squeezed = 1.0 if phase.action is Action.CLOSE else 0.0
-            ramp = min(1.0, (t - (self._wait_until - self.p.grip_ramp_s)) / self.p.grip_ramp_s)
-            grip = self._grip + (squeezed - self._grip) * ramp
+            grip = ramped_grip(grip, squeezed, t, self._wait_until, self.p.grip_ramp_s)
+        rot = self._wrist.rotation(self.phase, self.hand, t)
         return OperatorOutput(
             t, self.hand.position_m + tremor, rot, float(np.clip(grip, 0.0, 1.0)), self.phase
         )
