@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from numpy.typing import NDArray
+from scipy.spatial.transform import Rotation, Slerp
 
 import arteleop.operator
 from arteleop.ar_features import MODALITIES, ArCues
@@ -24,6 +25,8 @@ from arteleop.operator import (
     probability_within,
     submovement_duration_s,
 )
+from arteleop.operator.output import ALIGN, CALIBRATE, ENGAGE
+from arteleop.operator.simulated.hand import Hand, Submovement, Wrist, ramped_grip
 from arteleop.operator.simulated.submovements import planned_submovement
 from tests.operator.small_scene import descend
 
@@ -343,3 +346,19 @@ def test_an_operator_constant_out_of_range_is_refused_by_name(build, message: st
     with pytest.raises(ConfigurationError) as err:
         build()
     assert str(err.value) == message
+
+
+def test_the_grip_ramps_over_its_wait_and_the_wrist_turns_as_the_hand_aligns() -> None:
+    # Squeezing from 0.2 over the 0.4 s that end at 3 s: a quarter of the way at 2.7 s.
+    assert ramped_grip(0.2, 1.0, 2.7, 3.0, 0.4) == pytest.approx(0.4)
+    assert ramped_grip(0.2, 1.0, 3.5, 3.0, 0.4) == 1.0
+    assert ramped_grip(1.0, 0.0, 2.8, 3.0, 0.4) == pytest.approx(0.5)
+    start, work = Rotation.identity(), Rotation.from_euler("y", 0.3)
+    wrist = Wrist(Slerp([0.0, 1.0], Rotation.concatenate([start, work])), 0.3)
+    hand = Hand(np.zeros(3))
+    hand.add(Submovement(1.0, np.array([0.1, 0.0, 0.0]), 2.0, np.array([0.1, 0.0, 0.0])))
+    np.testing.assert_allclose(wrist.rotation(CALIBRATE, hand, 2.0), np.eye(3), atol=1e-12)
+    # Half-way through the alignment's minimum-jerk movement, half-way round.
+    half = Rotation.from_euler("y", 0.15).as_matrix()
+    np.testing.assert_allclose(wrist.rotation(ALIGN, hand, 2.0), half, atol=1e-12)
+    np.testing.assert_allclose(wrist.rotation(ENGAGE, hand, 2.0), work.as_matrix(), atol=1e-12)
