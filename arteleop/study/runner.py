@@ -206,7 +206,7 @@ def _execute(
     previous = _previous_trials(plan)
     following = {before: key for key, before in previous.items() if before is not None}
     ends: dict[tuple[str, int], Carried | None] = {}
-    # What each trial already in trials.csv ended with: read once, carried on from in order.
+    # What each trial in trials.csv ended with (the lag believed, a miss seen), as its row says.
     ended = {
         key: line_carried(line, f"{folder.trials_path}, participant {key[0]} trial {key[1]}")
         for key, line in done.items()
@@ -219,23 +219,24 @@ def _execute(
 
     def carry_on(key: tuple[str, int] | None) -> None:
         """What the participant carries from the trial ``key``, and from each trial after it
-        already in trials.csv (one set aside and run again reaches those after it)."""
+        already in trials.csv (one set aside and run again reaches those after it), once the
+        trial before ``key`` has ended."""
         while key is not None and key in ended:
             before = previous[key]
             if before is not None and before not in ends:
-                return  # it carries on once the trial before it has run again
+                return
             ends[key] = carried_after(brought(key), *ended[key])
             key = following.get(key)
 
-    for spec in plan:
-        carry_on(spec.key)
+    for spec in plan:  # each participant's first trial carries its chain of ended ones
+        if previous[spec.key] is None:
+            carry_on(spec.key)
 
     def keep(record: TrialRecord) -> None:
         nonlocal count
         folder.append_trial(record.row, record.trace)
-        key = record.spec.key
-        ends[key] = carried_after(brought(key), *row_carried(record.row))
-        carry_on(following.get(key))
+        ended[record.spec.key] = row_carried(record.row)
+        carry_on(record.spec.key)
         speed.append((record.duration_s, record.wall_s))
         count += 1
         if progress is not None:
