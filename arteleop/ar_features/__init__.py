@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 from arteleop.ar_features.assets import ViewAssets
 from arteleop.ar_features.display_frame import (
     BAR_LABEL_GAP_M,
+    BAR_LENGTH_M,
     DISTANCE_BAR_OFFSET_M,
     DISTANCE_LABEL_STEP_M,
     FOOT_LIFT_M,
@@ -21,6 +22,8 @@ from arteleop.ar_features.display_frame import (
     GRIP_BAR_OFFSET_M,
     HEIGHT_LABEL_GAP_M,
     HEIGHT_LABEL_STEP_M,
+    LABEL_CLEARANCE_M,
+    LABEL_SIZE_M,
     Display,
     DisplayFrame,
     PredictedArm,
@@ -45,6 +48,7 @@ _LAZY = {
 
 __all__ = [
     "BAR_LABEL_GAP_M",
+    "BAR_LENGTH_M",
     "DISTANCE_BAR_OFFSET_M",
     "DISTANCE_LABEL_STEP_M",
     "FOOT_LIFT_M",
@@ -52,6 +56,8 @@ __all__ = [
     "GRIP_BAR_OFFSET_M",
     "HEIGHT_LABEL_GAP_M",
     "HEIGHT_LABEL_STEP_M",
+    "LABEL_CLEARANCE_M",
+    "LABEL_SIZE_M",
     "LAYER_NAMES",
     "MODALITIES",
     "STUDY_MODALITIES",
