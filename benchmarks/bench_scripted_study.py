@@ -245,14 +245,17 @@ def main() -> int:
     stream = pd.read_csv(served / "browser.csv")
     behind = f", behind {args.throttle_mbit:g} Mbit/s" if args.throttle_mbit else ""
     print(f"\nthe stream ({args.camera}{behind}):\n")
-    print(f"{'trial':<7}{'cloud frames/s':>16}{'cloud Mbit/s':>14}{'round trip (s)':>16}")
+    print(f"{'trial':<7}{'cloud frames/s':>16}{'held':>6}{'cloud Mbit/s':>14}"
+          f"{'pings (s)':>11}{'round trip (s)':>16}")  # fmt: skip
     for row in stream.itertuples():
-        # A server before 0.4 (a baseline's, through PYTHONPATH) did not count its stream.
+        # A server before 0.4 (a baseline's, through PYTHONPATH) did not count its stream,
+        # nor one of data format 6 pace it.
         if getattr(row, "cloud_mbit_s", 0) > 0:
             wall = row.cloud_kbytes * 8e-3 / row.cloud_mbit_s
-            rate = f"{row.cloud_frames / wall:>16.1f}{row.cloud_mbit_s:>14.2f}"
+            rate = f"{row.cloud_frames / wall:>16.1f}{getattr(row, 'cloud_frames_held', '-'):>6}"
+            rate += f"{row.cloud_mbit_s:>14.2f}{getattr(row, 'link_latency_s', '-'):>11}"
         else:
-            rate = f"{'-':>16}{'-':>14}"
+            rate = f"{'-':>16}{'-':>6}{'-':>14}{'-':>11}"
         print(f"{row.trial_index:<7}{rate}{row.display_round_trip_s:>16.3f}")
     if received is not None:
         print(f"\nthe browser received {received:.2f} Mbit/s on average over the session")

@@ -36,6 +36,7 @@ from arteleop.ar_features.layers import (
     PredictiveGhostLayer,
     TargetLayer,
 )
+from arteleop.ar_features.link_pacer import LinkPacer
 from arteleop.ar_features.links import LinkGate, check_public_url, link_url
 from arteleop.ar_features.modalities import ArCues
 from arteleop.ar_features.panel import ModalityPanel
@@ -203,6 +204,17 @@ class OperatorView(Closeable):
         """Frames shown so far."""
         self.races = 0
         """Layers' draws cut short by viser's sender racing its event loop (see :meth:`show`)."""
+        self.pacer: LinkPacer | None = None
+        """The pace of the tab the cloud is sent at, if one is paced (:meth:`pace`)."""
+
+    def pace(self, client_id: int | None) -> None:
+        """Send the cloud at the pace the tab ``client_id``'s connection carries
+        (:class:`LinkPacer`), or, with None, at every frame. The other tabs get the same
+        frames, or fewer (viser drops a tile's update a newer one replaces)."""
+        if self.pacer is not None:
+            self.pacer.close()
+        self.pacer = None if client_id is None else LinkPacer(self.server, client_id)
+        self.cloud.interval = 1
 
     @property
     def url(self) -> str:
@@ -252,6 +264,8 @@ class OperatorView(Closeable):
         if self._T_base_camera is None:
             self._T_base_camera = frame.T_base_camera
             self._egocentric(move_clients=True)
+        if self.pacer is not None:
+            self.cloud.interval = self.pacer.interval
         if (cues := self.cues) is not None:
             frame = replace(frame, cues=cues)
         elif (panel := self._panel) is not None:
@@ -327,6 +341,7 @@ class OperatorView(Closeable):
 
     def close(self) -> None:
         """Stop the server."""
+        self.pace(None)
         with contextlib.redirect_stdout(io.StringIO()):  # its "Server stopped"
             self.server.stop()
 

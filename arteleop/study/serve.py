@@ -268,7 +268,9 @@ class StudyServer(Closeable):
                 live.reset()
             self.tabs.lost.clear()
             cloud = self.view.cloud
-            sent = (cloud.frames_drawn, cloud.payload_bytes)
+            sent = (cloud.frames_drawn, cloud.payload_bytes, cloud.frames_held)
+            controller = self.tabs.controller
+            self.view.pace(None if controller is None else controller.client_id)
             start = time.perf_counter()
             self.tabs.trial_running.set()
             try:
@@ -279,10 +281,17 @@ class StudyServer(Closeable):
                 return
             finally:
                 self.tabs.trial_running.clear()
+                pacer, latency_s = self.view.pacer, None
+                if pacer is not None:
+                    latency_s = pacer.take_latency_s()
+                self.view.pace(None)
         wall_s = time.perf_counter() - start
         frames, payload = cloud.frames_drawn - sent[0], cloud.payload_bytes - sent[1]
         stream = {"cloud_frames": frames, "cloud_kbytes": payload / 1e3,
-                  "cloud_mbit_s": payload * 8 / 1e6 / max(wall_s, 1e-9)}  # fmt: skip
+                  "cloud_mbit_s": payload * 8 / 1e6 / max(wall_s, 1e-9),
+                  "cloud_frames_held": cloud.frames_held - sent[2],
+                  "cloud_fps": frames / max(wall_s, 1e-9),
+                  "link_latency_s": math.nan if latency_s is None else latency_s}  # fmt: skip
         record = trial_record(spec, result, wall_s)
         row = record.row
         time_s, error_m = row["completion_time_s"], row["placement_error_m"]

@@ -28,6 +28,7 @@ import base64
 import contextlib
 import hashlib
 import hmac
+import math
 import re
 import secrets
 from collections.abc import Iterator, Mapping
@@ -68,10 +69,11 @@ INTERRUPTED_FILE = "interrupted.csv"
 BROWSER_FILE = "browser.csv"
 BROWSER_COLUMNS = ("participant", "trial_index", "display_round_trip_s", "scene_width_px",
                    "scene_height_px", "input_device", "cloud_frames", "cloud_kbytes",
-                   "cloud_mbit_s")  # fmt: skip
-BROWSER_COLUMNS_0_3 = BROWSER_COLUMNS[:6]
-"""browser.csv's columns before the stream was counted: carried on, its rows leave the counts
-empty."""
+                   "cloud_mbit_s", "cloud_frames_held", "cloud_fps",
+                   "link_latency_s")  # fmt: skip
+BROWSER_COLUMNS_EARLIER = (BROWSER_COLUMNS[:6], BROWSER_COLUMNS[:9])
+"""browser.csv's columns before the stream was counted (0.3), and before it was paced (data
+format 6): carried on, its rows leave the newer columns empty."""
 LINKS_KEY_FILE = "links.key"
 LINKS_KEY_BYTES = 32
 NOT_SERVED = (
@@ -96,11 +98,19 @@ class BrowserCheck:
         input_device: What moved the gripper's target during the trial: ``gizmo``, ``buttons``
             or ``gizmo+buttons`` (:meth:`~arteleop.ar_features.live_input.LiveInput.take_devices`);
             empty if nothing did.
-        cloud_frames: The camera frames the view drew during the trial.
+        cloud_frames: The camera frames whose cloud the view sent during the trial.
         cloud_kbytes: The point cloud's positions and colours it sent for them (kB, before
             compression): only what changed (:mod:`arteleop.ar_features.layers.cloud`).
         cloud_mbit_s: That over the trial's wall time (Mbit/s): the rate the participant's
             connection had to carry.
+        cloud_frames_held: The camera frames whose cloud was not sent: the participant's
+            connection was still carrying earlier ones
+            (:class:`~arteleop.ar_features.link_pacer.LinkPacer`).
+        cloud_fps: The clouds sent a second of the trial's wall time: the rate chosen for the
+            participant's connection.
+        link_latency_s: The median round trip of the pings to the participant's tab during
+            the trial (s): the network both ways and what queued before them; NaN if none
+            was answered.
     """
 
     display_round_trip_s: float
@@ -110,6 +120,9 @@ class BrowserCheck:
     cloud_frames: int = 0
     cloud_kbytes: float = 0.0
     cloud_mbit_s: float = 0.0
+    cloud_frames_held: int = 0
+    cloud_fps: float = 0.0
+    link_latency_s: float = math.nan
 
 
 Ratings = Mapping[tuple[str, str], int]
@@ -251,14 +264,16 @@ class ServedRun:
         key = (spec.participant, str(spec.trial_index))
         path = self.folder.path / BROWSER_FILE
         rows = read_table(path, None) if path.exists() else [list(BROWSER_COLUMNS)]
-        if rows[0] == list(BROWSER_COLUMNS_0_3):
-            rows = [list(BROWSER_COLUMNS)] + [[*row, "", "", ""] for row in rows[1:]]
+        if (earlier := tuple(rows[0])) in BROWSER_COLUMNS_EARLIER:
+            padding = [""] * (len(BROWSER_COLUMNS) - len(earlier))
+            rows = [list(BROWSER_COLUMNS)] + [[*row, *padding] for row in rows[1:]]
         elif rows[0] != list(BROWSER_COLUMNS):
             read_table(path, BROWSER_COLUMNS)  # the header's message
         kept = [row for row in rows[1:] if tuple(row[:2]) != key]
         check = (browser.display_round_trip_s, browser.scene_width_px, browser.scene_height_px,
                  browser.input_device, browser.cloud_frames, round(browser.cloud_kbytes, 1),
-                 round(browser.cloud_mbit_s, 2))  # fmt: skip
+                 round(browser.cloud_mbit_s, 2), browser.cloud_frames_held,
+                 round(browser.cloud_fps, 2), round(browser.link_latency_s, 4))  # fmt: skip
         write_atomic(path, table_text(BROWSER_COLUMNS, [*kept, (*key, *check)]))
 
     def keep_interrupted(self, spec: TrialSpec) -> None:

@@ -133,13 +133,14 @@ def label_lines(rgb: NDArray[np.uint8]) -> list[tuple[int, int, int, int]]:
     ]
 
 
-def find_label(rgb: NDArray[np.uint8], pattern: str) -> tuple[int, Spot] | None:
+def find_label(rgb: NDArray[np.uint8], pattern: str) -> tuple[int, Box] | None:
     """The number of the first label whose text (spaces dropped) is ``pattern``, a regular
-    expression with one group of digits, and where the label is; None where none reads so."""
+    expression with one group of digits, and where the label is (its line of text, a few
+    pixels' margin round it); None where none reads so."""
     for x, y, w, h in label_lines(rgb):
         found = re.fullmatch(pattern, ocr_line(rgb[y : y + h, x : x + w]))
         if found:
-            return int(found.group(1)), Spot(x + w / 2, y + h / 2)
+            return int(found.group(1)), Box(x + w / 2, y + h / 2, w, h)
     return None
 
 

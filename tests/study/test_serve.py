@@ -152,7 +152,8 @@ def test_a_trial_run_again_after_a_restart_has_one_row_of_its_browser(tmp_path: 
         assert run.instructed("P01") and not run.instructed("P02")  # a trial of theirs is in
         run.keep_browser(first, BrowserCheck(0.5, 900, 800, "gizmo"))
         run.keep_browser(second, BrowserCheck(0.4, 900, 800))
-        run.keep_browser(first, BrowserCheck(0.25, 900, 800, "buttons", 412, 9876.54, 3.21))
+        run.keep_browser(first, BrowserCheck(0.25, 900, 800, "buttons", 412, 9876.54, 3.21,
+                                              37, 11.438, 0.08123))  # fmt: skip
     shown = _rows(tmp_path / "run" / BROWSER_FILE)
     assert [(b["trial_index"], b["display_round_trip_s"], b["input_device"]) for b in shown] == [
         ("2", "0.4", ""), ("1", "0.25", "buttons")
@@ -160,14 +161,22 @@ def test_a_trial_run_again_after_a_restart_has_one_row_of_its_browser(tmp_path: 
     assert [(b["cloud_frames"], b["cloud_kbytes"], b["cloud_mbit_s"]) for b in shown] == [
         ("0", "0.0", "0.0"), ("412", "9876.5", "3.21")
     ]  # fmt: skip
-    # A run served before the stream was counted carries on: its rows keep empty counts.
+    assert [(b["cloud_frames_held"], b["cloud_fps"], b["link_latency_s"]) for b in shown] == [
+        ("0", "0.0", ""), ("37", "11.44", "0.0812")
+    ]  # fmt: skip
+    # A run served before the stream was counted, or paced, carries on: its rows keep empty
+    # counts.
     path = tmp_path / "run" / BROWSER_FILE
     lines = path.read_text().splitlines()
-    path.write_text("\n".join(",".join(line.split(",")[:6]) for line in lines) + "\n")
-    with served_run(tmp_path / "run", STUDY) as run:
-        run.keep_browser(second, BrowserCheck(0.3, 900, 800, "gizmo", 10, 1.0, 0.5))
-    shown = _rows(path)
-    assert [(b["trial_index"], b["cloud_frames"]) for b in shown] == [("1", ""), ("2", "10")]
+    for kept, row in ((6, ("1", "", "")), (9, ("1", "412", ""))):
+        path.write_text("\n".join(",".join(line.split(",")[:kept]) for line in lines) + "\n")
+        with served_run(tmp_path / "run", STUDY) as run:
+            run.keep_browser(second, BrowserCheck(0.3, 900, 800, "gizmo", 10, 1.0, 0.5, 2))
+        shown = _rows(path)
+        assert [(b["trial_index"], b["cloud_frames"], b["cloud_frames_held"]) for b in shown] == [
+            row,
+            ("2", "10", "2"),
+        ]
 
 
 def test_a_served_run_is_not_resumed_as_a_simulated_one(tmp_path: Path) -> None:
@@ -388,6 +397,9 @@ def test_a_participant_goes_through_the_study_in_a_real_browser(tmp_path: Path) 
     ]  # fmt: skip
     for b in shown:  # the tab's scene beside the docked panel; a frame there and back
         assert 0 < float(b["display_round_trip_s"]) < ROUND_TRIP_TIMEOUT_S, b
+        # Its socket pinged during the trial, and the cloud sent at a rate the link carried.
+        assert 0 < float(b["link_latency_s"]) < ROUND_TRIP_TIMEOUT_S, b
+        assert float(b["cloud_fps"]) > 0 and int(b["cloud_frames_held"]) >= 0, b
         assert (
             600 < int(b["scene_width_px"]) < 1280
             and int(b["scene_height_px"]) == VIEWPORT["height"]

@@ -86,6 +86,13 @@ class CloudLayer(Layer):
         """Tiles sent so far, over every frame."""
         self.frames_drawn = 0
         """Frames with a cloud drawn so far."""
+        self.interval = 1
+        """Camera frames between two clouds drawn (1: every frame): a slow connection's pace
+        (:class:`~arteleop.ar_features.link_pacer.LinkPacer`). A frame passed over sends
+        nothing; the next drawn sends what changed since the last drawn."""
+        self.frames_held = 0
+        """Frames with a cloud passed over at that pace so far."""
+        self._offered = 0
         self.payload_bytes = 0
         """The points' positions and colours sent so far (bytes): what a browser receives,
         before compression and besides the messages' own few bytes."""
@@ -93,6 +100,10 @@ class CloudLayer(Layer):
     def update(self, frame: DisplayFrame) -> None:
         points, colors, spacing = frame.cloud_points_m, frame.cloud_colors, frame.cloud_spacing_rad
         if points is None or colors is None or spacing is None:
+            return
+        self._offered += 1
+        if self._offered % self.interval:
+            self.frames_held += 1
             return
         self.frames_drawn += 1
         tile, keys, distance = self._place(frame, points, spacing)
