@@ -39,9 +39,11 @@ from arteleop.ar_features.modalities import (
 from arteleop.moved import moved_names
 
 if TYPE_CHECKING:
+    from arteleop.ar_features.link_pacer import LinkPacer
     from arteleop.ar_features.view import OperatorView, ViewConfig
 
 _LAZY = {
+    "LinkPacer": "arteleop.ar_features.link_pacer",
     "OperatorView": "arteleop.ar_features.view",
     "ViewConfig": "arteleop.ar_features.view",
 }
@@ -65,6 +67,7 @@ __all__ = [
     "Display",
     "DisplayFrame",
     "Layer",
+    "LinkPacer",
     "OperatorView",
     "PredictedArm",
     "ViewAssets",

@@ -35,7 +35,9 @@ HEIGHT_LABEL_GAP_M = 0.03
 """The height's label sits this far beside the ring, in the camera's image plane (m)."""
 DISTANCE_BAR_OFFSET_M = (-0.16, -0.03)
 """Where the distance bar's left end is drawn relative to the gripper, in the camera's image
-plane (m; x right, y down), so it stays beside the gripper on screen; its label is left of it."""
+plane (m; x right, y down), so it stays beside the gripper on screen; its label is left of it.
+Where the bars go right of the gripper (:attr:`DisplayFrame.bars_rightward`), its right end is
+as far right, its label right of it."""
 GRIP_BAR_OFFSET_M = (-0.16, 0.0)
 """Where the grip bar's left end is drawn relative to the gripper, likewise: 3 cm below the
 distance bar's."""
@@ -277,8 +279,9 @@ class DisplayFrame:
         """The bars and their labels are drawn right of the gripper, mirrored (labels outwards):
         left of it, where they go otherwise, they would come within :data:`LABEL_CLEARANCE_M`
         of the target or the bowl as the camera sees them, and right of it they keep clearer
-        by more than that (so that a bowl tracked a few millimetres differently from frame to
-        frame does not toss them from side to side)."""
+        by more than that: where both sides are about as clear, a bowl tracked a few
+        millimetres differently from frame to frame does not toss them from side to side
+        (where the left side's clearance crosses the margin, it can)."""
         (x, y0), (_, y1) = DISTANCE_BAR_OFFSET_M, GRIP_BAR_OFFSET_M
         w, h = LABEL_SIZE_M
         left = (x - BAR_LABEL_GAP_M - w, x + BAR_LENGTH_M, min(y0, y1) - h / 2, max(y0, y1) + h / 2)

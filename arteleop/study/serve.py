@@ -242,9 +242,18 @@ class StudyServer(Closeable):
                 if (live := self.tabs.live) is not None:
                     live.reset()
                 source = live_source(self._target, config.controller.mapping, config.seed)
-                with contextlib.suppress(_TutorialOver):
-                    run_trial(source, config, site, self.view, tick)
+                self._pace_controller()
+                try:
+                    with contextlib.suppress(_TutorialOver):
+                        run_trial(source, config, site, self.view, tick)
+                finally:
+                    self.view.pace(None)
         self.tabs.wait("next")
+
+    def _pace_controller(self) -> None:
+        """Send the cloud at the pace the controlling tab's connection carries."""
+        controller = self.tabs.controller
+        self.view.pace(None if controller is None else controller.client_id)
 
     def _trial(self, spec: TrialSpec) -> None:
         trials = self.run.trials_of(spec.participant)
@@ -269,8 +278,7 @@ class StudyServer(Closeable):
             self.tabs.lost.clear()
             cloud = self.view.cloud
             sent = (cloud.frames_drawn, cloud.payload_bytes, cloud.frames_held)
-            controller = self.tabs.controller
-            self.view.pace(None if controller is None else controller.client_id)
+            self._pace_controller()
             start = time.perf_counter()
             self.tabs.trial_running.set()
             try:

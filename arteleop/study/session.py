@@ -71,9 +71,6 @@ BROWSER_COLUMNS = ("participant", "trial_index", "display_round_trip_s", "scene_
                    "scene_height_px", "input_device", "cloud_frames", "cloud_kbytes",
                    "cloud_mbit_s", "cloud_frames_held", "cloud_fps",
                    "link_latency_s")  # fmt: skip
-BROWSER_COLUMNS_EARLIER = (BROWSER_COLUMNS[:6], BROWSER_COLUMNS[:9])
-"""browser.csv's columns before the stream was counted (0.3), and before it was paced (data
-format 6): carried on, its rows leave the newer columns empty."""
 LINKS_KEY_FILE = "links.key"
 LINKS_KEY_BYTES = 32
 NOT_SERVED = (
@@ -264,10 +261,7 @@ class ServedRun:
         key = (spec.participant, str(spec.trial_index))
         path = self.folder.path / BROWSER_FILE
         rows = read_table(path, None) if path.exists() else [list(BROWSER_COLUMNS)]
-        if (earlier := tuple(rows[0])) in BROWSER_COLUMNS_EARLIER:
-            padding = [""] * (len(BROWSER_COLUMNS) - len(earlier))
-            rows = [list(BROWSER_COLUMNS)] + [[*row, *padding] for row in rows[1:]]
-        elif rows[0] != list(BROWSER_COLUMNS):
+        if rows[0] != list(BROWSER_COLUMNS):
             read_table(path, BROWSER_COLUMNS)  # the header's message
         kept = [row for row in rows[1:] if tuple(row[:2]) != key]
         check = (browser.display_round_trip_s, browser.scene_width_px, browser.scene_height_px,

@@ -12,6 +12,7 @@ from arteleop.ar_features.link_pacer import (
     MAX_INTERVAL,
     QUEUE_HIGH_S,
     QUEUE_LOW_S,
+    QueueRule,
     next_interval,
 )
 from tests.ar_features.frames import CAMERA_M, display_frame
@@ -34,6 +35,33 @@ def test_a_queue_doubles_the_interval_and_none_shortens_it_by_one(
     interval: int, queue_s: float, then: int
 ) -> None:
     assert next_interval(interval, queue_s) == then
+
+
+def test_a_ping_awaited_raises_the_interval_once_for_each_doubling_of_its_wait() -> None:
+    rule = QueueRule()
+    rule.sent()
+    rule.waiting(0.15)  # no round trip known yet: all of the wait may be a queue
+    assert rule.interval == 1
+    rule.waiting(0.25)
+    assert rule.interval == 2
+    rule.waiting(0.3)  # the same doubling of the wait: no more
+    assert rule.interval == 2
+    rule.waiting(0.85)  # past 0.4 and 0.8 s
+    assert rule.interval == 8
+    rule.answered(0.9)  # counted while it waited, not again
+    assert (rule.interval, rule.least_s) == (8, 0.9)
+    # The next pings come back without a queue beyond the least: one frame more each.
+    for interval in (7, 6):
+        rule.sent()
+        rule.answered(0.92)
+        assert rule.interval == interval
+    # A round trip known from before: only the wait beyond it is a queue.
+    known = QueueRule(least_s=0.1)
+    known.sent()
+    known.waiting(0.25)
+    assert known.interval == 1
+    known.waiting(0.35)
+    assert known.interval == 2
 
 
 def test_a_tab_behind_a_slow_link_is_sent_fewer_clouds() -> None:

@@ -45,6 +45,7 @@ from arteleop.ar_features.keys import GRIP_KEY, KEYS
 from tests.instruments.browser import answer_questions, press_button, rate_every_item
 from tests.instruments.screen_reading import (
     DISTANCE,
+    LINE_MARGIN_PX,
     Box,
     Spot,
     bowl_box,
@@ -236,7 +237,7 @@ class ScriptedParticipant:
     def distance(self) -> float:
         """The distance label, read once the gripper stands (mm); where it was drawn goes to
         :attr:`label_at`."""
-        spots: list[Spot] = []
+        spots: list[Box] = []
 
         def read(rgb: NDArray[np.uint8]) -> float | None:
             found = find_label(rgb, DISTANCE)
@@ -260,8 +261,8 @@ class ScriptedParticipant:
         if moved_px * toward > 0:
             return abs(moved_px) / moved_mm
         # Its near end: towards the gripper, the side it came from, then the side it went to.
-        near_start = start.x_px - toward * start.width_px / 2
-        near_end = end.x_px + toward * end.width_px / 2
+        near_start = start.x_px - toward * (start.width_px / 2 - LINE_MARGIN_PX)
+        near_end = end.x_px + toward * (end.width_px / 2 - LINE_MARGIN_PX)
         return abs(near_end - near_start) / (LABEL_JUMP_MM - moved_mm)
 
     def reach(self, start: Box, distance: float, bowl: Spot, bowl_wide_px: float) -> float:

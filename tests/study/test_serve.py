@@ -164,19 +164,6 @@ def test_a_trial_run_again_after_a_restart_has_one_row_of_its_browser(tmp_path: 
     assert [(b["cloud_frames_held"], b["cloud_fps"], b["link_latency_s"]) for b in shown] == [
         ("0", "0.0", ""), ("37", "11.44", "0.0812")
     ]  # fmt: skip
-    # A run served before the stream was counted, or paced, carries on: its rows keep empty
-    # counts.
-    path = tmp_path / "run" / BROWSER_FILE
-    lines = path.read_text().splitlines()
-    for kept, row in ((6, ("1", "", "")), (9, ("1", "412", ""))):
-        path.write_text("\n".join(",".join(line.split(",")[:kept]) for line in lines) + "\n")
-        with served_run(tmp_path / "run", STUDY) as run:
-            run.keep_browser(second, BrowserCheck(0.3, 900, 800, "gizmo", 10, 1.0, 0.5, 2))
-        shown = _rows(path)
-        assert [(b["trial_index"], b["cloud_frames"], b["cloud_frames_held"]) for b in shown] == [
-            row,
-            ("2", "10", "2"),
-        ]
 
 
 def test_a_served_run_is_not_resumed_as_a_simulated_one(tmp_path: Path) -> None:

@@ -26,7 +26,8 @@ class Bar:
     """One bar; ``offset_m`` places its left end in the camera's frame (x right, y down)
     relative to the gripper, so it sits beside the gripper on screen whatever the arm does. The
     label sits beyond the bar, away from the gripper. Where the frame puts the bars right of
-    the gripper (:attr:`DisplayFrame.bars_rightward`), all of it is mirrored there."""
+    the gripper (:attr:`DisplayFrame.bars_rightward`), the bar and its label go there as in a
+    mirror, the label still away from the gripper; the bar still fills from left to right."""
 
     def __init__(
         self,
