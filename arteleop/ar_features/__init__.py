@@ -14,7 +14,6 @@ from typing import TYPE_CHECKING, Any
 from arteleop.ar_features.assets import ViewAssets
 from arteleop.ar_features.display_frame import (
     BAR_LABEL_GAP_M,
-    BAR_LENGTH_M,
     DISTANCE_BAR_OFFSET_M,
     DISTANCE_LABEL_STEP_M,
     FOOT_LIFT_M,
@@ -50,7 +49,6 @@ _LAZY = {
 
 __all__ = [
     "BAR_LABEL_GAP_M",
-    "BAR_LENGTH_M",
     "DISTANCE_BAR_OFFSET_M",
     "DISTANCE_LABEL_STEP_M",
     "FOOT_LIFT_M",

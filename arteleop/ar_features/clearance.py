@@ -1,6 +1,6 @@
-"""How far a label drawn beside the gripper keeps from what the operator must see under it.
+"""How far a label drawn beside a mark keeps from what the operator must see under it.
 
-Labels and bars are drawn facing the viewer beside the gripper; the target and the bowl lie
+Labels are drawn facing the viewer beside what they label; the target and the bowl lie
 behind or in front of that plane. Both are compared where the camera sees them: each thing's
 disc projected, through the camera's centre, onto the plane through an anchor (the gripper, the
 ring) square to the camera's axis, in that plane's coordinates (m; x right, y down, relative
@@ -37,23 +37,6 @@ def discs_in_plane(
         scale = anchor[2] / c[2]
         seen.append((c[:2] * scale - anchor[:2], radius_m * scale))
     return seen
-
-
-def clearance_m(box: Box, discs: Sequence[tuple[NDArray[np.float64], float]]) -> float:
-    """The smallest gap between ``box`` and the discs' edges (m; negative: a disc reaches
-    into the box; infinite without discs)."""
-    x0, x1, y0, y1 = box
-    gaps = [
-        float(np.hypot(max(x0 - c[0], 0.0, c[0] - x1), max(y0 - c[1], 0.0, c[1] - y1))) - r
-        for c, r in discs
-    ]
-    return min(gaps, default=float("inf"))
-
-
-def mirrored(box: Box) -> Box:
-    """``box`` mirrored about the anchor's vertical: from its left to its right."""
-    x0, x1, y0, y1 = box
-    return (-x1, -x0, y0, y1)
 
 
 def pushed_out_m(

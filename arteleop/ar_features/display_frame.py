@@ -7,13 +7,12 @@ the same thing. This module imports neither viser nor the simulator.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cached_property
 from typing import Protocol
 
 import numpy as np
 from numpy.typing import NDArray
 
-from arteleop.ar_features.clearance import clearance_m, discs_in_plane, mirrored, pushed_out_m
+from arteleop.ar_features.clearance import discs_in_plane, pushed_out_m
 from arteleop.ar_features.modalities import ArCues
 from arteleop.arrays import frozen_array
 from arteleop.errors import DisplayFrameError
@@ -35,23 +34,19 @@ HEIGHT_LABEL_GAP_M = 0.03
 """The height's label sits this far beside the ring, in the camera's image plane (m)."""
 DISTANCE_BAR_OFFSET_M = (-0.16, -0.03)
 """Where the distance bar's left end is drawn relative to the gripper, in the camera's image
-plane (m; x right, y down), so it stays beside the gripper on screen; its label is left of it.
-Where the bars go right of the gripper (:attr:`DisplayFrame.bars_rightward`), its right end is
-as far right, its label right of it."""
+plane (m; x right, y down), so it stays beside the gripper on screen; its label is left of it."""
 GRIP_BAR_OFFSET_M = (-0.16, 0.0)
 """Where the grip bar's left end is drawn relative to the gripper, likewise: 3 cm below the
 distance bar's."""
 BAR_LABEL_GAP_M = 0.01
-"""A bar's label ends this far beyond the bar's far end (m, in the image plane)."""
-BAR_LENGTH_M = 0.10
-"""Length of a full bar (m): about 60 px at the head camera's 1.3 m from the table."""
+"""A bar's label ends this far left of the bar (m, in the image plane)."""
 LABEL_SIZE_M = (0.10, 0.03)
 """A label's width and height in the image plane at the head camera's 1.3 m (m): "102 mm"
 and "grip 0 %" were 38-40 px wide, 12 px tall, beside a 10 cm bar drawn 45 px long, in an
-800x500 screenshot of the view; a bound, so "bowl not tracked" may reach beyond it."""
+800x500 screenshot of the view; "height 150 mm" is about as wide."""
 LABEL_CLEARANCE_M = 0.02
-"""The bars, their labels and the height's label keep this far clear of the target and the
-bowl in the image plane (m): drawn over them, they hid the very things a person places by."""
+"""The height's label keeps this far clear of the target and the bowl in the image plane (m):
+drawn over them, it hid the very things a person places by."""
 
 
 @dataclass(frozen=True)
@@ -271,41 +266,13 @@ class DisplayFrame:
         return bool(offset @ self.T_base_camera[:3, 0] > 0.0)
 
     def distance_label_m(self) -> NDArray[np.float64]:
-        """Where the distance bar's label is drawn (base frame, m): :meth:`bar_label_m`."""
-        return self.bar_label_m(DISTANCE_BAR_OFFSET_M)
-
-    @cached_property
-    def bars_rightward(self) -> bool:
-        """The bars and their labels are drawn right of the gripper, mirrored (labels outwards):
-        left of it, where they go otherwise, they would come within :data:`LABEL_CLEARANCE_M`
-        of the target or the bowl as the camera sees them, and right of it they keep clearer
-        by more than that: where both sides are about as clear, a bowl tracked a few
-        millimetres differently from frame to frame does not toss them from side to side
-        (where the left side's clearance crosses the margin, it can)."""
-        (x, y0), (_, y1) = DISTANCE_BAR_OFFSET_M, GRIP_BAR_OFFSET_M
-        w, h = LABEL_SIZE_M
-        left = (x - BAR_LABEL_GAP_M - w, x + BAR_LENGTH_M, min(y0, y1) - h / 2, max(y0, y1) + h / 2)
-        discs = discs_in_plane(self.T_base_camera, self.gripper_m, self._kept_clear())
-        left_clear, right_clear = clearance_m(left, discs), clearance_m(mirrored(left), discs)
-        return left_clear < LABEL_CLEARANCE_M and right_clear > left_clear + LABEL_CLEARANCE_M
-
-    def bar_start_m(self, offset_m: tuple[float, float]) -> NDArray[np.float64]:
-        """Where a bar placed at ``offset_m`` (its left end beside a gripper whose bars are
-        left of it) begins: its left end, from which it fills rightwards (base frame, m)."""
-        x, y = offset_m
-        return self.beside_gripper_m((-(x + BAR_LENGTH_M), y) if self.bars_rightward else (x, y))
-
-    def bar_label_m(self, offset_m: tuple[float, float]) -> NDArray[np.float64]:
-        """Where the label of the bar placed at ``offset_m`` is drawn (base frame, m): its end
-        nearest the bar, :data:`BAR_LABEL_GAP_M` beyond the bar's far end from the gripper."""
-        x, y = offset_m
-        if self.bars_rightward:
-            return self.beside_gripper_m((-x + BAR_LABEL_GAP_M, y))
+        """Where the distance bar's label is drawn (base frame, m), its right end."""
+        x, y = DISTANCE_BAR_OFFSET_M
         return self.beside_gripper_m((x - BAR_LABEL_GAP_M, y))
 
     def _kept_clear(self) -> list[tuple[NDArray[np.float64], float]]:
-        """What the labels keep clear of, as drawn (centre, radius; base frame, m): the target
-        circle, the target mesh over it, the tracked bowl (its ring of grasp points)."""
+        """What the height's label keeps clear of, as drawn (centre, radius; base frame, m): the
+        target circle, the target mesh over it, the tracked bowl (its ring of grasp points)."""
         up = np.array([0.0, 0.0, self.grasp_height_m])
         things = [(self.target_m, self.target_radius_m)]
         if self.cues.target_mesh:

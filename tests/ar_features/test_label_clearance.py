@@ -1,21 +1,16 @@
-"""The bars' and the height's labels keep clear of the target and the bowl on screen."""
+"""The depth aids' height label keeps clear of the target and the bowl on screen."""
 
 from __future__ import annotations
-
-from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
 from arteleop.ar_features import (
-    DISTANCE_BAR_OFFSET_M,
     FOOT_RADIUS_M,
     HEIGHT_LABEL_GAP_M,
     LABEL_CLEARANCE_M,
-    MODALITIES,
 )
-from arteleop.ar_features.clearance import clearance_m, discs_in_plane, pushed_out_m
-from arteleop.ar_features.layers.bar import Bar
+from arteleop.ar_features.clearance import discs_in_plane, pushed_out_m
 from arteleop.transforms import make_transform
 from tests.ar_features.frames import display_frame
 
@@ -42,53 +37,8 @@ def test_a_disc_is_seen_in_the_anchors_plane_by_its_depth() -> None:
     ((centre, radius),) = discs_in_plane(LOOKING_DOWN, GRIPPER[:3, 3], [([0.35, -0.3, -0.2], 0.06)])
     np.testing.assert_allclose(centre, [-0.125, 0.0], atol=1e-12)
     assert radius == pytest.approx(0.05)
-    # A box from 6 to 27 cm right, 3 cm tall: the disc 0.185 m from its near edge.
-    assert clearance_m((0.06, 0.27, -0.015, 0.015), [(centre, radius)]) == pytest.approx(0.135)
-    assert clearance_m((-0.27, -0.06, -0.015, 0.015), [(centre, radius)]) == pytest.approx(-0.05)
-    assert clearance_m((0.0, 1.0, 0.0, 1.0), []) == float("inf")
     # Nothing behind the camera is seen.
     assert discs_in_plane(LOOKING_DOWN, GRIPPER[:3, 3], [([0.5, -0.3, 2.0], 0.06)]) == []
-
-
-def test_the_bars_go_right_of_the_gripper_only_when_left_they_would_cover_the_target() -> None:
-    covered = _frame(-0.15)
-    assert covered.bars_rightward
-    # Mirrored: the label's near end 1 cm beyond the bar's far end, 16 cm right, as far up.
-    x, y = DISTANCE_BAR_OFFSET_M
-    np.testing.assert_allclose(covered.distance_label_m(), [0.5 - x + 0.01, -0.3 - y, 0.0])
-    np.testing.assert_allclose(covered.bar_start_m((x, y)), [0.5 + 0.06, -0.3 - y, 0.0])
-    # The target right of the gripper, or under it: the bars stay left, as before.
-    for target_x_m in (0.15, 0.0):
-        frame = _frame(target_x_m)
-        assert not frame.bars_rightward
-        np.testing.assert_allclose(frame.distance_label_m(), [0.5 + x - 0.01, -0.3 - y, 0.0])
-    # A tracked bowl on the right as well: left stays, the lesser harm of the two.
-    bowl_right = np.array([0.5 + 0.15, -0.3, TABLE_Z])
-    bowl = {"bowl_m": bowl_right, "grasp_height_m": 0.0, "grasp_radius_m": 0.06}
-    assert not _frame(-0.15, **bowl).bars_rightward
-    # The target mesh is kept clear of too: a target circle clear of the bars by 3 cm, beyond
-    # LABEL_CLEARANCE_M, has its wider mesh reach within it.
-    assert not _frame(-0.42).bars_rightward
-    mesh = {"cues": MODALITIES["task"], "grasp_height_m": 0.0, "grasp_radius_m": 0.09}
-    assert _frame(-0.42, **mesh).bars_rightward
-
-
-def test_the_bar_draws_its_label_where_the_frame_says_reading_away_from_the_gripper() -> None:
-    labels: dict[str, SimpleNamespace] = {}
-
-    class Scene:
-        def add_box(self, name: str, **kw) -> SimpleNamespace:
-            return SimpleNamespace(**kw)
-
-        def add_label(self, name: str, text: str, **kw) -> SimpleNamespace:
-            labels[name] = SimpleNamespace(text=text, position=None, **kw)
-            return labels[name]
-
-    bar = Bar(Scene(), "/bar", (0, 255, 0), DISTANCE_BAR_OFFSET_M)  # type: ignore[arg-type]
-    for frame, anchor in ((_frame(-0.15), "center-left"), (_frame(0.15), "center-right")):
-        bar.show(frame, 0.5, "95 mm")
-        np.testing.assert_allclose(labels["/bar/label"].position, frame.distance_label_m())
-        assert labels["/bar/label"].anchor == anchor
 
 
 def test_the_height_label_is_pushed_beyond_the_target_it_would_sit_on() -> None:

@@ -118,11 +118,6 @@ def ocr_line(rgb: NDArray[np.uint8]) -> str:
     return read
 
 
-LINE_MARGIN_PX = 3
-"""A line of text is taken with this margin round its ink (px): OCR reads a glyph at the edge
-better with some background round it."""
-
-
 def label_lines(rgb: NDArray[np.uint8]) -> list[tuple[int, int, int, int]]:
     """Where lines of the labels' text may be (x, y, width, height in px): runs of dark grey
     ink of a line's height, as a person finds them, wherever their bars are (a bar inside the
@@ -132,25 +127,19 @@ def label_lines(rgb: NDArray[np.uint8]) -> list[tuple[int, int, int, int]]:
     # Closed along the rows, a line's glyphs and the spaces between its words are one.
     words = cv2.morphologyEx(ink.astype(np.uint8), cv2.MORPH_CLOSE, np.ones((1, 9), np.uint8))
     return [
-        (
-            max(x - LINE_MARGIN_PX, 0),
-            max(y - LINE_MARGIN_PX, 0),
-            w + 2 * LINE_MARGIN_PX,
-            h + 2 * LINE_MARGIN_PX,
-        )
+        (max(x - 3, 0), max(y - 3, 0), w + 6, h + 6)
         for x, y, w, h, _ in _components(words)
         if LINE_MIN_HEIGHT_PX <= h <= LINE_MAX_HEIGHT_PX and 2 * h <= w <= LINE_MAX_WIDTH_PX
     ]
 
 
-def find_label(rgb: NDArray[np.uint8], pattern: str) -> tuple[int, Box] | None:
+def find_label(rgb: NDArray[np.uint8], pattern: str) -> tuple[int, Spot] | None:
     """The number of the first label whose text (spaces dropped) is ``pattern``, a regular
-    expression with one group of digits, and where the label is (its line of text, a few
-    pixels' margin round it); None where none reads so."""
+    expression with one group of digits, and where the label is; None where none reads so."""
     for x, y, w, h in label_lines(rgb):
         found = re.fullmatch(pattern, ocr_line(rgb[y : y + h, x : x + w]))
         if found:
-            return int(found.group(1)), Box(x + w / 2, y + h / 2, w, h)
+            return int(found.group(1)), Spot(x + w / 2, y + h / 2)
     return None
 
 

@@ -40,12 +40,10 @@ from numpy.typing import NDArray
 from playwright.sync_api import TimeoutError as PlaywrightTimeout
 from scipy.optimize import least_squares
 
-from arteleop.ar_features import BAR_LABEL_GAP_M, DISTANCE_BAR_OFFSET_M
 from arteleop.ar_features.keys import GRIP_KEY, KEYS
 from tests.instruments.browser import answer_questions, press_button, rate_every_item
 from tests.instruments.screen_reading import (
     DISTANCE,
-    LINE_MARGIN_PX,
     Box,
     Spot,
     bowl_box,
@@ -63,10 +61,6 @@ KEY = {name: code for code, name in KEYS.items() if code.startswith("Key")}
 """The letter key of each step button (:data:`arteleop.ar_features.keys.KEYS`)."""
 PROBE_STEPS = 2
 """The first steps, to learn from the distance where the grasp point lies: 10 cm each way."""
-LABEL_JUMP_MM = 2000 * (BAR_LABEL_GAP_M - DISTANCE_BAR_OFFSET_M[0])
-"""How far the distance label's end nearest its bar jumps when the bars go to the gripper's
-other side, clear of the bowl or the target (mm, at the gripper): the layout a person learns
-from watching it do so."""
 RING_SHARE = 0.95
 """The grasp ring (the middle of the wall, below the rim) is about this share of the bowl's
 width as seen."""
@@ -237,7 +231,7 @@ class ScriptedParticipant:
     def distance(self) -> float:
         """The distance label, read once the gripper stands (mm); where it was drawn goes to
         :attr:`label_at`."""
-        spots: list[Box] = []
+        spots: list[Spot] = []
 
         def read(rgb: NDArray[np.uint8]) -> float | None:
             found = find_label(rgb, DISTANCE)
@@ -249,23 +243,7 @@ class ScriptedParticipant:
         self.label_at = spots[-1]
         return value
 
-    @staticmethod
-    def _scale(start: Box, end: Box, toward: float) -> float:
-        """Pixels a millimetre at the gripper, from the distance label drawn at ``start`` and
-        at ``end`` after the probe's steps ``toward`` one side of the image (-1 left, 1 right).
-        The label moves with the gripper; if it moved the other way, the bars went to the
-        gripper's other side on the way (closing on the bowl they would cover it), and its end
-        nearest its bar jumped :data:`LABEL_JUMP_MM` against the move."""
-        moved_mm = PROBE_STEPS * STEPS_MM["5 cm"]
-        moved_px = end.x_px - start.x_px
-        if moved_px * toward > 0:
-            return abs(moved_px) / moved_mm
-        # Its near end: towards the gripper, the side it came from, then the side it went to.
-        near_start = start.x_px - toward * (start.width_px / 2 - LINE_MARGIN_PX)
-        near_end = end.x_px + toward * (end.width_px / 2 - LINE_MARGIN_PX)
-        return abs(near_end - near_start) / (LABEL_JUMP_MM - moved_mm)
-
-    def reach(self, start: Box, distance: float, bowl: Spot, bowl_wide_px: float) -> float:
+    def reach(self, start: Spot, distance: float, bowl: Spot, bowl_wide_px: float) -> float:
         """To the grasp point on the bowl's wall that faces the gripper across the image, from
         ``distance`` read with the label at ``start`` and the bowl seen at ``bowl``,
         ``bowl_wide_px`` wide; the distance left (mm)."""
@@ -279,7 +257,8 @@ class ScriptedParticipant:
             self.press(name, PROBE_STEPS)
             seen.append((self._at_mm.copy(), self.distance()))
             if name == across:
-                px_per_mm = self._scale(start, self.label_at, -1.0 if across == "left" else 1.0)
+                moved_px = abs(self.label_at.x_px - start.x_px)
+                px_per_mm = moved_px / (PROBE_STEPS * STEPS_MM["5 cm"])
         self.log(f"probed {probes}: {[round(d) for _, d in seen]} mm")
         # The label measures to the nearest point of a level ring round the bowl's axis: from
         # afar, a point on its near side. The ring is about as wide as the bowl looks, measured

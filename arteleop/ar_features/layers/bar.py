@@ -9,10 +9,12 @@ import numpy as np
 import viser
 from numpy.typing import NDArray
 
-from arteleop.ar_features.display_frame import BAR_LENGTH_M, DisplayFrame
+from arteleop.ar_features.display_frame import BAR_LABEL_GAP_M, DisplayFrame
 from arteleop.ar_features.layers.colors import NO_ESTIMATE_RGB
 from arteleop.transforms import transform_to_pose
 
+BAR_LENGTH_M = 0.10
+"""Length of a full bar (m): about 60 px at the head camera's 1.3 m from the table."""
 BAR_WIDTH_M = 0.012
 
 
@@ -25,9 +27,7 @@ a laptop's screen, and by OCR (at 0.9 Tesseract misread one label in three)."""
 class Bar:
     """One bar; ``offset_m`` places its left end in the camera's frame (x right, y down)
     relative to the gripper, so it sits beside the gripper on screen whatever the arm does. The
-    label sits beyond the bar, away from the gripper. Where the frame puts the bars right of
-    the gripper (:attr:`DisplayFrame.bars_rightward`), the bar and its label go there as in a
-    mirror, the label still away from the gripper; the bar still fills from left to right."""
+    label sits left of the bar, away from the gripper."""
 
     def __init__(
         self,
@@ -53,7 +53,7 @@ class Bar:
         """Fill ``fraction`` (0..1) of the bar and write ``text`` beside it; None: no value,
         the bar greyed and empty."""
         R = frame.T_base_camera[:3, :3]
-        start = frame.bar_start_m(self._offset)
+        start = frame.beside_gripper_m(self._offset)
         wxyz = transform_to_pose(frame.T_base_camera)[1]
         if (fraction is None) != self._greyed:
             self._greyed = fraction is None
@@ -64,9 +64,8 @@ class Bar:
         self._place(self._frame, start + R[:, 0] * BAR_LENGTH_M / 2, wxyz)
         self._place(self._fill, start + R[:, 0] * length / 2, wxyz)
         self._fill.dimensions = (length, BAR_WIDTH_M * 1.2, BAR_WIDTH_M * 1.2)
-        self._label.position = frame.bar_label_m(self._offset)
-        # Its end nearest the bar: it reads away from the gripper.
-        self._label.anchor = "center-left" if frame.bars_rightward else "center-right"
+        x, y = self._offset
+        self._label.position = frame.beside_gripper_m((x - BAR_LABEL_GAP_M, y))
         self._label.text = text
 
     @staticmethod
