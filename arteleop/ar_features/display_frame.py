@@ -249,8 +249,8 @@ class DisplayFrame:
         view (right of a ring at rest, at the right edge, it went under the side panel); and
         beyond the target and the bowl where they lie level with it, by
         :data:`LABEL_CLEARANCE_M` (over the target, it sat on the circle being placed on)."""
-        side = -1.0 if self.height_label_leftward else 1.0
         ring = self.ring_m()
+        side = -1.0 if self._leftward_of(ring) else 1.0
         near = FOOT_RADIUS_M + HEIGHT_LABEL_GAP_M
         w, h = LABEL_SIZE_M
         box = (near, near + w, -h / 2, h / 2) if side > 0 else (-near - w, -near, -h / 2, h / 2)
@@ -262,8 +262,11 @@ class DisplayFrame:
     def height_label_leftward(self) -> bool:
         """The height's label is drawn left of the ring: the ring is right of the image's
         middle."""
-        offset = self.ring_m() - self.viewpoint_m
-        return bool(offset @ self.T_base_camera[:3, 0] > 0.0)
+        return self._leftward_of(self.ring_m())
+
+    def _leftward_of(self, ring_m: NDArray[np.float64]) -> bool:
+        """A ring at ``ring_m`` lies right of the image's middle (its label goes left)."""
+        return bool((ring_m - self.viewpoint_m) @ self.T_base_camera[:3, 0] > 0.0)
 
     def distance_label_m(self) -> NDArray[np.float64]:
         """Where the distance bar's label is drawn (base frame, m), its right end."""

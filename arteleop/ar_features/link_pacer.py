@@ -95,6 +95,8 @@ class LinkPacer(Closeable):
     every frame and measured not at all."""
 
     def __init__(self, server: viser.ViserServer, client_id: int, least_s: float = math.inf):
+        self.client_id = client_id
+        """The tab paced."""
         self.rule = QueueRule(least_s)
         self._latencies_s: list[float] = []
         self._lock = threading.Lock()

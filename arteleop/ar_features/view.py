@@ -207,21 +207,19 @@ class OperatorView(Closeable):
         self.pacer: LinkPacer | None = None
         """The pace of the tab the cloud is sent at, if one is paced (:meth:`pace`)."""
         self._least_s: dict[int, float] = {}  # each paced tab's least round trip (s)
-        self._paced: int | None = None
 
     def pace(self, client_id: int | None) -> None:
         """Send the cloud at the pace the tab ``client_id``'s connection carries
         (:class:`LinkPacer`), or, with None, at every frame. The other tabs get the same
         frames, or fewer (viser drops a tile's update a newer one replaces). A tab paced again
         starts from the least round trip it was measured at before."""
-        if (pacer := self.pacer) is not None and self._paced is not None:
+        if (pacer := self.pacer) is not None:
             pacer.close()
-            self._least_s[self._paced] = pacer.rule.least_s
+            self._least_s[pacer.client_id] = pacer.rule.least_s
         self.pacer = None
         if client_id is not None:
             least_s = self._least_s.get(client_id, math.inf)
             self.pacer = LinkPacer(self.server, client_id, least_s)
-        self._paced = client_id
         self.cloud.interval = 1
 
     @property
