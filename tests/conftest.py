@@ -55,3 +55,14 @@ def noiseless_site(site_config: SiteConfig) -> Iterator[RemoteSite]:
     camera = replace(site_config.camera, noise=DepthNoiseConfig(enabled=False, quantize=False))
     with RemoteSite(replace(site_config, camera=camera)) as s:
         yield s
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """Under ``--dist loadgroup`` a file's tests go to one worker, as under ``loadfile`` (its
+    shared set-ups run once), and the files marked ``xdist_group("chromium")`` go to one
+    worker in turn: two headless Chromiums drawing WebGL in software beside two servers made a
+    2-core CI machine miss the browser tests' timeouts."""
+    for item in items:
+        if item.get_closest_marker("xdist_group") is None:
+            item.add_marker(pytest.mark.xdist_group(item.nodeid.partition("::")[0]))

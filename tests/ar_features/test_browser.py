@@ -31,6 +31,9 @@ from arteleop.teleop import TrialConfig, display_frames_at, trial_operator, view
 from tests.instruments.browser import Browser, chromium, require_chromium
 from tests.instruments.screen_reading import gizmo_red, of_hue
 
+# One headless Chromium at a time in the suite: see tests/conftest.py.
+pytestmark = pytest.mark.xdist_group("chromium")
+
 GREEN, BLUE = (0, 255, 0), (0, 0, 255)
 """Hues, for :func:`of_hue`: the distance bar's and target's green, the grip bar's blue."""
 MOMENT_S = 5.0

@@ -13,6 +13,9 @@ from arteleop.operator import HandTarget
 from tests.instruments.browser import chromium, require_chromium
 from tests.instruments.view_probe import CAMERA, ViewProbe, until
 
+# One headless Chromium at a time in the suite: see tests/conftest.py.
+pytestmark = pytest.mark.xdist_group("chromium")
+
 
 def _free_port() -> int:
     with socket.socket() as s:

@@ -89,7 +89,7 @@ class Page:
             and box["y"] + box["height"] <= VIEWPORT["height"]
         )  # fmt: skip
 
-    def screenshot(self, path: Path, timeout_s: float = 30.0) -> NDArray[np.uint8]:
+    def screenshot(self, path: Path, timeout_s: float = 60.0) -> NDArray[np.uint8]:
         """The tab's pixels (H, W, 3) RGB, once two shots half a second apart are equal."""
         previous = None
         end = time.monotonic() + timeout_s

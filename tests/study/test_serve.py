@@ -23,7 +23,7 @@ from arteleop.study import (
 from arteleop.study.demographics import Demographics, SessionInputError
 from arteleop.study.plan import EXPERIMENTAL
 from arteleop.study.runner import resume_study
-from arteleop.study.serve import ROUND_TRIP_TIMEOUT_S, StudyServer
+from arteleop.study.serve import StudyServer
 from arteleop.study.session import (
     BROWSER_FILE,
     INTERRUPTED_FILE,
@@ -43,6 +43,9 @@ from tests.instruments.browser import (
 from tests.instruments.screen_reading import gizmo_red, of_hue
 from tests.instruments.view_probe import admitted, refused, until
 
+# One headless Chromium at a time in the suite: see tests/conftest.py.
+pytestmark = pytest.mark.xdist_group("chromium")
+
 STUDY = StudyConfig(
     name="served",
     # The first (P01's) without the ghost, whose meshes take software WebGL seconds to load.
@@ -54,6 +57,10 @@ STUDY = StudyConfig(
     cohort=CohortConfig(size=2, avr_experts=0, games_experts=0, both_experts=0),
 )
 """Two people, two trials of five seconds each, no practice."""
+BUSY_ROUND_TRIP_S = 30.0
+"""The longest a display round trip is waited for in this suite's real browser (s)."""
+TUTORIAL_WAIT_S = 120.0
+"""How long the tutorial's page may take to show and to draw (s)."""
 ANSWERS = Demographics(31, "female", "right", 5, 2, 3, 1)
 
 
@@ -270,13 +277,15 @@ def _take_part(
     press_button(first, "Continue")
     first.get_by_text("age 17: expected a whole number 18-99 (years).").wait_for()
     answer_questions(first)
-    first.get_by_text("How to drive the robot").wait_for()
+    # The tutorial drives the robot in three tabs at once: on a busy two-core machine their
+    # software WebGL held the page's checks up for 30-50 s.
+    first.get_by_text("How to drive the robot").wait_for(timeout=TUTORIAL_WAIT_S * 1000)
     # The robot runs on this page, for the person to try (the gizmo moved, the robot did not).
-    first.get_by_text("Try it now", exact=False).wait_for()
+    first.get_by_text("Try it now", exact=False).wait_for(timeout=TUTORIAL_WAIT_S * 1000)
     drawn = server.view.cloud.frames_drawn
-    assert until(lambda: server.view.cloud.frames_drawn > drawn + 10, wait_s=30.0)
-    press_button(first, "Continue")
-    first.get_by_text("Trial 1 of 2").wait_for()
+    assert until(lambda: server.view.cloud.frames_drawn > drawn + 10, wait_s=TUTORIAL_WAIT_S)
+    press_button(first, "Continue", TUTORIAL_WAIT_S)
+    first.get_by_text("Trial 1 of 2").wait_for(timeout=TUTORIAL_WAIT_S * 1000)
     press_button(first, "Start")
     # Closed as soon as the trial shows it runs (its page's heading outlives it, on the outcome).
     first.get_by_text("the robot is taking your hand", exact=False).wait_for()
@@ -325,7 +334,9 @@ def _take_part(
     assert admitted(socket_url(server.observer_link))  # the experimenter's, session after session
 
 
-def test_a_participant_goes_through_the_study_in_a_real_browser(tmp_path: Path) -> None:
+def test_a_participant_goes_through_the_study_in_a_real_browser(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
     """By the participant's link (the server's bare address gets nothing; the experimenter's
     link is let in throughout): consent,
     questions (a wrong answer told), a trial cut short by closing the tab (a second tab, which
@@ -338,6 +349,9 @@ def test_a_participant_goes_through_the_study_in_a_real_browser(tmp_path: Path) 
     require_chromium()
     from arteleop.ar_features import ViewConfig
 
+    # Software WebGL in three tabs beside the server and the suite's other worker: on a busy
+    # two-core CI machine an 8x8 frame once took over the 5 s a person's browser is given.
+    monkeypatch.setattr("arteleop.study.serve.ROUND_TRIP_TIMEOUT_S", BUSY_ROUND_TRIP_S)
     camera = HeadCameraConfig(width_px=320, height_px=240)
     greens: list[int] = []
     gizmos: list[np.ndarray] = []
@@ -383,9 +397,9 @@ def test_a_participant_goes_through_the_study_in_a_real_browser(tmp_path: Path) 
         ("P01", "1", "buttons"), ("P01", "2", "buttons")
     ]  # fmt: skip
     for b in shown:  # the tab's scene beside the docked panel; a frame there and back
-        assert 0 < float(b["display_round_trip_s"]) < ROUND_TRIP_TIMEOUT_S, b
+        assert 0 < float(b["display_round_trip_s"]) < BUSY_ROUND_TRIP_S, b
         # Its socket pinged during the trial, and the cloud sent at a rate the link carried.
-        assert 0 < float(b["link_latency_s"]) < ROUND_TRIP_TIMEOUT_S, b
+        assert 0 < float(b["link_latency_s"]) < BUSY_ROUND_TRIP_S, b
         assert float(b["cloud_fps"]) > 0 and int(b["cloud_frames_held"]) >= 0, b
         assert (
             600 < int(b["scene_width_px"]) < 1280
