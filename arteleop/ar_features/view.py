@@ -281,6 +281,19 @@ class OperatorView(Closeable):
         self.server.flush()
         self.updates += 1
 
+    def show_still(self, frame: DisplayFrame) -> None:
+        """:meth:`show` a frame that no other follows soon (the scene while a person gets
+        ready), then :meth:`settle`."""
+        self.show(frame)
+        self.settle()
+
+    def settle(self) -> None:
+        """Send now every change of the cloud the latest frame shown still differs by
+        (:meth:`CloudLayer.settle`): frames stream the small ones over the next frames, and
+        after the last there are none."""
+        self._send(self.cloud.settle)
+        self.server.flush()
+
     def _send(self, draw: Callable[[], None]) -> None:
         """``draw``, whose messages viser sends. viser 1.1.1 sets its asyncio.Event from the
         sending thread (this one), racing the event loop's waiters: the message is buffered

@@ -238,7 +238,7 @@ class StudyServer(Closeable):
                              render_camera=True, timeout_s=TUTORIAL_S)  # fmt: skip
             with RemoteSite(config.site) as site:
                 cues = modality_cues(pending[0].modality)
-                self.view.show(site_frame(site, cues, True, config.depth_aids))
+                self.view.show_still(site_frame(site, cues, True, config.depth_aids))
                 if (live := self.tabs.live) is not None:
                     live.reset()
                 source = live_source(self._target, config.controller.mapping, config.seed)
@@ -266,7 +266,7 @@ class StudyServer(Closeable):
         with RemoteSite(config.site) as site:
             # The scene as the trial will begin, its layers on, while the person gets ready.
             cues = modality_cues(spec.modality)
-            self.view.show(site_frame(site, cues, True, config.depth_aids))
+            self.view.show_still(site_frame(site, cues, True, config.depth_aids))
             if (live := self.tabs.live) is not None:  # the gizmo where the last trial left it
                 live.reset()
             self.tabs.show(
@@ -293,6 +293,7 @@ class StudyServer(Closeable):
                 if pacer is not None:
                     latency_s = pacer.take_latency_s()
                 self.view.pace(None)
+                self.view.settle()  # the scene the trial ended on, whole beside its outcome
         wall_s = time.perf_counter() - start
         frames, payload = cloud.frames_drawn - sent[0], cloud.payload_bytes - sent[1]
         stream = {"cloud_frames": frames, "cloud_kbytes": payload / 1e3,

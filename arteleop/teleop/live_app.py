@@ -154,7 +154,7 @@ class TeleopApp(Closeable):
     def _show_rest(self) -> None:
         """The robot at rest on the view, the trial's layers on."""
         cues = modality_cues(self._trial.modality)
-        self.view.show(site_frame(self.site, cues, True, self._trial.depth_aids))
+        self.view.show_still(site_frame(self.site, cues, True, self._trial.depth_aids))
 
     def _source(self, config: TrialConfig) -> OperatorSource:
         mapping = config.controller.mapping

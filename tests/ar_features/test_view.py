@@ -10,6 +10,7 @@ import pytest
 
 from arteleop.ar_features import DisplayFrame, OperatorView, ViewConfig
 from arteleop.ar_features.layers import CloudLayer
+from arteleop.ar_features.layers.cloud import REFRESHED_TILES
 from arteleop.errors import ConfigurationError, DisplayFrameError
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
 from arteleop.teleop import Outcome, TrialConfig, run_trial, trial_operator
@@ -238,6 +239,36 @@ def test_each_tile_is_drawn_as_wide_as_a_footprint_at_its_distance_and_sent_when
     show(np.zeros((0, 3), np.float32), np.zeros((0, 3), np.uint8))  # nothing in range
     assert layer.tiles_sent == 5 and _tiles(server) == {}
     assert server.added == 2
+
+
+def test_a_still_frame_settles_every_change_the_stream_would_leave_for_later() -> None:
+    """Six tiles each with one point of a hundred turned black (a new scene's target circle
+    crossing them): under the share that sends a tile, so a frame sends four of them, and a
+    still frame settled sends the other two; once settled, nothing is left to send."""
+    gray = np.full((100, 3), 128, np.uint8)
+    patches = [_patch((-0.49 + 0.0625 * i, 0.012), 1.0, 0.004) for i in range(6)]
+    server = _Server()
+    layer = CloudLayer(server, overlap=1.5, half_fov_tan=(0.5, 0.4))  # type: ignore[arg-type]
+
+    def frame(colors: np.ndarray) -> DisplayFrame:
+        return display_frame(cloud_points_m=np.vstack(patches), cloud_colors=colors,
+                             cloud_spacing_rad=0.004)  # fmt: skip
+
+    def black_drawn() -> int:
+        return sum(
+            int((np.asarray(c.colors) == 0).all(axis=1).sum()) for c in server.clouds.values()
+        )
+
+    layer.draw(frame(np.vstack([gray] * 6)))
+    assert layer.tiles_sent == 6 and black_drawn() == 0
+    ring = np.vstack([gray] * 6)
+    ring[np.arange(6) * 100 + 55] = 0
+    layer.draw(frame(ring))
+    assert layer.tiles_sent == 6 + REFRESHED_TILES and black_drawn() == REFRESHED_TILES
+    layer.settle()
+    assert layer.tiles_sent == 12 and black_drawn() == 6
+    layer.settle()
+    assert layer.tiles_sent == 12 and layer.frames_drawn == 2
 
 
 class _CountingDisplay:

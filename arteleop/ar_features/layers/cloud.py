@@ -93,19 +93,39 @@ class CloudLayer(Layer):
         self.frames_held = 0
         """Frames with a cloud passed over at that pace so far."""
         self._offered = 0
+        self._latest: DisplayFrame | None = None
         self.payload_bytes = 0
         """The points' positions and colours sent so far (bytes): what a browser receives,
         before compression and besides the messages' own few bytes."""
 
     def update(self, frame: DisplayFrame) -> None:
-        points, colors, spacing = frame.cloud_points_m, frame.cloud_colors, frame.cloud_spacing_rad
-        if points is None or colors is None or spacing is None:
+        if (
+            frame.cloud_points_m is None
+            or frame.cloud_colors is None
+            or frame.cloud_spacing_rad is None
+        ):
             return
+        self._latest = frame
         self._offered += 1
         if self._offered % self.interval:
             self.frames_held += 1
             return
         self.frames_drawn += 1
+        self._draw_tiles(frame, every_change=False)
+
+    def settle(self) -> None:
+        """Send every tile the latest frame changed at all, now: for a frame that no other
+        follows soon (a trial's scene while a person gets ready, a trial's last), whose small
+        changes, and a held frame's, would otherwise stay off the screen. A new scene's target
+        circle, a few points of each tile it crosses, was drawn in pieces until Start."""
+        if self._latest is not None:
+            self._draw_tiles(self._latest, every_change=True)
+
+    def _draw_tiles(self, frame: DisplayFrame, every_change: bool) -> None:
+        """Send the tiles of ``frame`` that changed (beyond :data:`CHANGED_SHARE`, and
+        :data:`REFRESHED_TILES` of the others; with ``every_change``, every tile changed)."""
+        points, colors, spacing = frame.cloud_points_m, frame.cloud_colors, frame.cloud_spacing_rad
+        assert points is not None and colors is not None and spacing is not None
         tile, keys, distance = self._place(frame, points, spacing)
         order = np.lexsort((keys, tile))  # by tile, then by pixel
         points, colors, tile, keys, distance = (
@@ -131,7 +151,7 @@ class CloudLayer(Layer):
         # A few changes too small to send a tile for (a stray edge of the bowl carried away)
         # would stay: the tiles with the most go too, a few a frame.
         lagging.sort(key=lambda item: -item[0])
-        tiles += [(k, new) for _, k, new in lagging[:REFRESHED_TILES]]
+        tiles += [(k, new) for _, k, new in lagging[: None if every_change else REFRESHED_TILES]]
         with self._server.atomic():  # a browser applies a tile's points and colours together
             for k, new in tiles:
                 self._send(k, new, spacing)
