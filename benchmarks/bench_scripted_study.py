@@ -8,7 +8,7 @@ target). Not full AR by default: on two cores without a GPU the ghost's meshes h
 page's frame rate (a look of the script's took 1.56 s against 0.74 s), and the script ran out
 of the 120 s (``--conditions manipulation,full`` runs it). Then, each as a researcher types it:
 
-1. ``arteleop study serve study.toml --out served --port 0 --width-px 320 --height-px 240``,
+1. ``arteleop study serve study.toml --out served --port 0 --width-px 640 --height-px 480``,
    and the scripted participant (``tests/instruments/scripted_participant.py``) takes part in
    headless Chromium from the consent page to the last, deciding every move from what the page
    shows; a screenshot of every page goes to ``--out``'s ``shots/``;
@@ -22,14 +22,16 @@ and their ratio, and what the stream asked of the connection (``browser.csv``: t
 frames a second and Mbit/s, the display's round trip); it exits non-zero if a step fails, a
 page's outcome is not the file's, or the script did not place the bowl on the target circle
 (what the suite's test of the scripted participant asserted, until it moved here).
-``--camera 640x480`` serves the default head camera's image (320x240 by default: the page
-keeps its frame rate beside the server on two cores);
+``--camera`` sets the head camera's image: by default the head camera's own 640x480, as
+``study serve`` gives people (at 320x240, at 8cbf78f, seed 0's practice target lay where its
+ring came out in pieces and the script found no target);
 ``--throttle-mbit 8`` puts the browser behind a connection that carries at most 8 Mbit/s to it
 (``tests/instruments/throttle.py``: a local proxy, the page and its socket through it).
 
     python benchmarks/bench_scripted_study.py [--out DIR] [--camera WxH] [--throttle-mbit R]
 
-Needs Chromium and Tesseract (the tests' system packages). About 8 min on two cores.
+Needs Chromium and Tesseract (the tests' system packages). About 8 min on two cores, 13 on a
+slow day.
 """
 
 from __future__ import annotations
@@ -187,7 +189,7 @@ def main() -> int:
         help="the conditions' cue sets, comma-separated; each must draw the distance bar the "
         "script reads",
     )
-    parser.add_argument("--camera", default="320x240", help="the head camera's image, WxH (px)")
+    parser.add_argument("--camera", default="640x480", help="the head camera's image, WxH (px)")
     parser.add_argument("--throttle-mbit", type=float, default=None,
                         help="the most the browser's connection carries to it (Mbit/s)")  # fmt: skip
     args = parser.parse_args()

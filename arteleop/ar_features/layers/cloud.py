@@ -116,8 +116,8 @@ class CloudLayer(Layer):
     def settle(self) -> None:
         """Send every tile the latest frame changed at all, now: for a frame that no other
         follows soon (a trial's scene while a person gets ready, a trial's last), whose small
-        changes, and a held frame's, would otherwise stay off the screen. A new scene's target
-        circle, a few points of each tile it crosses, was drawn in pieces until Start."""
+        changes, and a held frame's, would otherwise stay off the screen: a tile where a new
+        scene differs by a point or two kept the old scene's points until Start."""
         if self._latest is not None:
             self._draw_tiles(self._latest, every_change=True)
 
