@@ -282,6 +282,10 @@ def main() -> int:
         )
     if set(pd.read_csv(served / "browser.csv").input_device) != {"buttons"}:
         raise BenchmarkFailed("browser.csv does not record the buttons the script drove with")
+    if not all({"close", "open"} <= set(trial.presses) for trial in done):
+        raise BenchmarkFailed("a trial was done without closing and opening the grip")
+    if set(pd.read_csv(served / "questionnaire.csv").participant) != {"P01"}:
+        raise BenchmarkFailed("questionnaire.csv does not hold the participant's ratings")
     return 0
 
 

@@ -293,7 +293,6 @@ class StudyServer(Closeable):
                 if pacer is not None:
                     latency_s = pacer.take_latency_s()
                 self.view.pace(None)
-                self.view.settle()  # the scene the trial ended on, whole beside its outcome
         wall_s = time.perf_counter() - start
         frames, payload = cloud.frames_drawn - sent[0], cloud.payload_bytes - sent[1]
         stream = {"cloud_frames": frames, "cloud_kbytes": payload / 1e3,
@@ -301,6 +300,7 @@ class StudyServer(Closeable):
                   "cloud_frames_held": cloud.frames_held - sent[2],
                   "cloud_fps": frames / max(wall_s, 1e-9),
                   "link_latency_s": math.nan if latency_s is None else latency_s}  # fmt: skip
+        self.view.settle()  # the scene the trial ended on, whole beside its outcome
         record = trial_record(spec, result, wall_s)
         row = record.row
         time_s, error_m = row["completion_time_s"], row["placement_error_m"]
