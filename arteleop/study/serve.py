@@ -238,7 +238,7 @@ class StudyServer(Closeable):
                              render_camera=True, timeout_s=TUTORIAL_S)  # fmt: skip
             with RemoteSite(config.site) as site:
                 cues = modality_cues(pending[0].modality)
-                self.view.show_still(site_frame(site, cues, True, config.depth_aids))
+                self.view.show(site_frame(site, cues, True, config.depth_aids))
                 if (live := self.tabs.live) is not None:
                     live.reset()
                 source = live_source(self._target, config.controller.mapping, config.seed)
