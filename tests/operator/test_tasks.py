@@ -106,12 +106,29 @@ class _Press:
         return None
 
 
-def _press(seed: int) -> tuple[SyntheticOperator, _Press, np.ndarray, float]:
+class _Slipping(_Press):
+    """The button slips away from under the gripper the first three times it is pressed: a
+    look in the press shows it, and the task sends the operator back over it."""
+
+    def __init__(self, button_m: np.ndarray, rest_m: np.ndarray) -> None:
+        super().__init__(button_m, rest_m)
+        self.slips = 3
+
+    def setback(self, phase: TaskPhase, seen: Perceived) -> str | None:
+        if phase.name != "press" or self.slips == 0:
+            return None
+        self.slips -= 1
+        return "over"
+
+
+def _press(
+    seed: int, task_type: type[_Press] = _Press
+) -> tuple[SyntheticOperator, _Press, np.ndarray, float]:
     """The operator presses the button on a small scene: a gripper that follows the hand one to
     one at once, shown by the ghost at 30 frames/s. Returns the operator, the task, the button
     and the grip at the end."""
     button = np.array([0.68, -0.45, -0.2])
-    task = _Press(button, np.array([0.6, -0.4, 0.0]))
+    task = task_type(button, np.array([0.6, -0.4, 0.0]))
     op = SyntheticOperator(task, lambda p: p, ArmModel(), CalibrationPosture(),
                            np.random.default_rng(seed))  # fmt: skip
     op.start_phase("over", button + [0.0, -0.15, 0.12], 0.0)
@@ -138,6 +155,16 @@ def test_a_new_task_is_done_by_the_same_mechanism_through_its_phases() -> None:
         assert task.squeezed_at is not None
         assert np.linalg.norm(op.hand.position_m - button) < 0.03, seed
         assert grip == 1.0
+
+
+def test_the_operator_goes_back_as_often_as_it_sees_the_task_go_wrong() -> None:
+    """However often a look shows the task went wrong, the operator goes back and does it
+    again: after two setbacks the model used to go on as if it had not (an empty gripper
+    carried to the target)."""
+    op, task, button, grip = _press(0, _Slipping)
+    assert [r.name for r in op.history] == ["over", "press"] * 4 + ["squeeze"]
+    assert task.slips == 0 and grip == 1.0
+    assert np.linalg.norm(op.hand.position_m - button) < 0.03
 
 
 def test_a_phase_the_task_does_not_have_is_refused_with_its_phases() -> None:

@@ -62,10 +62,10 @@ def test_a_study_changes_a_constant_of_the_model_and_its_file_says_so() -> None:
     model's own study files are as before, without the table."""
     from arteleop.operator import OperatorParams
 
-    changed = parse_study("[operator_params]\nmax_look_s = 3.0\nmax_setbacks = 4\n")
-    assert changed.operator_params == replace(OperatorParams(), max_look_s=3.0, max_setbacks=4)
+    changed = parse_study("[operator_params]\nmax_look_s = 3.0\ngrip_ramp_s = 0.6\n")
+    assert changed.operator_params == replace(OperatorParams(), max_look_s=3.0, grip_ramp_s=0.6)
     text = study_text(changed)
-    assert "max_look_s = 3.0  # the model's: 1.5\nmax_setbacks = 4  # the model's: 2\n" in text
+    assert "max_look_s = 3.0  # the model's: 1.5\ngrip_ramp_s = 0.6  # the model's: 0.3\n" in text
     assert parse_study(text) == changed
     assert first_difference(StudyConfig(), changed) == "operator_params.max_look_s"
     assert "operator_params" not in study_text(StudyConfig())
@@ -180,8 +180,8 @@ def test_study_init_writes_the_commented_default(tmp_path: Path, capsys) -> None
         ("\n[operator_params]\nhand_pitch_rad = 2\n",
          "s.toml line 3: operator_params.hand_pitch_rad = 2.0: expected -1.571 to 1.571 (rad: a "
          "quarter turn either way)."),
-        ("[operator_params]\nmax_setbacks = 1.5\n",
-         "s.toml line 2: operator_params.max_setbacks must be a whole number, got 1.5."),
+        ("[operator_params]\nmax_look_s = \"long\"\n",
+         "s.toml line 2: operator_params.max_look_s must be a number, got 'long'."),
         ("[operator_params]\nperception = 1\n",
          "s.toml line 2: unknown key 'operator_params.perception'. A study may change these of "
          "the model's constants: " + ", ".join(OPERATOR_PARAMS_KEYS) + "."),

@@ -43,8 +43,6 @@ class OperatorParams:
         gross_criterion_m: Criterion of the movements without a precision demand (in the
             pick-and-place: lift, retract, home; m).
         max_look_s: A look ends by then, sure or not (s).
-        max_setbacks: Times the operator goes back in a task when a look shows it went wrong
-            (in the pick-and-place: for a bowl a missed grasp left behind).
         grip_ramp_s: Time to squeeze or release the pinch sensor (s).
         grip_wait_known_s: Wait after squeezing or releasing when the display shows the
             gripper's closure (s).
@@ -70,7 +68,6 @@ class OperatorParams:
     motion_threshold_m: float = 0.005
     gross_criterion_m: float = 0.05
     max_look_s: float = 1.5
-    max_setbacks: int = 2
     grip_ramp_s: float = 0.3
     grip_wait_known_s: float = 0.4
     grip_wait_unknown_s: float = 1.0
@@ -84,7 +81,7 @@ class OperatorParams:
                              "arrival_speed_m_s", "arrival_timeout_s", "gross_criterion_m",
                              "max_look_s", "grip_ramp_s", "own_error_prior_sd"), positive),
             **dict.fromkeys(("motor_delay_s", "visuomotor_delay_s", "familiar_lag_s",
-                             "max_setbacks", "tremor_amplitude_m", "grip_wait_known_s",
+                             "tremor_amplitude_m", "grip_wait_known_s",
                              "grip_wait_unknown_s"), non_negative),
             "hand_pitch_rad": Bounds(-math.pi / 2, math.pi / 2,
                                      text="-1.571 to 1.571 (rad: a quarter turn either way)"),

@@ -93,7 +93,6 @@ class SyntheticOperator:
         self._homing_from_s = self._homing_until_s = 0.0
         self._moved_in_phase = False
         self._last_step_s: float | None = None
-        self.setbacks = 0
         self.corrections_total = 0
         """Corrective submovements, in flight or after a look."""
         self.looks_total = 0
@@ -199,11 +198,12 @@ class SyntheticOperator:
         (look again)."""
         if goal is None:  # not shown yet: keep looking
             return
-        if self.setbacks < self.p.max_setbacks:
-            back = self.task.setback(phase, seen)
-            if back is not None:
-                self._set_back(t, back)
-                return
+        # However often it went wrong, a person who sees it goes back, until the trial's time
+        # is up: none carries an empty gripper on, as the model did after two setbacks.
+        back = self.task.setback(phase, seen)
+        if back is not None:
+            self._set_back(t, back)
+            return
         error = goal.gripper_m - seen.gripper_m
         sure = self._criterion.sure_within(t, error, goal)
         within = self._criterion.sure_within(t, error, goal, np.zeros((3, 3))) == 1.0
@@ -274,7 +274,6 @@ class SyntheticOperator:
 
     def _set_back(self, t: float, name: str) -> None:
         """A look shows the task went wrong: open the hand and go back to phase ``name``."""
-        self.setbacks += 1
         self._grip = 0.0
         self._enter(phase_named(self.task, name), t)
         self._mode, self._wait_until = _Mode.WAIT, t + self.p.grip_ramp_s
