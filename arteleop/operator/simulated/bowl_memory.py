@@ -20,7 +20,6 @@ class BowlMemory:
     def __init__(self) -> None:
         self._last_seen_m: NDArray[np.float64] | None = None
         self._in_hand_m: NDArray[np.float64] | None = None
-        self._seen_in_hand_m: NDArray[np.float64] | None = None  # at the last look showing it
         self.in_hand_cov = np.zeros((3, 3))
 
     def bowl_m(self, seen: Perceived) -> NDArray[np.float64] | None:
@@ -43,32 +42,24 @@ class BowlMemory:
         """The operator has closed the gripper on the bowl believed at ``bowl_m``; the bowl's
         place in the hand is as uncertain as the grasp's judgement was."""
         self._in_hand_m = None if bowl_m is None else bowl_m - seen.gripper_m
-        self._seen_in_hand_m = None
         self.in_hand_cov = seen.gripper_cov.copy()
 
     def release(self) -> None:
         self._in_hand_m = None
-        self._seen_in_hand_m = None
         self.in_hand_cov = np.zeros((3, 3))
 
     def left_behind(self, seen: Perceived, drop_m: float = 0.07) -> bool:
         """A look shows the bowl held a moment ago away from where the hand holds it: more than
-        ``drop_m`` below where the hand should carry it, farther than ``drop_m`` beyond the
+        ``drop_m`` below where the hand should carry it, or farther than ``drop_m`` beyond the
         reach of the hold from the gripper (the bowl's frame is where the grasp found it from
-        the grasp point, however the bowl swings about it), or moved against the gripper by
-        more than ``drop_m`` since the last look that showed it (it did not follow the hand).
-        The grasp missed and the bowl stayed on the table, or it slipped from the fingers.
-        (A held bowl hangs from its rim and the estimates err by centimetres, but a lift is
-        15 cm; lowering, a bowl left on the table is no longer far below the hand, but as far
-        from it as it was from the target; and a bowl that slipped within the hold's reach of
-        where the hand lowers it stays where it lies while the hand corrects over it.)"""
+        the grasp point, however the bowl swings about it). The grasp missed and the bowl
+        stayed on the table. (A held bowl hangs from its rim and the estimates err by
+        centimetres, but a lift is 15 cm; and lowering, a bowl left on the table is no longer
+        far below the hand, but as far from it as it was from the target.)"""
         if seen.bowl_m is None or self._in_hand_m is None:
             return False
         # Compared within the frame the bowl is seen in: its own gripper, not the lead's.
         gripper = seen.gripper_m - seen.lead_m
-        in_hand = seen.bowl_m - gripper
         below = (gripper + self._in_hand_m)[2] - seen.bowl_m[2]
-        beyond = np.linalg.norm(in_hand) - np.linalg.norm(self._in_hand_m)
-        before, self._seen_in_hand_m = self._seen_in_hand_m, in_hand
-        moved = 0.0 if before is None else float(np.linalg.norm(in_hand - before))
-        return bool(below > drop_m or beyond > drop_m or moved > drop_m)
+        beyond = np.linalg.norm(seen.bowl_m - gripper) - np.linalg.norm(self._in_hand_m)
+        return bool(below > drop_m or beyond > drop_m)
