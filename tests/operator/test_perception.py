@@ -655,6 +655,24 @@ def test_the_drop_line_passing_the_rims_height_guides_the_grasp() -> None:
                                            _independent(0)).gripper_cov)  # fmt: skip
 
 
+def test_through_the_beam_under_the_predictive_ghost_the_gripper_is_the_frames_arm() -> None:
+    """The beam and the distance bar hang from the delayed frame's arm, so a gripper judged
+    through them is the frame's, not ahead of it by the ghost's lead; a bowl held in that
+    frame's hand is where the hand holds it, not left behind by the lead (it was: the lead
+    taken off a gripper that never had it)."""
+    DOWN = np.diag([1.0, -1.0, -1.0])
+    arm = display_frame().T_base_gripper
+    ghost = make_transform(DOWN, arm[:3, 3] + [0.0, 0.1, 0.15])  # 18 cm ahead, lifting
+    for name, lead in (("full", np.zeros(3)), ("predictive", ghost[:3, 3] - arm[:3, 3])):
+        cues = replace(MODALITIES[name], predictive_ghost=True)
+        view = display_frame(cues=cues, predicted=PredictedArm(0.2, np.zeros(7), ghost, 0.0))
+        seen = perceive(view, P, _independent(0))
+        np.testing.assert_allclose(seen.lead_m, lead, atol=1e-12)
+        memory = BowlMemory()
+        memory.grasp(seen, seen.bowl_m)
+        assert not memory.left_behind(seen), name
+
+
 def test_under_the_predictive_ghost_the_aids_are_judged_from_the_frames_arm() -> None:
     """The line hangs from the delayed frame's arm, 5 cm behind the predictive ghost over the
     start: the person, who sees both, takes the ghost's lead off what the ring and the label

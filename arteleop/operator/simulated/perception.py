@@ -202,7 +202,7 @@ def perceive(
     closure_known = gripper_seen or cues.grip_bar
     return Perceived(
         grasp.gripper_m, bowl, placement.target_m, gripper_seen, closure_known, grasp.cov,
-        placement.cov, placement.by_gripper, judge.lead_m, grasp.fixations,
+        placement.cov, placement.by_gripper, grasp.lead_m, grasp.fixations,
         placement.fixations, judged_marks,
     )  # fmt: skip
 
@@ -210,12 +210,15 @@ def perceive(
 @dataclass(frozen=True)
 class GraspJudgement:
     """The gripper judged, with its believed covariance alone (``gripper_cov``) and relative
-    to the bowl (``cov``), m and m^2; the fixations it took."""
+    to the bowl (``cov``), m and m^2; the fixations it took; how far ahead of the frame's own
+    arm the gripper judged is (``lead_m``, m: the predictive ghost's lead where the judgement
+    is of the ghost, none where it is of the frame's arm, as through the beam or the bar)."""
 
     gripper_m: NDArray[np.float64]
     gripper_cov: NDArray[np.float64]
     cov: NDArray[np.float64]
     fixations: int
+    lead_m: NDArray[np.float64] = field(default_factory=lambda: np.zeros(3))
 
 
 @dataclass(frozen=True)
@@ -273,14 +276,15 @@ def judge_grasp(
             judged = grasp - relative
             seen_m += (on_line,)
         return GraspJudgement(
-            bowl + judged - tracked, grasp_cov, grasp_cov, judge.fixated(*seen_m, read_m=read_m)
-        )
+            bowl + judged - tracked, grasp_cov, grasp_cov,
+            judge.fixated(*seen_m, read_m=read_m), ahead,
+        )  # fmt: skip
     if gripper_seen:  # against a remembered bowl: seen apart, in other glances
         # The marker is judged against it in the placement: their interval is stretched there.
         gripper, gripper_cov = judge.seen(
             "gripper", judge.shown_gripper, reference, judge.cloud_grain, stretched=False
         )
-        return GraspJudgement(gripper, gripper_cov, 2 * gripper_cov, 1)
+        return GraspJudgement(gripper, gripper_cov, 2 * gripper_cov, 1, judge.lead_m)
     z = errors.draw("proprioception", 3) * params.proprioception_sd_m
     scale = params.belief_scale(errors.glances("proprioception"))
     felt_cov = np.eye(3) * params.proprioception_sd_m**2 * scale
