@@ -199,7 +199,7 @@ class SyntheticOperator:
         if goal is None:  # not shown yet: keep looking
             return
         # However often it went wrong, a person who sees it goes back, until the trial's time
-        # is up: none carries an empty gripper on, as the model did after two setbacks.
+        # is up: nobody carries an empty gripper on.
         back = self.task.setback(phase, seen)
         if back is not None:
             self._set_back(t, back)
