@@ -76,10 +76,14 @@ def _check_trial(cmd: TrialCommand | TeleopCommand) -> None:
             f"{2 * cmd.delay_ms / 1000:g} s after moving (the round trip), after --timeout-s "
             f"{cmd.timeout_s:g} s; no trial can finish. Shorten the delay or lengthen the timeout."
         )
-    if (isinstance(cmd, TeleopCommand) or cmd.view) and not 0 <= cmd.port <= 65535:
-        raise ConfigurationError(
-            f"--port {cmd.port}: expected a TCP port, 0-65535 (0: any free one)."
-        )
+    if isinstance(cmd, TeleopCommand) or cmd.view:
+        if not 0 <= cmd.port <= 65535:
+            raise ConfigurationError(
+                f"--port {cmd.port}: expected a TCP port, 0-65535 (0: any free one)."
+            )
+        from arteleop.ar_features.host import check_host
+
+        check_host(cmd.host)  # before the robot is loaded: a bad host is said at once
     from arteleop.operator import check_operator
 
     check_operator(cmd.operator, live=isinstance(cmd, TeleopCommand))

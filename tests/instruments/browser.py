@@ -109,10 +109,13 @@ class Browser:
     def __init__(self, browser: object) -> None:
         self._browser = browser
 
-    def open(self, url: str, for_pictures: bool = True) -> Page:
-        """A new tab on ``url``; ``for_pictures``: once the software-WebGL notice, which
-        covers a corner of the scene, has come and been dismissed."""
-        page = self._browser.new_page(viewport=VIEWPORT)  # type: ignore[attr-defined]
+    def open(
+        self, url: str, for_pictures: bool = True, viewport: dict[str, int] = VIEWPORT
+    ) -> Page:
+        """A new tab on ``url`` of ``viewport``'s size (CSS px); ``for_pictures``: once the
+        software-WebGL notice, which covers a corner of the scene, has come and been
+        dismissed."""
+        page = self._browser.new_page(viewport=viewport)  # type: ignore[attr-defined]
         page.goto(url)
         if for_pictures:
             notice = page.get_by_text("Software WebGL rendering detected")
