@@ -118,7 +118,7 @@ def _operator_options(cmd: TrialCommand) -> tuple[OperatorTraits, HandFilterConf
 
 
 def trial(cmd: TrialCommand) -> int:
-
+    _check_trial(cmd)  # before the imports that load the simulator: seconds on a cold disk
     from arteleop.ar_features import OperatorView, ViewConfig
     from arteleop.operator import RecordingSource, load_recording
     from arteleop.scene import RemoteSite, SiteConfig
@@ -133,7 +133,6 @@ def trial(cmd: TrialCommand) -> int:
         view_assets,
     )
 
-    _check_trial(cmd)
     try:
         trial_task(cmd.task)
     except ConfigurationError as err:  # named as the option it came from
@@ -231,12 +230,12 @@ class TeleopCommand:
 
 
 def teleop(cmd: TeleopCommand) -> int:
+    _check_trial(cmd)  # before the imports that load the simulator: seconds on a cold disk
     from arteleop.ar_features import ViewConfig
     from arteleop.scene import RemoteSite, SiteConfig
     from arteleop.teleop import NetworkConfig, TeleopApp, TeleopAppConfig, TrialConfig
     from arteleop.teleop.live_app import trial_summary
 
-    _check_trial(cmd)
     size = CameraSize(cmd.width_px, cmd.height_px, cmd.renderer, cmd.camera_offset_mm,
                       cmd.camera_offset_deg, cmd.camera_graph)  # fmt: skip
     camera = size.camera_config()
