@@ -77,16 +77,17 @@ class Page:
         return float(size[0]), float(size[1])
 
     def shows(self, text: str) -> bool:
-        """Whether an element labelled ``text`` is visible inside the page's viewport."""
+        """Whether an element labelled ``text`` is visible inside the tab's viewport."""
         found = self._page.get_by_text(text, exact=True).first  # type: ignore[attr-defined]
         if not found.is_visible():
             return False
         box = found.bounding_box()
+        size = self._page.viewport_size  # type: ignore[attr-defined]
         return (
             box is not None
             and box["x"] >= 0 and box["y"] >= 0
-            and box["x"] + box["width"] <= VIEWPORT["width"]
-            and box["y"] + box["height"] <= VIEWPORT["height"]
+            and box["x"] + box["width"] <= size["width"]
+            and box["y"] + box["height"] <= size["height"]
         )  # fmt: skip
 
     def screenshot(self, path: Path, timeout_s: float = 60.0) -> NDArray[np.uint8]:

@@ -262,8 +262,9 @@ def _take_part(
     participant, link = links.get(timeout=60)
     assert participant == "P01"
     # The experimenter watches from the start, by their own link, in a small window: a third
-    # tab drawing the scene in software WebGL at full size cost this test a sixth of its time.
-    experimenter = browser.open(server.observer_link, False, {"width": 480, "height": 300})
+    # tab drawing the scene in software WebGL at full size cost this test an eighth of its time.
+    small = {"width": 480, "height": 300}
+    experimenter = browser.open(server.observer_link, for_pictures=False, viewport=small)
     experimenter = experimenter.playwright
     experimenter.get_by_text(OBSERVING).wait_for()
     first_tab = browser.open(link, for_pictures=False)
