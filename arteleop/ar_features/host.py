@@ -31,11 +31,16 @@ class HostCheck:
     addresses: tuple[str, ...]
 
 
-def check_host(host: str, port: int = 0) -> HostCheck:
-    """Resolve ``host`` and try binding it; raise :class:`ViewHostError` if it cannot be, or,
-    given a ``port``, if that port is taken there."""
+def check_port(port: int) -> None:
+    """Raise :class:`ViewHostError` unless ``port`` is a TCP port number (0: any free one)."""
     if not 0 <= port <= 65535:
         raise ViewHostError(f"--port {port}: expected a TCP port, 0-65535 (0: any free one).")
+
+
+def check_host(host: str, port: int = 0) -> HostCheck:
+    """Resolve ``host`` and try binding it; raise :class:`ViewHostError` if it cannot be, or,
+    given a ``port``, if that port is no port or is taken there."""
+    check_port(port)
     try:
         infos = socket.getaddrinfo(host, None, type=socket.SOCK_STREAM)
     except OSError as err:

@@ -77,13 +77,10 @@ def _check_trial(cmd: TrialCommand | TeleopCommand) -> None:
             f"{cmd.timeout_s:g} s; no trial can finish. Shorten the delay or lengthen the timeout."
         )
     if isinstance(cmd, TeleopCommand) or cmd.view:
-        if not 0 <= cmd.port <= 65535:
-            raise ConfigurationError(
-                f"--port {cmd.port}: expected a TCP port, 0-65535 (0: any free one)."
-            )
-        from arteleop.ar_features.host import check_host
+        from arteleop.ar_features.host import check_host, check_port
 
-        check_host(cmd.host)  # before the robot is loaded: a bad host is said at once
+        check_port(cmd.port)  # a taken one is not refused: the view moves on to the next
+        check_host(cmd.host)
     from arteleop.operator import check_operator
 
     check_operator(cmd.operator, live=isinstance(cmd, TeleopCommand))
