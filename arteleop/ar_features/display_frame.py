@@ -102,6 +102,10 @@ class DisplayFrame:
         start_m: (3,) the start point on the table, the centre of its cross (None: not given).
         cues: The AR layers shown.
         engaged: The status indicator: the robot follows the operator's hand.
+        reachable: The out-of-reach notice is off: False while the arm has stopped at the
+            nearest pose it can reach, short of where the operator's hand commands it
+            (``teleop.loop.OUT_OF_REACH_M``). A status, as ``engaged`` is, drawn in every
+            condition.
         cloud_points_m: (N, 3) float32 point cloud of the camera frame, or None when this
             instant was not rendered (batch runs render only to track the bowl).
         cloud_colors: (N, 3) uint8 colours of the cloud's points, or None.
@@ -146,6 +150,7 @@ class DisplayFrame:
     depth_aids: bool = False
     target_drawn: float = 1.0
     start_drawn: float = 1.0
+    reachable: bool = True
 
     def __post_init__(self) -> None:
         shapes = {

@@ -75,13 +75,15 @@ def display_frame(
     T_cloud_true: NDArray[np.float64] | None = None,
     depth_aids: bool = False,
     marks: MarksSight | None = None,
+    reachable: bool = True,
 ) -> DisplayFrame:
     """The display's content for a site state and the bowl's track at that instant, without a
     cloud. Placed through the site's frames: the eye at the camera's registration, the ghost at
     the arm's encoder readings, the target mesh at the target marker; ``T_cloud_true``: the
     registration's error (:attr:`RemoteSite.T_cloud_true`); ``depth_aids``: drawn
     (:attr:`DisplayFrame.depth_aids`); ``marks``: how much of the marks the cloud draws
-    (:meth:`RemoteSite.sight_marks`; None: all of them)."""
+    (:meth:`RemoteSite.sight_marks`; None: all of them); ``reachable``: the out-of-reach notice
+    is off (:attr:`DisplayFrame.reachable`)."""
     marks = marks or MarksSight()
     frames.set_joints(dict(zip(RIGHT_ARM_JOINTS, state.arm_q_rad.tolist(), strict=True)))
     grasp = workspace.bowl.grasp_offset_m()
@@ -104,6 +106,7 @@ def display_frame(
         depth_aids=depth_aids,
         target_drawn=marks.target_share,
         start_drawn=marks.start_share,
+        reachable=reachable,
     )
 
 
@@ -213,8 +216,11 @@ class DisplayFeed:
         self.frames_skipped = 0
         """Real time: camera ticks dropped because two came while one frame rendered."""
 
-    def camera_tick(self, state: SiteState, engaged: bool, applied_sample_time_s: float) -> None:
-        """A camera tick: the display's content now (rendered if asked), and its latency."""
+    def camera_tick(
+        self, state: SiteState, engaged: bool, reachable: bool, applied_sample_time_s: float
+    ) -> None:
+        """A camera tick: the display's content now (rendered if asked), and its latency;
+        ``engaged`` and ``reachable``: the status indicators then."""
         if self._ticks % self._track_every == 0 or self._track is None:
             with self._timer.stage("tracking"):
                 self._track = self._site.sight_bowl()
@@ -222,7 +228,7 @@ class DisplayFeed:
         self._ticks += 1
         frame = display_frame(
             state, self._track, self._site.frames, self._workspace, self._cues, engaged,
-            self._site.T_cloud_true, self._depth_aids, self._marks,
+            self._site.T_cloud_true, self._depth_aids, self._marks, reachable,
         )  # fmt: skip
         self._history.append(frame)
         px, m = self._site.colocation_errors(frame.T_base_gripper[None, :3, 3])
@@ -241,7 +247,7 @@ class DisplayFeed:
             self._show(frame, rgbd, applied_sample_time_s)
         self._latency.frame_captured(state.time_s, applied_sample_time_s)
 
-    def poll(self, engaged: bool, applied_sample_time_s: float) -> None:
+    def poll(self, engaged: bool, reachable: bool, applied_sample_time_s: float) -> None:
         """Real time: start the frame owed, of the site's state now, once the renderer is free
         and the physics has moved on from the last frame asked for (a control tick between two
         physics steps would render the same instant twice); show the finished frame, if any."""
@@ -254,7 +260,7 @@ class DisplayFeed:
                 track = self._track or self._site.sight_bowl()
                 owed = display_frame(
                     state, track, self._site.frames, self._workspace, self._cues, engaged,
-                    self._site.T_cloud_true, self._depth_aids, self._marks,
+                    self._site.T_cloud_true, self._depth_aids, self._marks, reachable,
                 )  # fmt: skip
                 self._request(owed, applied_sample_time_s)
         if rgbd is None or finished is None:

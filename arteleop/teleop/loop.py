@@ -198,7 +198,7 @@ class _Loop:
             tick = self.clock.next()
             t = tick.time_s
             if self._background:
-                self.feed.poll(control.engaged, control.applied_sample_time_s)
+                self.feed.poll(control.engaged, self._reachable(t), control.applied_sample_time_s)
             if self._delivering:
                 self.feed.deliver(t)
             if t > self.config.timeout_s:
@@ -207,7 +207,9 @@ class _Loop:
                 # One observation for both: nothing moves the physics between their turns.
                 state = site.observe()
                 if tick.camera:
-                    self.feed.camera_tick(state, control.engaged, control.applied_sample_time_s)
+                    self.feed.camera_tick(
+                        state, control.engaged, self._reachable(t), control.applied_sample_time_s
+                    )
                     outcome = self.monitor.camera(
                         t, state, site.capture, site.sight_bowl if self._gate_tracker else None
                     )
@@ -282,16 +284,20 @@ class _Loop:
             return replace(frame, predicted=predictor.predicted)
         return frame
 
-    def _status(self, t: float) -> TrialProgress:
-        control, monitor = self.control, self.monitor
-        ik = control.last_ik
+    def _reachable(self, t: float) -> bool:
+        """The out-of-reach notice is off at ``t`` (s): see :data:`OUT_OF_REACH_M`."""
+        ik = self.control.last_ik
         if ik is not None and not ik.reachable:
             self._unreachable_s = t
         short = ik is not None and ik.position_error_m > OUT_OF_REACH_M
+        return not (short and t - self._unreachable_s <= OUT_OF_REACH_S)
+
+    def _status(self, t: float) -> TrialProgress:
+        control, monitor = self.control, self.monitor
         return TrialProgress(
             time_s=t,
             engaged=control.engaged,
-            reachable=not (short and t - self._unreachable_s <= OUT_OF_REACH_S),
+            reachable=self._reachable(t),
             motion_onset_s=monitor.motion_onset_s,
             grasped=monitor.grasped,
             released=monitor.released,

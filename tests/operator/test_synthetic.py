@@ -28,7 +28,7 @@ from arteleop.operator import (
 from arteleop.operator.output import ALIGN, CALIBRATE, ENGAGE
 from arteleop.operator.simulated.hand import Hand, Submovement, Wrist, ramped_grip
 from arteleop.operator.simulated.submovements import planned_submovement
-from tests.operator.small_scene import descend
+from tests.operator.small_scene import GRASP_M, descend
 
 # -- the decision mechanism ----------------------------------------------------------------------
 SEEDS = range(16)
@@ -74,6 +74,19 @@ def test_a_label_to_read_costs_each_glance_an_eye_movement_and_a_beam_in_view_do
     label = MODALITIES["manipulation"]
     assert descent(label, 0.5)["duration_s"] > descent(label, 0.0)["duration_s"] + 0.3
     assert descent(ArCues(beam=True), 0.5) == descent(ArCues(beam=True), 0.0)
+
+
+def test_an_arm_stopped_at_its_reach_is_met_from_the_hand_once_the_display_says_so() -> None:
+    """The hand starts 25 cm beyond where the arm reaches, the grasp point 3 cm within it. A
+    correction by the error the display shows moves a gripper that cannot come, so without the
+    out-of-reach notice the operator ends its descent (giving up, or timed out) with its hand
+    still beyond the reach; with it, it corrects from where its hand commands the gripper, and
+    ends it over the grasp point."""
+    reach_x_m = float(GRASP_M[0]) + 0.03
+    far = {"start_beside_m": 0.28, "reach_x_m": reach_x_m, "limit_s": 15.0}
+    told = [descend(ArCues(), seed, **far).error_m for seed in range(4)]
+    untold = [descend(ArCues(), seed, notice=False, **far).error_m for seed in range(4)]
+    assert max(told) < 0.02 < 0.1 < min(untold), (told, untold)
 
 
 def test_a_stricter_criterion_costs_time_with_the_same_cue() -> None:

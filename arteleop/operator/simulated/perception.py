@@ -145,6 +145,9 @@ class Perceived:
             per label read and per drawn thing no other fixation covers
             (:func:`~arteleop.operator.simulated.acuity.fixations`).
         target_fixations: ...and the target's judgement.
+        arm_stopped: The display's out-of-reach notice is on
+            (:attr:`~arteleop.ar_features.DisplayFrame.reachable`): the gripper shown has stopped
+            short of where the hand commands it.
         marks: The marks the task judges besides the target (:attr:`~arteleop.operator.Task.marks`),
             by name, each where it is judged (``mark_m``), its believed covariance relative to
             the judged gripper (``cov``, m^2) and the fixations it took; a mark the display does
@@ -163,6 +166,7 @@ class Perceived:
     gripper_fixations: int = 1
     target_fixations: int = 1
     marks: Mapping[str, Mark] = field(default_factory=dict)
+    arm_stopped: bool = False
 
 
 def perceive(
@@ -203,7 +207,7 @@ def perceive(
     return Perceived(
         grasp.gripper_m, bowl, placement.target_m, gripper_seen, closure_known, grasp.cov,
         placement.cov, placement.by_gripper, grasp.lead_m, grasp.fixations,
-        placement.fixations, judged_marks,
+        placement.fixations, judged_marks, not view.reachable,
     )  # fmt: skip
 
 

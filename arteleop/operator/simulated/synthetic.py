@@ -68,7 +68,7 @@ class SyntheticOperator:
         self._to_hand = hand_for_gripper
         # The mapping is affine: the hand's step for each of the gripper's is the same from
         # anywhere, and so is its inverse.
-        origin = hand_for_gripper(np.zeros(3))
+        origin = self._hand_origin = hand_for_gripper(np.zeros(3))
         self._hand_per_gripper = np.column_stack([hand_for_gripper(e) - origin for e in np.eye(3)])
         self._gripper_per_hand = np.linalg.inv(self._hand_per_gripper)
         self._rng = rng
@@ -204,6 +204,12 @@ class SyntheticOperator:
         if back is not None:
             self._set_back(t, back)
             return
+        if seen.arm_stopped:
+            # The gripper shown no longer answers the hand: the operator corrects from where its
+            # hand commands the gripper, known as it aligned the hand, from memory of the pose.
+            commanded = self._gripper_per_hand @ (self.hand.position_m - self._hand_origin)
+            self._correct(t, goal.gripper_m - commanded)
+            return
         error = goal.gripper_m - seen.gripper_m
         sure = self._criterion.sure_within(t, error, goal)
         within = self._criterion.sure_within(t, error, goal, np.zeros((3, 3))) == 1.0
@@ -252,7 +258,7 @@ class SyntheticOperator:
         seen = self._glance(view)
         goal = self.task.goal(phase, seen)
         self._look.glanced(t, self._glance_s(goal))
-        if goal is None or not goal.visible:
+        if goal is None or not goal.visible or seen.arm_stopped:  # nothing to predict from
             return
         # Where the gripper will end: as seen now, plus what the hand did over the lag the
         # operator believes the display has (timed as people time intervals), plus what the hand
