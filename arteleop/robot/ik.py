@@ -56,6 +56,16 @@ class IKConfig:
         unreachable_tolerance_m: Position error above which a target that a step no longer
             brings nearer (the task's error, weighted as its cost weighs it) is flagged
             unreachable.
+        elbow_min_bend_rad: The elbow (``right_e1``) is kept bent at least this much (rad;
+            Baxter's own limit is -0.05, a little past straight). A straight elbow is a
+            singularity: bending it moves the wrist across the arm, not towards the shoulder, so
+            no step brings a nearer target closer, and the arm stays stretched. In seed 3's P09,
+            practice trial 1 (3879203), the hand drove the gripper to the edge of the reach,
+            the elbow straightened, and the arm stayed there, 17 cm from every target after it,
+            for the trial's last 90 s. Of 0.1, 0.2 and 0.3 rad, 0.1 still held the arm there
+            and 0.2 freed it (that trial's IK targets replayed); the reach it costs is 4 mm of
+            the shoulder-to-wrist distance (0.741 against 0.745 m). At or below -0.05 the
+            joint's own limit holds.
     """
 
     position_cost: float = 1.0
@@ -66,6 +76,7 @@ class IKConfig:
     collision_margin_m: float = 0.01
     collision_detection_m: float = 0.05
     unreachable_tolerance_m: float = 0.005
+    elbow_min_bend_rad: float = 0.2
 
     def __post_init__(self) -> None:
         for name in (
@@ -127,10 +138,10 @@ class ArmIK:
         if limits.names != RIGHT_ARM_JOINTS:
             raise ConfigurationError(f"limits are for {limits.names}, expected {RIGHT_ARM_JOINTS}")
         velocities = dict(zip(RIGHT_ARM_JOINTS, limits.velocity.tolist(), strict=True))
-        self.limits: list[mink.Limit] = [
-            HingeConfigurationLimit(self.model),
-            KeptVelocityLimit(self.model, velocities),
-        ]
+        joints = HingeConfigurationLimit(self.model)
+        elbow = self.model.joint("right_e1").qposadr[0]
+        joints.lower[elbow] = max(joints.lower[elbow], c.elbow_min_bend_rad)
+        self.limits: list[mink.Limit] = [joints, KeptVelocityLimit(self.model, velocities)]
         if table_center_m is not None:
             arm = body_geoms(self.model, ARM_COLLISION_BODIES)
             table = body_geoms(self.model, (TABLE_BODY,))

@@ -3,16 +3,18 @@
 import mink
 import numpy as np
 import pytest
+from scipy.spatial.transform import Rotation
 
 from arteleop.errors import ConfigurationError
 from arteleop.robot import (
     GRIPPER_FRAME,
     REST_POSE,
     RIGHT_ARM_JOINTS,
+    WORK_POSTURE,
     BaxterDescription,
     BaxterKinematics,
 )
-from arteleop.robot.ik import ArmIK
+from arteleop.robot.ik import ArmIK, IKConfig
 from arteleop.robot.ik_limits import HingeConfigurationLimit, KeptVelocityLimit
 from arteleop.robot.mapping import R_DOWN
 from arteleop.scene import Workspace
@@ -104,8 +106,10 @@ def test_kept_limit_rows_equal_minks_to_the_bit(ik: ArmIK, kin: BaxterKinematics
     """Inside, on and beyond the joint limits, and for two step durations."""
     lim = kin.limits(RIGHT_ARM_JOINTS)
     velocities = dict(zip(RIGHT_ARM_JOINTS, lim.velocity.tolist(), strict=True))
+    joints = mink.ConfigurationLimit(ik.model)
+    joints.lower = ik.limits[0].lower  # the elbow kept bent (IKConfig.elbow_min_bend_rad)
     pairs = [
-        (ik.limits[0], mink.ConfigurationLimit(ik.model)),
+        (ik.limits[0], joints),
         (ik.limits[1], mink.VelocityLimit(ik.model, velocities)),
     ]
     rng = np.random.default_rng(3)
@@ -171,3 +175,42 @@ def test_collision_avoidance_keeps_the_gripper_above_the_table(ik: ArmIK) -> Non
         result = ik.step(0.01)
     assert ik.gripper_transform()[2, 3] > ws.table_top_z_m
     assert result.position_error_m > 0.04
+
+
+# Seed 3's P09, practice trial 1 (3879203): the IK's targets as the hand drove them, every few
+# tenths of a second (base frame, m; seconds to reach each from the one before), from its joints then.
+TRAPPED_FROM_Q = (0.842, -0.682, -0.317, 1.679, 0.421, 0.641, 2.636)
+TRAPPING_PATH = (
+    ((0.65, -0.362, -0.116), 0.0), ((0.712, -0.751, 0.003), 1.2), ((0.712, -0.751, 0.003), 2.8),
+    ((0.61, -0.421, 0.014), 1.0), ((0.462, -0.245, -0.026), 0.4), ((0.413, -0.152, -0.057), 0.4),
+    ((0.27, -0.072, -0.026), 1.0), ((0.27, -0.072, -0.026), 1.0), ((0.582, -0.068, -0.007), 0.8),
+    ((0.59, -0.06, -0.004), 1.0),
+)  # fmt: skip
+
+
+@pytest.mark.parametrize("elbow_min_bend_rad", [-0.05, IKConfig().elbow_min_bend_rad])
+def test_an_arm_stretched_to_the_edge_of_its_reach_comes_back(
+    description: BaxterDescription, kin: BaxterKinematics, elbow_min_bend_rad: float
+) -> None:
+    """Driven to the edge of its reach, the elbow straightens; at Baxter's own limit it stays
+    straight, a singularity no step leaves, and the arm stays 17 cm from the reachable target
+    that follows; kept bent (``elbow_min_bend_rad``), it comes back to it."""
+    table = Workspace().table_box()
+    config = IKConfig(elbow_min_bend_rad=elbow_min_bend_rad)
+    ik = ArmIK(description.urdf_path, kin.limits(RIGHT_ARM_JOINTS), WORK_POSTURE,
+               table.center_m, table.half_extents_m, config)  # fmt: skip
+    ik.reset(TRAPPED_FROM_Q)
+    T = np.eye(4)
+    T[:3, :3] = Rotation.from_quat([0.0, 1.0, 0.01, 0.0], scalar_first=True).as_matrix()
+    for (a, _), (b, duration_s) in zip(TRAPPING_PATH[:-1], TRAPPING_PATH[1:], strict=True):
+        n = round(duration_s / 0.01)
+        for j in range(n):
+            T[:3, 3] = np.add(a, np.subtract(b, a) * (j + 1) / n)
+            ik.set_target(T)
+            ik.step(0.01)
+    for _ in range(500):
+        result = ik.step(0.01)
+    if elbow_min_bend_rad < 0:
+        assert result.position_error_m > 0.15 and not result.reachable
+    else:
+        assert result.position_error_m < 0.005 and result.reachable
