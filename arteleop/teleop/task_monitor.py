@@ -11,7 +11,11 @@ task, :class:`PointingMonitor`).
   closed on nothing (``EMPTY_CLOSURE``) while the bowl was in the air (``FALLING_M``). A
   dropped bowl lies wherever it fell, and opening the empty hand to reach for it again is no
   release; a bowl set down on the table is released even if the fingers slid off it before
-  they opened.
+  they opened. Fingers that lose the bowl and, still closed, hold it again (both pads on it,
+  stopped by its wall) have caught it: it is in the hand, lifted or not (seed 3's P15, trial 1,
+  at 3879203: the bowl slipped 3 cm over the table as it was set down, the fingers caught it
+  leaning on the table a second later, and their opening, 3 cm from the target, was scored no
+  release, the trial running to its timeout).
 - Placement: after the release, with the bowl at rest, the head camera's tracker looks for it
   every ``TRACKING_PERIOD_S``; the first frame in which it is found ends the trial as a success.
   A look at which the tracker's model (:class:`~arteleop.scene.BowlSight`) sees not one point of
@@ -66,6 +70,7 @@ class TaskMonitor:
         self.placement_error_m = float("nan")
         """Tracked bowl to target in the table's plane (m), once placed."""
         self._was_closed = False
+        self._lost = False  # the closed fingers lost the bowl they held; reset when they open
         self._next_track_s = 0.0
         self.renders_skipped = 0
         """Tracker looks not rendered: the model saw none of the bowl."""
@@ -82,12 +87,15 @@ class TaskMonitor:
             self.grasp_attempts += 1
         if gripper_closed and (state.grasped or self.grasped):  # only then does lifting matter
             above_m = self._ws.bowl.lowest_z_m(state.T_base_bowl) - self._ws.table_top_z_m
-            if state.grasped and above_m > LIFTED_M:
-                self.grasped = True
-            elif self.grasped and above_m > FALLING_M and state.gripper_closure > EMPTY_CLOSURE:
-                self.grasped = False  # dropped out of the closed hand: a missed attempt
+            empty = state.gripper_closure > EMPTY_CLOSURE
+            if state.grasped and (above_m > LIFTED_M or (self._lost and not empty)):
+                self.grasped, self._lost = True, False
+            elif self.grasped and above_m > FALLING_M and empty:
+                self.grasped, self._lost = False, True  # out of the closed hand: a missed attempt
         if self.grasped and not gripper_closed:
             self.released = True
+        if not gripper_closed:
+            self._lost = False
         self._was_closed = gripper_closed
 
     def camera(

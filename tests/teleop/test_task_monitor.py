@@ -86,3 +86,33 @@ def test_a_bowl_that_tilts_as_it_slips_out_is_dropped_though_its_edge_is_low() -
         (False, _state(0.0, 0.5, pads=False)),  # the empty hand opens
     )
     assert monitor.grasp_attempts == 1 and not monitor.released
+
+
+def test_a_bowl_caught_again_by_the_closed_fingers_is_released_when_they_open() -> None:
+    """Set down too fast, the bowl slips 3 cm over the table, and the fingers, still closed,
+    catch its wall again with it leaning on the table: it is in the hand, and their opening is
+    the release (seed 3's P15, trial 1, at 3879203: a timeout). Fingers that only poke it when
+    shut (test above) or never touch it again (the first test) catch nothing."""
+    slipped = (
+        (True, _state(0.03, HELD, pads=True)),  # lifted: grasped
+        (True, _state(0.03, EMPTY, pads=False)),  # slipped out 3 cm over the table
+    )
+    caught = _monitor(
+        *slipped,
+        (True, _state(0.015, 0.83, pads=True, tilt_deg=20.0)),  # caught, leaning on the table
+        (False, _state(0.0, 0.5, pads=False)),
+    )
+    assert caught.released and caught.grasp_attempts == 1
+    poked = _monitor(
+        *slipped,
+        (True, _state(0.015, 0.99, pads=True, tilt_deg=20.0)),  # the shut fingers poke it
+        (False, _state(0.0, 0.5, pads=False)),
+    )
+    assert not poked.released
+    reopened = _monitor(
+        *slipped,
+        (False, _state(0.0, 0.5, pads=False)),  # the hand opens: the closure is over
+        (True, _state(0.0, 0.83, pads=True)),  # closed on it on the table: not lifted
+        (False, _state(0.0, 0.5, pads=False)),
+    )
+    assert not reopened.released and reopened.grasp_attempts == 2
