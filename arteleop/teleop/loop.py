@@ -37,8 +37,11 @@ from arteleop.teleop.trial_task import TaskSite, trial_task
 OUT_OF_REACH_S = 0.5
 OUT_OF_REACH_M = 0.01
 """The target is reported out of reach while the gripper is more than ``OUT_OF_REACH_M`` (m)
-from it and the IK has flagged it unreachable within the last ``OUT_OF_REACH_S`` (s): with the
-operator's tremor and the IMUs' noise, the IK's flag flickers at the edge of the reach."""
+from it in the table's plane and the IK has flagged it unreachable within the last
+``OUT_OF_REACH_S`` (s): with the operator's tremor and the IMUs' noise, the IK's flag flickers at
+the edge of the reach. A target under the table's top, where the IK holds the gripper just above
+it, is not out of reach: the gripper is seen on the table (in the pointing task, aimed a few
+centimetres into it, the notice was on for most of a trial)."""
 
 
 def run_trial(
@@ -286,10 +289,14 @@ class _Loop:
 
     def _reachable(self, t: float) -> bool:
         """The out-of-reach notice is off at ``t`` (s): see :data:`OUT_OF_REACH_M`."""
-        ik = self.control.last_ik
-        if ik is not None and not ik.reachable:
+        control = self.control
+        ik, target = control.last_ik, control.last_target_m
+        if ik is None or target is None:
+            return True
+        if not ik.reachable:
             self._unreachable_s = t
-        short = ik is not None and ik.position_error_m > OUT_OF_REACH_M
+        gap = target[:2] - control.ik.gripper_transform()[:2, 3]
+        short = float(np.hypot(*gap)) > OUT_OF_REACH_M
         return not (short and t - self._unreachable_s <= OUT_OF_REACH_S)
 
     def _status(self, t: float) -> TrialProgress:

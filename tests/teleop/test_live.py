@@ -162,3 +162,15 @@ def test_a_persons_first_trial_waits_for_start(site_config: SiteConfig) -> None:
             app.stop()
             runner.join(timeout=5.0)
         assert not runner.is_alive()
+
+
+def test_a_target_under_the_table_is_not_out_of_reach(site: RemoteSite) -> None:
+    """The IK holds the gripper just above the table's top: seen on the table, where it was
+    pressed, it has not stopped short in the table's plane, and the page says nothing of reach."""
+    rest = site.observe().gripper_m
+    into = np.array([0.35, 0.10, -0.25])  # over the table's middle, 5 cm under its top
+    seen = _drive(site, into, duration_s=6.0)
+    gripper = site.observe().gripper_m
+    assert site.config.workspace.table_top_z_m < gripper[2] < rest[2] - 0.15  # on the table
+    assert np.linalg.norm(gripper[:2] - (rest + into)[:2]) < 0.01
+    assert all(s.reachable for s in seen[-30:])
