@@ -1,5 +1,7 @@
 """mink IK on the MuJoCo model, checked against pinocchio's forward kinematics."""
 
+import itertools
+
 import mink
 import numpy as np
 import pytest
@@ -178,7 +180,8 @@ def test_collision_avoidance_keeps_the_gripper_above_the_table(ik: ArmIK) -> Non
 
 
 # Seed 3's P09, practice trial 1 (3879203): the IK's targets as the hand drove them, every few
-# tenths of a second (base frame, m; seconds to reach each from the one before), from its joints then.
+# tenths of a second (base frame, m; seconds to reach each from the one before), from its joints
+# then.
 TRAPPED_FROM_Q = (0.842, -0.682, -0.317, 1.679, 0.421, 0.641, 2.636)
 TRAPPING_PATH = (
     ((0.65, -0.362, -0.116), 0.0), ((0.712, -0.751, 0.003), 1.2), ((0.712, -0.751, 0.003), 2.8),
@@ -202,7 +205,7 @@ def test_an_arm_stretched_to_the_edge_of_its_reach_comes_back(
     ik.reset(TRAPPED_FROM_Q)
     T = np.eye(4)
     T[:3, :3] = Rotation.from_quat([0.0, 1.0, 0.01, 0.0], scalar_first=True).as_matrix()
-    for (a, _), (b, duration_s) in zip(TRAPPING_PATH[:-1], TRAPPING_PATH[1:], strict=True):
+    for (a, _), (b, duration_s) in itertools.pairwise(TRAPPING_PATH):
         n = round(duration_s / 0.01)
         for j in range(n):
             T[:3, 3] = np.add(a, np.subtract(b, a) * (j + 1) / n)
