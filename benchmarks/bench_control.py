@@ -31,7 +31,7 @@ from scipy.spatial.transform import Rotation
 
 from arteleop.ar_features import DisplayFrame, OperatorView, ViewConfig
 from arteleop.robot import GRIPPER_FRAME, RIGHT_ARM_JOINTS, WORK_POSTURE
-from arteleop.robot.ik import ArmIK
+from arteleop.robot.ik import ArmIK, IKConfig
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
 from arteleop.teleop import TrialConfig, TrialResult, run_trial, trial_operator
 
@@ -48,6 +48,8 @@ def ik_side_by_side(n: int) -> None:
     rows = {"mink": [], "pybullet": []}
     for _ in range(n):
         q = rng.uniform(lim.lower, lim.upper)
+        elbow = RIGHT_ARM_JOINTS.index("right_e1")
+        q[elbow] = max(q[elbow], IKConfig().elbow_min_bend_rad)  # the IK keeps it off straight
         T = kin.frame_transform(dict(zip(RIGHT_ARM_JOINTS, q, strict=True)), GRIPPER_FRAME)
         # mink, converged offline solve from the working posture
         ik.reset(WORK_POSTURE)

@@ -102,10 +102,11 @@ class DisplayFrame:
         start_m: (3,) the start point on the table, the centre of its cross (None: not given).
         cues: The AR layers shown.
         engaged: The status indicator: the robot follows the operator's hand.
-        reachable: The out-of-reach notice is off: False while the arm has stopped at the
-            nearest pose it can reach, short of where the operator's hand commands it
-            (``teleop.loop.OUT_OF_REACH_M``). A status, as ``engaged`` is, drawn in every
-            condition.
+        reachable: The out-of-reach notice is off: False while the gripper is short of where
+            the operator's hand commands it in the table's plane and the IK has found that
+            target out of reach (``teleop.loop.OUT_OF_REACH_M``). A status, as ``engaged`` is,
+            in every condition. The served page shows people the same notice from the trial's
+            progress at the camera's tick, without the return link's delay this frame has.
         cloud_points_m: (N, 3) float32 point cloud of the camera frame, or None when this
             instant was not rendered (batch runs render only to track the bowl).
         cloud_colors: (N, 3) uint8 colours of the cloud's points, or None.

@@ -1,8 +1,9 @@
 """Differential inverse kinematics of the right arm with mink.
 
 Tasks: a frame task on the gripper (``right_gripper``) and a low-weight posture task that keeps the
-arm near a natural pose and resolves the arm's redundancy. Limits: joint positions, joint
-velocities (the URDF's), and collision avoidance between forearm/wrist/gripper and the table.
+arm near a natural pose and resolves the arm's redundancy. Limits: joint positions (the URDF's,
+the elbow kept off straight: ``IKConfig.elbow_min_bend_rad``), joint velocities (the URDF's), and
+collision avoidance between forearm/wrist/gripper and the table.
 
 Each call to :meth:`ArmIK.step` integrates one QP solution over ``dt`` seconds, so the joint motion
 per step never exceeds the velocity limits: a far target is approached over several control ticks
@@ -56,16 +57,16 @@ class IKConfig:
         unreachable_tolerance_m: Position error above which a target that a step no longer
             brings nearer (the task's error, weighted as its cost weighs it) is flagged
             unreachable.
-        elbow_min_bend_rad: The elbow (``right_e1``) is kept bent at least this much (rad;
-            Baxter's own limit is -0.05, a little past straight). A straight elbow is a
+        elbow_min_bend_rad: The elbow (``right_e1``) is kept bent at least this much (rad).
+            Baxter's own limit, -0.05, lets it straighten, and a straight elbow is a
             singularity: bending it moves the wrist across the arm, not towards the shoulder, so
             no step brings a nearer target closer, and the arm stays stretched. In seed 3's P09,
             practice trial 1 (3879203), the hand drove the gripper to the edge of the reach,
             the elbow straightened, and the arm stayed there, 17 cm from every target after it,
             for the trial's last 90 s. Of 0.1, 0.2 and 0.3 rad, 0.1 still held the arm there
-            and 0.2 freed it (that trial's IK targets replayed); the reach it costs is 4 mm of
-            the shoulder-to-wrist distance (0.741 against 0.745 m). At or below -0.05 the
-            joint's own limit holds.
+            and 0.2 freed it (that trial's IK targets replayed); it costs 4 mm of the
+            shoulder-to-wrist distance (0.741 against 0.745 m). At or below -0.05 the joint's
+            own limit holds.
     """
 
     position_cost: float = 1.0
@@ -139,7 +140,7 @@ class ArmIK:
             raise ConfigurationError(f"limits are for {limits.names}, expected {RIGHT_ARM_JOINTS}")
         velocities = dict(zip(RIGHT_ARM_JOINTS, limits.velocity.tolist(), strict=True))
         joints = HingeConfigurationLimit(self.model)
-        elbow = self.model.joint("right_e1").qposadr[0]
+        elbow = int(self.model.joint("right_e1").qposadr[0])
         joints.lower[elbow] = max(joints.lower[elbow], c.elbow_min_bend_rad)
         self.limits: list[mink.Limit] = [joints, KeptVelocityLimit(self.model, velocities)]
         if table_center_m is not None:
@@ -185,7 +186,11 @@ class ArmIK:
         return T
 
     def reset(self, q_rad: ArrayLike) -> None:
-        """Restart from joint positions ``q_rad`` (e.g. the measured state)."""
+        """Restart from joint positions ``q_rad`` (e.g. the measured state). Steps from joints
+        beyond a position limit, the elbow straighter than ``IKConfig.elbow_min_bend_rad``
+        among them, may find no solution: the limit then asks more of a step than the velocity
+        limit allows (mink's limits, as here). The controller restarts it as it engages, from
+        the arm at rest."""
         self.configuration.update(np.asarray(q_rad, dtype=np.float64))
         self._last_error = np.inf
 

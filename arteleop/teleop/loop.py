@@ -194,6 +194,9 @@ class _Loop:
         self.trace = TrialTrace() if config.record_trace else None
         self._received: WearableSample | None = None
         self._unreachable_s = -np.inf  # when the IK last flagged its target out of reach
+        # The out-of-reach notice is off, as the last camera tick found it: batch and real-time
+        # runs sample the IK's flag alike.
+        self._notice_off = True
 
     def run(self) -> TrialResult:
         site, control, timer = self.site, self.control, self.timer
@@ -201,7 +204,7 @@ class _Loop:
             tick = self.clock.next()
             t = tick.time_s
             if self._background:
-                self.feed.poll(control.engaged, self._reachable(t), control.applied_sample_time_s)
+                self.feed.poll(control.engaged, self._notice_off, control.applied_sample_time_s)
             if self._delivering:
                 self.feed.deliver(t)
             if t > self.config.timeout_s:
@@ -210,8 +213,9 @@ class _Loop:
                 # One observation for both: nothing moves the physics between their turns.
                 state = site.observe()
                 if tick.camera:
+                    self._notice_off = self._reachable(t)
                     self.feed.camera_tick(
-                        state, control.engaged, self._reachable(t), control.applied_sample_time_s
+                        state, control.engaged, self._notice_off, control.applied_sample_time_s
                     )
                     outcome = self.monitor.camera(
                         t, state, site.capture, site.sight_bowl if self._gate_tracker else None
@@ -288,7 +292,8 @@ class _Loop:
         return frame
 
     def _reachable(self, t: float) -> bool:
-        """The out-of-reach notice is off at ``t`` (s): see :data:`OUT_OF_REACH_M`."""
+        """The out-of-reach notice is off at the camera tick ``t`` (s): see
+        :data:`OUT_OF_REACH_M`; the IK's flag is sampled at the camera's ticks."""
         control = self.control
         ik, target = control.last_ik, control.last_target_m
         if ik is None or target is None:
@@ -304,7 +309,7 @@ class _Loop:
         return TrialProgress(
             time_s=t,
             engaged=control.engaged,
-            reachable=self._reachable(t),
+            reachable=self._notice_off,
             motion_onset_s=monitor.motion_onset_s,
             grasped=monitor.grasped,
             released=monitor.released,

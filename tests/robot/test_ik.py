@@ -76,8 +76,10 @@ def test_daqp_on_minks_rows_gives_minks_joints_to_the_bit(
     reference = ArmIK(description.urdf_path, lim, REST_POSE.right,
                       table.center_m, table.half_extents_m)  # fmt: skip
     velocities = dict(zip(RIGHT_ARM_JOINTS, lim.velocity.tolist(), strict=True))
+    joints = mink.ConfigurationLimit(reference.model)
+    joints.lower = ik.limits[0].lower  # the elbow kept bent (IKConfig.elbow_min_bend_rad)
     minks_limits = [
-        mink.ConfigurationLimit(reference.model),
+        joints,
         mink.VelocityLimit(reference.model, velocities),
         *[x for x in reference.limits if isinstance(x, mink.CollisionAvoidanceLimit)],
     ]
@@ -109,7 +111,7 @@ def test_kept_limit_rows_equal_minks_to_the_bit(ik: ArmIK, kin: BaxterKinematics
     lim = kin.limits(RIGHT_ARM_JOINTS)
     velocities = dict(zip(RIGHT_ARM_JOINTS, lim.velocity.tolist(), strict=True))
     joints = mink.ConfigurationLimit(ik.model)
-    joints.lower = ik.limits[0].lower  # the elbow kept bent (IKConfig.elbow_min_bend_rad)
+    joints.lower = ik.limits[0].lower
     pairs = [
         (ik.limits[0], joints),
         (ik.limits[1], mink.VelocityLimit(ik.model, velocities)),
@@ -179,9 +181,8 @@ def test_collision_avoidance_keeps_the_gripper_above_the_table(ik: ArmIK) -> Non
     assert result.position_error_m > 0.04
 
 
-# Seed 3's P09, practice trial 1 (3879203): the IK's targets as the hand drove them, every few
-# tenths of a second (base frame, m; seconds to reach each from the one before), from its joints
-# then.
+# Seed 3's P09, practice trial 1 (3879203): the IK's targets as the hand drove them (base frame,
+# m), each reached in a straight line over the seconds given after it, from the joints it had.
 TRAPPED_FROM_Q = (0.842, -0.682, -0.317, 1.679, 0.421, 0.641, 2.636)
 TRAPPING_PATH = (
     ((0.65, -0.362, -0.116), 0.0), ((0.712, -0.751, 0.003), 1.2), ((0.712, -0.751, 0.003), 2.8),

@@ -39,6 +39,9 @@ def _drive(site: RemoteSite, offset_m: np.ndarray, duration_s: float) -> list[Tr
 
     result = run_trial(live_source(target, config.controller.mapping, 0), config, site, None, tick)
     assert result.outcome is Outcome.TIMEOUT
+    # The display frame carries the notice the page shows (no delay: the same camera tick's).
+    assert result.final_frame is not None
+    assert result.final_frame.reachable == seen[-1].reachable
     return seen
 
 

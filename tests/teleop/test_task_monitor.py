@@ -89,10 +89,11 @@ def test_a_bowl_that_tilts_as_it_slips_out_is_dropped_though_its_edge_is_low() -
 
 
 def test_a_bowl_caught_again_by_the_closed_fingers_is_released_when_they_open() -> None:
-    """Set down too fast, the bowl slips 3 cm over the table, and the fingers, still closed,
-    catch its wall again with it leaning on the table: it is in the hand, and their opening is
-    the release (seed 3's P15, trial 1, at 3879203: a timeout). Fingers that only poke it when
-    shut (test above) or never touch it again (the first test) catch nothing."""
+    """Set down too fast, the bowl slips out 3 cm above the table, and the fingers, still
+    closed, catch its wall again with it leaning on the table: it is in the hand, and their
+    opening is the release (seed 3's P15, trial 1, at 3879203: a timeout). Fingers that only
+    poke it when shut (as in the second test) or never touch it again (the first) catch
+    nothing."""
     slipped = (
         (True, _state(0.03, HELD, pads=True)),  # lifted: grasped
         (True, _state(0.03, EMPTY, pads=False)),  # slipped out 3 cm over the table
