@@ -4,11 +4,13 @@ tremor, its rotation (the wrist) and its squeeze of the pinch sensor."""
 from __future__ import annotations
 
 from collections import deque
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation, Slerp
+from scipy.stats import chi2
 
 from arteleop.operator.minimum_jerk import minimum_jerk_profile
 from arteleop.operator.output import ALIGN, CALIBRATE
@@ -181,3 +183,29 @@ def ramped_grip(held: float, squeezed: float, t: float, ramp_end_s: float, ramp_
     the ``ramp_s`` (s) that end at ``ramp_end_s`` (s)."""
     ramp = min(1.0, (t - (ramp_end_s - ramp_s)) / ramp_s)
     return held + (squeezed - held) * ramp
+
+
+def felt_apart(gap_m: NDArray[np.float64], proprioception_sd_m: float, confidence: float) -> bool:
+    """Whether a person is sure its hand is ``gap_m`` (m) from where it sees what the hand moves:
+    the seen place lies outside the region its proprioception places the hand in (SD
+    ``proprioception_sd_m`` per axis, m) with probability ``confidence``. A gap of a few
+    centimetres it cannot feel."""
+    return float(gap_m @ gap_m) / proprioception_sd_m**2 > chi2.ppf(confidence, 3)
+
+
+class HandMap:
+    """What the operator knows of the map from its hand (torso frame, m) to the gripper it
+    commands (base frame, m): ``hand_for_gripper(p)``, the hand position that commands the
+    gripper at ``p``. The map is affine: the hand's step for each of the gripper's is the same
+    from anywhere, and so is its inverse."""
+
+    def __init__(self, hand_for_gripper: Callable[[NDArray[np.float64]], NDArray[np.float64]]):
+        self.hand_m = hand_for_gripper
+        self._origin_m = hand_for_gripper(np.zeros(3))
+        steps = [hand_for_gripper(e) - self._origin_m for e in np.eye(3)]
+        self.hand_per_gripper = np.column_stack(steps)
+        self.gripper_per_hand = np.linalg.inv(self.hand_per_gripper)
+
+    def gripper_m(self, hand_m: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The gripper the hand at ``hand_m`` commands."""
+        return self.gripper_per_hand @ (hand_m - self._origin_m)

@@ -24,7 +24,7 @@ from arteleop.ar_features import DisplayFrame
 from arteleop.moved import moved_names
 from arteleop.operator.output import ALIGN, CALIBRATE, DONE, ENGAGE, OperatorOutput
 from arteleop.operator.simulated.criterion import PhaseCriterion
-from arteleop.operator.simulated.hand import Hand, Tremor, Wrist, ramped_grip
+from arteleop.operator.simulated.hand import Hand, HandMap, Tremor, Wrist, felt_apart, ramped_grip
 from arteleop.operator.simulated.look import Look
 from arteleop.operator.simulated.mark_memory import MarkMemory
 from arteleop.operator.simulated.outcome import sure_missed
@@ -65,12 +65,7 @@ class SyntheticOperator:
         self.traits = traits or OperatorTraits()
         self.task = task
         self._judged = judgeable_marks(getattr(task, "marks", ()))  # optional in one's own
-        self._to_hand = hand_for_gripper
-        # The mapping is affine: the hand's step for each of the gripper's is the same from
-        # anywhere, and so is its inverse.
-        origin = self._hand_origin = hand_for_gripper(np.zeros(3))
-        self._hand_per_gripper = np.column_stack([hand_for_gripper(e) - origin for e in np.eye(3)])
-        self._gripper_per_hand = np.linalg.inv(self._hand_per_gripper)
+        self._map = HandMap(hand_for_gripper)
         self._rng = rng
         calib_pos, turn = hand_from_calibration(arm, calibration, self.p.hand_pitch_rad)
         self._wrist = Wrist(turn, self.p.hand_pitch_rad)
@@ -204,11 +199,10 @@ class SyntheticOperator:
         if back is not None:
             self._set_back(t, back)
             return
-        if seen.arm_stopped:
-            # The gripper shown no longer answers the hand: the operator corrects from where its
-            # hand commands the gripper, known as it aligned the hand, from memory of the pose.
-            commanded = self._gripper_per_hand @ (self.hand.position_m - self._hand_origin)
-            self._correct(t, goal.gripper_m - commanded)
+        if self._felt_beyond(seen):
+            # The gripper shown has stopped and the hand is felt well beyond it: the operator
+            # brings the hand to where it commands the goal, as it aligned it, from memory.
+            self._correct(t, goal.gripper_m - self._map.gripper_m(self.hand.position_m))
             return
         error = goal.gripper_m - seen.gripper_m
         sure = self._criterion.sure_within(t, error, goal)
@@ -222,13 +216,20 @@ class SyntheticOperator:
         else:
             self._correct(t, error)
 
+    def _felt_beyond(self, seen: Perceived) -> bool:
+        """The display says the arm has stopped, and the hand is felt to command the gripper
+        beyond where it is shown (a gap of a few centimetres is not felt)."""
+        gap_m = self._map.gripper_m(self.hand.position_m) - seen.gripper_m
+        sd_m = self.p.perception.proprioception_sd_m
+        return seen.arm_stopped and felt_apart(gap_m, sd_m, self.traits.confidence)
+
     def _correct(self, t: float, error: NDArray[np.float64]) -> None:
         if self.hand.moving:
             return
         if self._moved_in_phase:
             self.corrections_total += 1
         self._moved_in_phase = True
-        self._move(t, self._hand_per_gripper @ error, t + self.p.motor_delay_s)
+        self._move(t, self._map.hand_per_gripper @ error, t + self.p.motor_delay_s)
         primary = self.hand.moves[-1]
         self._homing_from_s = primary.start_s + 0.5 * primary.duration_s
         self._homing_until_s = primary.start_s + primary.duration_s
@@ -258,7 +259,7 @@ class SyntheticOperator:
         seen = self._glance(view)
         goal = self.task.goal(phase, seen)
         self._look.glanced(t, self._glance_s(goal))
-        if goal is None or not goal.visible or seen.arm_stopped:  # nothing to predict from
+        if goal is None or not goal.visible or self._felt_beyond(seen):  # nothing to predict from
             return
         # Where the gripper will end: as seen now, plus what the hand did over the lag the
         # operator believes the display has (timed as people time intervals), plus what the hand
@@ -268,7 +269,7 @@ class SyntheticOperator:
         to_end, to_end_cov = self.hand.to_end(
             t, self.lag_s, self._timed_s(self.lag_s), p.timing_weber
         )
-        to_gripper = self._gripper_per_hand
+        to_gripper = self._map.gripper_per_hand
         error = goal.gripper_m - (seen.gripper_m + to_gripper @ to_end)
         cov = goal.cov_m2 + to_gripper @ to_end_cov @ to_gripper.T
         # As after a look, it corrects what it is sure will miss.
@@ -276,7 +277,7 @@ class SyntheticOperator:
             return
         self.corrections_total += 1
         self._last_amend_s = t
-        self._move(t, self._hand_per_gripper @ error, t + p.motor_delay_s)
+        self._move(t, self._map.hand_per_gripper @ error, t + p.motor_delay_s)
 
     def _set_back(self, t: float, name: str) -> None:
         """A look shows the task went wrong: open the hand and go back to phase ``name``."""
@@ -375,7 +376,7 @@ class SyntheticOperator:
 
     def _align(self, t: float) -> None:
         """Bring the hand to where it commands the resting gripper, from memory of the pose."""
-        self._move(t, self._to_hand(self.task.rest_gripper_m) - self.hand.position_m, t)
+        self._move(t, self._map.hand_m(self.task.rest_gripper_m) - self.hand.position_m, t)
 
     def _output(self, t: float) -> OperatorOutput:
         tremor = self._tremor.at(t)
