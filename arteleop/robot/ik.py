@@ -141,6 +141,11 @@ class ArmIK:
         velocities = dict(zip(RIGHT_ARM_JOINTS, limits.velocity.tolist(), strict=True))
         joints = HingeConfigurationLimit(self.model)
         elbow = int(self.model.joint("right_e1").qposadr[0])
+        if not c.elbow_min_bend_rad < joints.upper[elbow]:
+            raise ConfigurationError(
+                f"IKConfig.elbow_min_bend_rad={c.elbow_min_bend_rad}: expected an angle below the "
+                f"elbow's upper limit, {joints.upper[elbow]:.3f} rad"
+            )
         joints.lower[elbow] = max(joints.lower[elbow], c.elbow_min_bend_rad)
         self.limits: list[mink.Limit] = [joints, KeptVelocityLimit(self.model, velocities)]
         if table_center_m is not None:

@@ -218,3 +218,11 @@ def test_an_arm_stretched_to_the_edge_of_its_reach_comes_back(
         assert result.position_error_m > 0.15 and not result.reachable
     else:
         assert result.position_error_m < 0.005 and result.reachable
+
+
+def test_an_elbow_bound_past_the_elbows_range_is_refused(
+    description: BaxterDescription, kin: BaxterKinematics
+) -> None:
+    with pytest.raises(ConfigurationError, match=r"elbow_min_bend_rad=3.0: expected an angle"):
+        ArmIK(description.urdf_path, kin.limits(RIGHT_ARM_JOINTS), WORK_POSTURE,
+              config=IKConfig(elbow_min_bend_rad=3.0))  # fmt: skip
