@@ -219,9 +219,11 @@ class SyntheticOperator:
     def _felt_beyond(self, seen: Perceived) -> bool:
         """The display says the arm has stopped, and the hand is felt to command the gripper
         beyond where it is shown (a gap of a few centimetres is not felt)."""
+        if not seen.arm_stopped:  # every glance asks: the map only while the notice is on
+            return False
         gap_m = self._map.gripper_m(self.hand.position_m) - seen.gripper_m
         sd_m = self.p.perception.proprioception_sd_m
-        return seen.arm_stopped and felt_apart(gap_m, sd_m, self.traits.confidence)
+        return felt_apart(gap_m, sd_m, self.traits.confidence)
 
     def _correct(self, t: float, error: NDArray[np.float64]) -> None:
         if self.hand.moving:
