@@ -212,12 +212,9 @@ def study_serve(cmd: StudyServeCommand) -> int:
     from arteleop.scene import HeadCameraConfig
     from arteleop.study import load_study_file
     from arteleop.study.serve import StudyServer
-    from arteleop.study.session import NOT_SERVED, served_run
-    from arteleop.teleop import POINTING
+    from arteleop.study.session import served_run
 
     study = None if cmd.file is None else load_study_file(cmd.file)[0]
-    if study is not None and study.task == POINTING.name:
-        raise ConfigurationError(f"{cmd.file}: {NOT_SERVED}")
     camera = HeadCameraConfig(width_px=cmd.width_px, height_px=cmd.height_px)
     host = check_host(cmd.host, cmd.port)  # before the run folder is begun
     view = ViewConfig(host=cmd.host, port=cmd.port, public_url=cmd.public_url,

@@ -330,10 +330,9 @@ class StudyConfig:
         }
 
 
-POINTING_UNUSED = ("consent", "instructions", "questionnaire", "modalities", "trials_per_modality",
-                   "timeout_s", "delay_ms", "camera_offset_mm", "camera_offset_deg",
-                   "camera_pose", "start_xy_m", "target_xy_m", "familiarization",
-                   "hand_filter")  # fmt: skip
+POINTING_UNUSED = ("questionnaire", "modalities", "trials_per_modality", "timeout_s", "delay_ms",
+                   "camera_offset_mm", "camera_offset_deg", "camera_pose", "start_xy_m",
+                   "target_xy_m", "familiarization", "hand_filter")  # fmt: skip
 """The keys of a pick-and-place study that a pointing study's trials do not read."""
 _SCALARS = ("trials_per_modality", "timeout_s", "delay_ms", "start_xy_m", "target_xy_m",
             "camera_offset_mm", "camera_offset_deg", "modalities")  # fmt: skip

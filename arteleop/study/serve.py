@@ -39,8 +39,7 @@ from arteleop.lifetime import Closeable
 from arteleop.operator import HandTarget, live_source
 from arteleop.scene import HeadCameraConfig, RemoteSite
 from arteleop.study.demographics import GENDERS, HANDEDNESS, Demographics, SessionInputError
-from arteleop.study.plan import FAMILIARIZATION, TrialSpec
-from arteleop.study.protocol import trial_config, trial_record
+from arteleop.study.plan import TrialSpec
 from arteleop.study.questionnaire import classes_shown
 from arteleop.study.session import BrowserCheck, ServedRun
 from arteleop.study.session_tabs import SessionStopped, SessionTabs
@@ -52,7 +51,6 @@ from arteleop.study.session_words import (
     TRY_IT,
     consent_text,
     instructions_text,
-    outcome_text,
 )
 from arteleop.teleop import (
     TrialProgress,
@@ -234,7 +232,7 @@ class StudyServer(Closeable):
         pending = self.run.pending(participant)
         # A try that ends (the bowl placed, or its time up) begins again from the start.
         while pending and not (gone_on.is_set() or self.tabs.stopped.is_set()):
-            config = replace(trial_config(self.run.study, self._site, pending[0]), realtime=True,
+            config = replace(self.run.trial_config(pending[0], self._site), realtime=True,
                              render_camera=True, timeout_s=TUTORIAL_S)  # fmt: skip
             with RemoteSite(config.site) as site:
                 cues = modality_cues(pending[0].modality)
@@ -258,10 +256,9 @@ class StudyServer(Closeable):
     def _trial(self, spec: TrialSpec) -> None:
         trials = self.run.trials_of(spec.participant)
         k, n = trials.index(spec) + 1, len(trials)
-        kind = "practice trial" if spec.phase == FAMILIARIZATION else "trial"
         heading = f"Trial {k} of {n}"
-        text = f"This is a {kind}."
-        config = replace(trial_config(self.run.study, self._site, spec),
+        text = self.run.trial_text(spec)
+        config = replace(self.run.trial_config(spec, self._site),
                          realtime=True, render_camera=True)  # fmt: skip
         with RemoteSite(config.site) as site:
             # The scene as the trial will begin, its layers on, while the person gets ready.
@@ -301,11 +298,7 @@ class StudyServer(Closeable):
                   "cloud_fps": frames / max(wall_s, 1e-9),
                   "link_latency_s": math.nan if latency_s is None else latency_s}  # fmt: skip
         self.view.settle()  # the scene the trial ended on, whole beside its outcome
-        record = trial_record(spec, result, wall_s)
-        row = record.row
-        time_s, error_m = row["completion_time_s"], row["placement_error_m"]
-        result_text = outcome_text(str(row["outcome"]), time_s, error_m)  # type: ignore[arg-type]
-        self.run.keep(record)
+        result_text = self.run.keep_result(spec, result, wall_s)
         devices = live.take_devices() if (live := self.tabs.live) is not None else ""
         self.tabs.show(
             lambda p: p.message(heading, result_text, "Next", lambda: self.tabs.act("next"))

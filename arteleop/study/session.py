@@ -34,6 +34,7 @@ import secrets
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from arteleop.analysis.data import (
     PARTICIPANT_COLUMNS,
@@ -41,12 +42,12 @@ from arteleop.analysis.data import (
     TRIAL_COLUMNS,
 )
 from arteleop.ar_features.links import TOKEN_BYTES
-from arteleop.errors import RunFolderError, StudyDefinitionError
+from arteleop.errors import RunFolderError
 from arteleop.study.definition import StudyConfig
 from arteleop.study.demographics import Demographics, check_whole
 from arteleop.study.participants import ParticipantSpec
-from arteleop.study.plan import TrialSpec
-from arteleop.study.protocol import TrialRecord, trial_row
+from arteleop.study.plan import FAMILIARIZATION, TrialSpec
+from arteleop.study.protocol import TrialRecord, trial_config, trial_record, trial_row
 from arteleop.study.questionnaire import classes_shown
 from arteleop.study.run_folder import (
     PARTICIPANTS_FILE,
@@ -61,9 +62,13 @@ from arteleop.study.run_folder import (
 from arteleop.study.run_lock import run_lock
 from arteleop.study.run_opening import new_manifest, open_run, plan_run, utc_now
 from arteleop.study.runner import check_new, make_folder
+from arteleop.study.session_words import outcome_text
 from arteleop.study.sites import StudySite
 from arteleop.study.study_writing import study_text
 from arteleop.teleop.trial_task import POINTING
+
+if TYPE_CHECKING:
+    from arteleop.teleop import TrialConfig, TrialResult
 
 INTERRUPTED_FILE = "interrupted.csv"
 BROWSER_FILE = "browser.csv"
@@ -73,12 +78,6 @@ BROWSER_COLUMNS = ("participant", "trial_index", "display_round_trip_s", "scene_
                    "link_latency_s")  # fmt: skip
 LINKS_KEY_FILE = "links.key"
 LINKS_KEY_BYTES = 32
-NOT_SERVED = (
-    'task = "pointing": serving a pointing study to people is not built yet (\'arteleop study '
-    "run' runs it with simulated participants); run your people with your own pointing software "
-    "and compare: docs/guides/analysing-data.md."
-)
-"""Why a pointing study is not served."""
 
 
 @dataclass(frozen=True)
@@ -175,14 +174,41 @@ class ServedRun:
                 f"{folder.path} holds a simulated run: 'arteleop study resume {folder.path}' "
                 "continues it; give 'study serve' a new folder."
             )
+        return cls.reopen(folder, study, site)
+
+    @classmethod
+    def reopen(cls, folder: RunFolder, study: StudyConfig | None, site: StudySite) -> ServedRun:
+        """The served run in ``folder``, checked (see :meth:`open`)."""
         study, plan, people, _ = open_run(folder, study, site)
         folder.done_rows(repair=True)  # a row a kill cut short is set aside now, and said
         return cls(folder, study, plan, people, site)
 
+    def done_keys(self) -> set[tuple[str, int]]:
+        """The trials that ended, by (participant, trial_index)."""
+        return set(self.folder.done_rows())
+
+    def trial_config(self, spec: TrialSpec, site: StudySite) -> TrialConfig:
+        """The trial of ``spec`` on ``site`` (the study's, seen through the server's camera)."""
+        return trial_config(self.study, site, spec)
+
+    def trial_text(self, spec: TrialSpec) -> str:
+        """What the trial's page says before Start."""
+        kind = "practice trial" if spec.phase == FAMILIARIZATION else "trial"
+        return f"This is a {kind}."
+
+    def keep_result(self, spec: TrialSpec, result: TrialResult, wall_s: float) -> str:
+        """The trial that ended with ``result`` after ``wall_s`` (s) kept; what its outcome
+        page says."""
+        record = trial_record(spec, result, wall_s)
+        self.keep(record)
+        row = record.row
+        time_s, error_m = row["completion_time_s"], row["placement_error_m"]
+        return outcome_text(str(row["outcome"]), time_s, error_m)  # type: ignore[arg-type]
+
     def current(self) -> ParticipantSpec | None:
         """The participant whose session is under way or next: the first, in plan order, with
         trials or answers missing; None when every session is over."""
-        done = self.folder.done_rows()
+        done = self.done_keys()
         answered = self._answered()
         for person in self.people:
             if any(spec.key not in done for spec in self.trials_of(person.id)):
@@ -197,7 +223,7 @@ class ServedRun:
 
     def pending(self, participant: str) -> list[TrialSpec]:
         """The participant's trials not yet in ``trials.csv``, in session order."""
-        done = self.folder.done_rows()
+        done = self.done_keys()
         return [spec for spec in self.trials_of(participant) if spec.key not in done]
 
     def token(self, participant: str) -> str:
@@ -329,14 +355,22 @@ def served_run(out: Path, study: StudyConfig | None = None) -> Iterator[ServedRu
     """The served run in ``out``, its lock held: carried on where ``out`` holds one (made from
     ``study`` when given), else begun in the new or empty folder from ``study`` (the default
     study when none)."""
-    if study is not None and study.task == POINTING.name:
-        raise StudyDefinitionError(NOT_SERVED)
     folder = RunFolder(out)
     if folder.is_run_folder():
         with run_lock(folder.path):
-            yield ServedRun.open(out, study)
+            yield _served_kind(folder.manifest().get("task")).open(out, study)
         return
     check_new(folder)
     make_folder(folder)
+    study = study or StudyConfig()
     with run_lock(folder.path):
-        yield ServedRun.create(study or StudyConfig(), out)
+        yield _served_kind(study.task).create(study, out)
+
+
+def _served_kind(task: object) -> type[ServedRun]:
+    """The served run of a study whose task is called ``task``."""
+    if task != POINTING.name:
+        return ServedRun
+    from arteleop.study.pointing_session import ServedPointingRun
+
+    return ServedPointingRun

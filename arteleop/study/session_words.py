@@ -4,14 +4,13 @@ items, a trial's outcome; the built-in texts say only what is true of the study 
 from __future__ import annotations
 
 from arteleop.study.definition import StudyConfig
+from arteleop.teleop.trial_task import POINTING
 
 CONSENT = """\
 You are invited to take part in a study of how drawings over a robot's camera view help people
 steer a robot arm from a distance. The robot, the table and the bowl are simulated.
 
-**What you do.** With the mouse or the keyboard you move the gripper of a robot arm, pick up a
-bowl and put it on a target: {trials}. Each trial ends when the bowl stands still after you
-let it go, or after {limit} at most. Afterwards you rate the displays.
+**What you do.** {what_you_do}
 
 **What is recorded.** Your movements, each trial's time and accuracy, your answers about
 yourself and your ratings, under a participant number: never your name.
@@ -26,11 +25,31 @@ Ask the researcher who runs the study about anything that is not clear before yo
 before :func:`consent_text` fills in the study's trials and their limit."""
 
 
+WHAT_YOU_DO = (
+    "With the mouse or the keyboard you move the gripper of a robot arm, pick up a bowl and put "
+    "it on a target: {trials}. Each trial ends when the bowl stands still after you let it go, "
+    "or after {limit} at most. Afterwards you rate the displays."
+)
+WHAT_YOU_DO_POINTING = (
+    "With the mouse or the keyboard you move the gripper of a robot arm over a cross on a "
+    "table, then over a circle, and close its grip there: {trials}, in {blocks}, the robot's "
+    "view late by a different amount in each. Each trial ends when you close the grip, or after "
+    "{limit} at most."
+)
+
+
 def consent_text(study: StudyConfig) -> str:
     """The information and consent page: the study file's own (``consent``), else the
-    built-in one, saying only what is true of ``study``: its trials and how long one may last."""
+    built-in one, saying only what is true of ``study``: its task, its trials and how long one
+    may last."""
     if study.consent:
         return study.consent
+    if study.task == POINTING.name:
+        blocks = len(study.planned_conditions)
+        trials = _count(blocks * len(study.pointing.block(0)), "measured trial")
+        what = WHAT_YOU_DO_POINTING.format(trials=trials, blocks=_count(blocks, "block"),
+                                           limit=_limit(study.pointing.timeout_s))  # fmt: skip
+        return CONSENT.format(what_you_do=what)
     practice = study.familiarization.trials
     measured = len(study.planned_conditions) * study.trials_per_modality
     displays = len(study.condition_names)
@@ -39,8 +58,11 @@ def consent_text(study: StudyConfig) -> str:
     if displays > 1:
         trials += f", one under each of {displays} different display conditions"
     limit_s = max(study.timeout_s, study.familiarization.timeout_s if practice else 0.0)
-    limit = f"{limit_s / 60:g} minutes" if limit_s >= 120 else f"{limit_s:g} seconds"
-    return CONSENT.format(trials=trials, limit=limit)
+    return CONSENT.format(what_you_do=WHAT_YOU_DO.format(trials=trials, limit=_limit(limit_s)))
+
+
+def _limit(limit_s: float) -> str:
+    return f"{limit_s / 60:g} minutes" if limit_s >= 120 else f"{limit_s:g} seconds"
 
 
 def instructions_text(study: StudyConfig) -> str:
@@ -48,7 +70,9 @@ def instructions_text(study: StudyConfig) -> str:
     built-in one, which says practice trials come first only if ``study`` has some."""
     if study.instructions:
         return study.instructions
-    return TUTORIAL + ("\n" + PRACTICE_FIRST if study.familiarization.trials else "")
+    if study.task == POINTING.name:
+        return DRIVE + POINTING_TUTORIAL
+    return DRIVE + TUTORIAL + ("\n" + PRACTICE_FIRST if study.familiarization.trials else "")
 
 
 def _count(n: int, what: str) -> str:
@@ -56,13 +80,25 @@ def _count(n: int, what: str) -> str:
 
 
 AGREE = "I have read the information above and agree to take part."
-TUTORIAL = """\
+DRIVE = """\
 **Drive the robot.** Drag the arrows of the handle at the gripper: the robot's gripper follows
 the handle. Or step the handle with the **Move** and **Height** buttons, as the camera sees it
 (left, away, nearer, right; up, down), by the **Step** chosen, or with the keys: W A S D or
 the arrows to move, E up, Q down. The robot is seen through its head camera, a moment late;
 move, then watch the gripper arrive.
 
+"""
+"""How to move the gripper, the first paragraph of every built-in page on driving the robot."""
+POINTING_TUTORIAL = """\
+**Choose a target.** In each trial, move the gripper over the cross on the table first, then
+over the middle of the circle, and close the grip there: move the Grip slider to *closed*, or
+press G. Closing the grip chooses the place under the gripper and ends the trial.
+
+**The time** runs from when the gripper leaves the cross to when you close the grip. Be as
+quick and as accurate as you can: the circles differ in size and distance.
+"""
+"""The rest of the built-in page on driving the robot in a pointing study."""
+TUTORIAL = """\
 **Grip.** The fingers open sideways, across the view: take the bowl by its left or right
 wall. Move the Grip slider to *closed* to close the gripper on the bowl (it closes past the
 first mark) and back to *open* to let go (it opens below the second mark); or press G, once
@@ -72,8 +108,8 @@ to close, again to open.
 released, stands still. Be as quick and as accurate as you can: put the bowl's centre on the
 target.
 """
-"""How to drive the robot when the study file gives no page of its own (``instructions``),
-before :func:`instructions_text` says whether practice trials come first."""
+"""The rest of the built-in page on driving the robot in a pick-and-place study, before
+:func:`instructions_text` says whether practice trials come first."""
 PRACTICE_FIRST = "The practice trials come first; they teach the controls and are not compared.\n"
 TRY_IT = (
     "**Try it now**: the robot in the view follows you as it will in the trials, as late; "

@@ -36,6 +36,7 @@ from arteleop.teleop.timing import StageStats, StageTimer
 from arteleop.teleop.trace import TRACE_COLUMNS, TrialTrace
 from arteleop.teleop.trial import Outcome, TrialConfig, TrialProgress, TrialResult
 from arteleop.teleop.trial_task import (
+    PERSON_POINTING,
     PICK_AND_PLACE,
     POINTING,
     TASKS,
@@ -54,6 +55,7 @@ _LAZY = {
 }
 
 __all__ = [
+    "PERSON_POINTING",
     "PICK_AND_PLACE",
     "POINTING",
     "TASKS",

@@ -16,10 +16,12 @@ from numpy.typing import NDArray
 
 from arteleop.errors import SimulationError
 from arteleop.operator import OperatorParams, OperatorTraits, SyntheticSource
+from arteleop.robot.grip_control import GripHysteresis
 from arteleop.robot.mapping import HandToGripper
 from arteleop.scene import RemoteSite, SiteConfig, Workspace
 from arteleop.teleop.loop import run_trial
 from arteleop.teleop.network import NetworkConfig
+from arteleop.teleop.task_monitor import SELECTED_CLOSURE, START_RADIUS_M, START_SPEED_M_S
 from arteleop.teleop.trial import TrialConfig
 from arteleop.teleop.trial_task import pointing_task
 
@@ -27,8 +29,6 @@ POINTING_START_XY_M = (0.68, -0.55)
 """Where each pointing movement starts (over the table, m); targets lie along +y from it."""
 BOWL_AWAY_XY_M = (0.45, -0.65)
 """The bowl, out of the pointing path and in the arm's reach (the site checks both)."""
-SELECTED_CLOSURE = 0.05
-"""The gripper has begun to close: the selection's moment and place."""
 
 
 @dataclass(frozen=True)
@@ -112,6 +112,44 @@ def run_pointing_trial(
         pointing[0].corrections,
         pointing[0].looks,
     )
+
+
+def person_pointing_result(
+    trace: Mapping[str, NDArray[np.float64]], workspace: Workspace
+) -> PointingResult:
+    """A person's pointing trial (:class:`~arteleop.teleop.task_monitor.SelectionMonitor`)
+    scored from its trace and ``workspace``: NaN where there was no selection.
+
+    The selection is the grip's first closing (the grip received reaching
+    :class:`~arteleop.robot.grip_control.GripHysteresis`'s ``close_at``) after the gripper was
+    over the start cross (:data:`~arteleop.teleop.task_monitor.START_RADIUS_M`); its place is
+    the gripper's where the measured closure then first passes :data:`SELECTED_CLOSURE`, as a
+    simulated participant's is. The movement starts at the gripper's last tick still (below
+    ``START_SPEED_M_S``) over the cross before it, or as it came over the cross if it never
+    stood still there. Both ends are where the site sees them, a network delay after the person
+    acted: the movement time is the person's, the gripper's tracking lag aside. Closures before
+    the gripper was over the cross are slips."""
+    t, closure = trace["time_s"], trace["gripper_closure"]
+    xy = np.column_stack([trace["gripper_x_m"], trace["gripper_y_m"]])
+    over = np.linalg.norm(xy - np.asarray(workspace.start_xy_m), axis=1) <= START_RADIUS_M
+    closed = np.nan_to_num(trace["grip"]) >= GripHysteresis().close_at
+    rises = np.flatnonzero(closed & ~np.concatenate([[False], closed[:-1]]))
+    later = rises[rises >= np.argmax(over)] if over.any() else rises[:0]
+    nan = float("nan")
+    if not len(later):
+        return PointingResult(nan, nan, nan, False, len(rises))
+    s = later[0]
+    k, _ = decided_selection(t, closure, t[s])
+    last_over = np.flatnonzero(over[: s + 1])[-1]
+    back = over[last_over::-1]  # from there back to the trial's start
+    entered = last_over + 1 - (int(np.argmin(back)) if not back.all() else len(back))
+    speed = np.concatenate([[0.0], np.linalg.norm(np.diff(xy, axis=0), axis=1) / np.diff(t)])
+    still = np.flatnonzero(speed[entered : last_over + 1] <= START_SPEED_M_S)
+    onset = min(entered + (still[-1] if len(still) else 0), s)
+    off = xy[k] - np.asarray(workspace.target_xy_m)
+    return PointingResult(float(t[s] - t[onset]), float(off[1]), float(off[0]),
+                          bool(np.linalg.norm(off) <= workspace.target_circle_radius_m),
+                          int(np.sum(rises < s)))  # fmt: skip
 
 
 def pointing_config(

@@ -1,5 +1,5 @@
 """Watches the pick-and-place task and says when, and how, the trial ends (and the pointing
-task, :class:`PointingMonitor`).
+task, :class:`PointingMonitor`, and a person's pointing trial, :class:`SelectionMonitor`).
 
 - Motion onset: the first control tick, once engaged, at which the operator's hand moves faster
   than ``START_SPEED_M_S``. The completion timer starts there.
@@ -55,6 +55,12 @@ FALLING_M = 0.005
 one resting on the table reads up to 1 mm (the physics' contact margin). Lower than
 ``LIFTED_M``: a bowl that tilts as it slips out has its low edge under ``LIFTED_M`` when the
 fingers shut (the delay example's P07, trial 8: 8 mm, its centre 41 mm up)."""
+SELECTED_CLOSURE = 0.05
+"""Measured closure past which a pointing selection's gripper has begun to close: the
+selection's moment and place."""
+START_RADIUS_M = 0.02
+"""A person's pointing movement starts over the start cross: the gripper within this of its
+middle in the table's plane (m), a fifth of the shortest distance a pointing design allows."""
 
 
 class TaskMonitor:
@@ -144,3 +150,39 @@ class PointingMonitor(TaskMonitor):
 
     def operator_stopped(self) -> Outcome:
         return Outcome.SUCCESS if self.grasp_attempts else Outcome.OPERATOR_STOPPED
+
+
+class SelectionMonitor(PointingMonitor):
+    """A person's pointing trial: it ends as the gripper closes at the person's command once
+    it has been over the start cross (:data:`START_RADIUS_M`), the measured closure past
+    :data:`SELECTED_CLOSURE`: a person says "here" by closing the grip, and does not stop the
+    way a simulated participant does. Closures before the gripper was over the cross end
+    nothing."""
+
+    def __init__(self, workspace: Workspace, tracker: BowlTracker) -> None:
+        super().__init__(workspace, tracker)
+        self.over_start = False
+        """The gripper has been over the start cross."""
+        self.selected = False
+        """The grip was closed after that."""
+
+    def control(
+        self, t: float, moving_hand_m_s: float | None, gripper_closed: bool, state: SiteState
+    ) -> None:
+        closing = gripper_closed and not self._was_closed
+        super().control(t, moving_hand_m_s, gripper_closed, state)
+        start = np.asarray(self._ws.start_xy_m)
+        if np.linalg.norm(state.gripper_m[:2] - start) <= START_RADIUS_M:
+            self.over_start = True
+        self.selected = self.selected or (closing and self.over_start)
+
+    def camera(
+        self,
+        t: float,
+        state: SiteState,
+        capture: Callable[[], RGBDFrame],
+        sight: Callable[[], BowlTrack] | None = None,
+    ) -> Outcome | None:
+        if self.selected and state.gripper_closure > SELECTED_CLOSURE:
+            return Outcome.SUCCESS
+        return super().camera(t, state, capture, sight)

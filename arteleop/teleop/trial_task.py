@@ -22,7 +22,7 @@ from numpy.typing import NDArray
 from arteleop.errors import ConfigurationError
 from arteleop.operator import PickAndPlace, PointingTask, Task
 from arteleop.scene import BowlTracker, Workspace
-from arteleop.teleop.task_monitor import PointingMonitor, TaskMonitor
+from arteleop.teleop.task_monitor import PointingMonitor, SelectionMonitor, TaskMonitor
 
 
 @dataclass(frozen=True)
@@ -86,6 +86,16 @@ def _pointing(site: TaskSite) -> Task:
 POINTING = TrialTask("pointing", _pointing, lambda ws: PointingMonitor(ws, BowlTracker(ws.bowl)))
 """A Fitts pointing trial: from over the start cross to over the target circle, selected by
 closing the gripper (:mod:`arteleop.teleop.pointing`)."""
+
+POINTING_BY_PERSON = TrialTask(
+    "pointing", _pointing, lambda ws: SelectionMonitor(ws, BowlTracker(ws.bowl))
+)
+"""The pointing task as a person does it, served (``arteleop study serve``): the trial ends at
+the person's selection, the grip closed after the gripper was over the start cross; a simulated
+participant's ends when it stops, its closures before its decision being slips. Named by
+:data:`PERSON_POINTING`, not in :data:`TASKS`: a study's ``task`` is ``"pointing"`` either way."""
+PERSON_POINTING = f"{__name__}:POINTING_BY_PERSON"
+"""The :attr:`~arteleop.teleop.TrialConfig.task` of a person's pointing trial."""
 
 TASKS: dict[str, TrialTask] = {PICK_AND_PLACE.name: PICK_AND_PLACE, POINTING.name: POINTING}
 """The platform's own tasks, by name."""

@@ -7,19 +7,23 @@ import csv
 import json
 from dataclasses import replace
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
+from arteleop.analysis.pointing import pointing_table_path
 from arteleop.cli import main
 from arteleop.errors import StudyDefinitionError
 from arteleop.operator import OperatorParams
 from arteleop.scene import SiteConfig
 from arteleop.study import RunComplete, parse_study, resume_study, run_study
 from arteleop.study.pointing_design import PointingDesign
-from arteleop.study.pointing_run import BLOCKS_DIR
+from arteleop.study.pointing_run import BLOCKS_DIR, pointing_blocks
+from arteleop.study.pointing_session import ServedPointingRun
 from arteleop.study.protocol import operator_traits
-from arteleop.study.session import NOT_SERVED, served_run
+from arteleop.study.session import served_run
+from arteleop.study.session_words import consent_text
 from arteleop.teleop import POINTING, PointingMonitor, trial_task
 from arteleop.teleop.pointing import run_pointing_trial
 
@@ -164,8 +168,37 @@ def test_a_pointing_design_out_of_range_is_refused_at_its_line(text: str, messag
     assert str(err.value) == message
 
 
-def test_a_pointing_study_is_not_served_to_people(tmp_path: Path) -> None:
-    with pytest.raises(StudyDefinitionError) as err, served_run(tmp_path, parse_study(TINY)):
-        pass
-    assert str(err.value) == NOT_SERVED
-    assert list(tmp_path.iterdir()) == [], "nothing begun"
+def test_a_pointing_study_served_keeps_each_trial_on_its_plan(tmp_path: Path) -> None:
+    """Served: the simulated run's plan, trial by trial; each ended trial's row lands in
+    pointing.csv in plan order (its trace beside it), an interrupted one runs again, a restart
+    carries on, and the folder is read as a pointing table."""
+    study = parse_study(TINY)
+    out = tmp_path / "run"
+    with served_run(out, study) as run:
+        assert isinstance(run, ServedPointingRun)
+        blocks = pointing_blocks(study)
+        assert [(s.block, s.round_trip_ms, s.trial) for s in run.plan] == [
+            (b.block, b.round_trip_ms, t) for b in blocks for t in b.trials
+        ]
+        assert "4 measured trials, in 2 blocks" in consent_text(run.study)
+        first, second = run.pending("F02")[:2]
+        run.keep_interrupted(first)
+        ws = run.trial_config(second, run.site).site.workspace
+        t = np.arange(0.0, 3.0, 0.01)  # still over the cross, then at 0.2 m/s to the target
+        y = ws.start_xy_m[1] + np.clip(0.2 * (t - 1.0), 0.0, 0.1)
+        trace = {"time_s": t, "gripper_x_m": np.full_like(t, ws.start_xy_m[0]),
+                 "gripper_y_m": y, "grip": (t >= 2.0).astype(float),
+                 "gripper_closure": (t >= 2.1).astype(float)}  # fmt: skip
+        said = run.keep_result(second, SimpleNamespace(trace=trace), 3.0)
+        assert said == "Chosen in 1.00 s, 0 mm from the middle: inside the circle."
+        assert [s.key for s in run.pending("F02")][:2] == [first.key, ("F02", 3)]
+    with served_run(out) as again:  # a restarted server: the same session
+        assert isinstance(again, ServedPointingRun) and again.instructed("F02")
+        assert [s.key for s in again.pending("F02")] == [("F02", 1), ("F02", 3), ("F02", 4)]
+    (row,) = list(csv.DictReader((out / "pointing.csv").open()))
+    assert (row["participant"], row["trial"], row["block"], row["hit"]) == ("F02", "2", "1", "1.0")
+    assert float(row["movement_time_s"]) == pytest.approx(1.0, abs=0.011)
+    assert (out / row["trajectory_file"]).is_file()
+    (cut,) = list(csv.DictReader((out / "interrupted.csv").open()))
+    assert (cut["trial"], cut["outcome"]) == ("1", "interrupted")
+    assert pointing_table_path(out) == out / "pointing.csv"

@@ -6,6 +6,7 @@ from arteleop.ar_features.session_pages import EXPERIENCE, HOURS, _rated, _scale
 from arteleop.study import FamiliarizationConfig, StudyConfig
 from arteleop.study.session_words import (
     CONSENT,
+    DRIVE,
     PRACTICE_FIRST,
     TUTORIAL,
     consent_text,
@@ -91,9 +92,9 @@ def test_the_instructions_are_the_study_files_own_or_say_practice_comes_first_on
     from arteleop.study import FamiliarizationConfig, load_study_file, study_text
     from arteleop.study.study_file import parse_study
 
-    assert instructions_text(StudyConfig()) == TUTORIAL + "\n" + PRACTICE_FIRST
+    assert instructions_text(StudyConfig()) == DRIVE + TUTORIAL + "\n" + PRACTICE_FIRST
     none = replace(StudyConfig(), familiarization=FamiliarizationConfig(trials=0))
-    assert instructions_text(none) == TUTORIAL and "practice" not in TUTORIAL
+    assert instructions_text(none) == DRIVE + TUTORIAL and "practice" not in TUTORIAL
     (tmp_path / "drive.md").write_text("Use the joystick.\n", encoding="utf-8")
     (tmp_path / "study.toml").write_text('instructions_file = "drive.md"\n')
     study, _ = load_study_file(tmp_path / "study.toml")
