@@ -62,7 +62,7 @@ from arteleop.study.session_words import outcome_text
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))  # the checkout's tests/
 from tests.instruments.browser import chromium
-from tests.instruments.scripted_participant import TrialDone, take_part
+from tests.instruments.scripted_participant import ScriptedParticipant, TrialDone, take_part
 from tests.instruments.throttle import Throttle
 
 STUDY_TOML = """\
@@ -104,11 +104,16 @@ def arteleop(*args: str) -> list[str]:
 
 
 def serve_to_script(
-    study: Path, served: Path, shots: Path, camera: tuple[int, int], throttle_mbit: float | None
+    study: Path,
+    served: Path,
+    shots: Path,
+    camera: tuple[int, int],
+    throttle_mbit: float | None,
+    person: type[ScriptedParticipant] = ScriptedParticipant,
 ) -> tuple[list[TrialDone], float, float | None]:
-    """``arteleop study serve`` to the scripted participant; its trials, the session's wall
-    time (s, from the consent page to the last) and, behind a throttle, what the browser
-    received over it (Mbit/s)."""
+    """``arteleop study serve`` to the scripted participant (a ``person``); its trials, the
+    session's wall time (s, from the consent page to the last) and, behind a throttle, what the
+    browser received over it (Mbit/s)."""
     server = subprocess.Popen(
         [sys.executable, "-m", "arteleop.cli", "study", "serve", str(study), "--out",
          str(served), "--port", "0", "--width-px", str(camera[0]), "--height-px",
@@ -149,7 +154,7 @@ def serve_to_script(
         with chromium() as browser:
             tab = browser.open(url, for_pictures=False).playwright
             try:
-                done = take_part(tab, log, shots)
+                done = take_part(tab, log, shots, person)
             except (PlaywrightError, AssertionError) as err:
                 raise BenchmarkFailed(f"the scripted participant stopped: {err}\n"
                                       f"the pages it saw are in {shots}") from None  # fmt: skip

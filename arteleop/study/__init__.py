@@ -22,6 +22,7 @@ from arteleop.study.definition import (
 from arteleop.study.demographics import Demographics, SessionInputError
 from arteleop.study.participants import CohortConfig, ParticipantSpec
 from arteleop.study.plan import PracticePoints, TrialSpec, plan_study, trial_seed
+from arteleop.study.pointing_session import PointingSpec, ServedPointingRun
 from arteleop.study.protocol import TrialRecord, operator_traits, run_planned_trial
 from arteleop.study.questionnaire import classes_shown, simulated_answers
 from arteleop.study.questionnaire_items import ORIGINAL_QUESTIONNAIRE, QuestionnaireItem
@@ -48,10 +49,12 @@ __all__ = [
     "Demographics",
     "FamiliarizationConfig",
     "ParticipantSpec",
+    "PointingSpec",
     "PracticePoints",
     "QuestionnaireItem",
     "RunComplete",
     "RunFolder",
+    "ServedPointingRun",
     "ServedRun",
     "SessionInputError",
     "StudyConfig",

@@ -228,8 +228,7 @@ def run_pointing_study(
     people = participants(study)
     blocks = pointing_blocks(study, people)
     text = study_text(study)
-    manifest = new_manifest(study, text, blocks, len(people))
-    manifest.update(task=study.task, trials_planned=sum(len(b.trials) for b in blocks))
+    manifest = pointing_manifest(study, text, blocks, people)
     make_folder(folder)
     with run_lock(folder.path):
         check_new(folder)
@@ -237,6 +236,19 @@ def run_pointing_study(
         write_atomic(folder.path / PARTICIPANTS_FILE, participants_text(people))
         folder.write_manifest(manifest)
         return _execute(folder, blocks, workers, executor, progress)
+
+
+def pointing_manifest(
+    study: StudyConfig,
+    text: str,
+    blocks: Sequence[PointingBlock],
+    people: Sequence[ParticipantSpec],
+) -> dict[str, object]:
+    """A new pointing run's manifest.json: its definition's ``text``, plan of ``blocks`` and
+    ``people``, its task and its trials planned."""
+    manifest = new_manifest(study, text, blocks, len(people))
+    manifest.update(task=study.task, trials_planned=sum(len(b.trials) for b in blocks))
+    return manifest
 
 
 def resume_pointing_study(

@@ -30,7 +30,7 @@ from arteleop.study.cohort import participants
 from arteleop.study.definition import StudyConfig
 from arteleop.study.plan import EXPERIMENTAL
 from arteleop.study.pointing_design import PointingTrial
-from arteleop.study.pointing_run import pointing_blocks
+from arteleop.study.pointing_run import pointing_blocks, pointing_manifest
 from arteleop.study.protocol import trajectory_file
 from arteleop.study.run_folder import (
     PARTICIPANTS_FILE,
@@ -43,19 +43,20 @@ from arteleop.study.run_folder import (
     trace_text,
     write_atomic,
 )
-from arteleop.study.run_opening import check_plan, new_manifest, opened_definition, utc_now
+from arteleop.study.run_opening import check_plan, opened_definition, utc_now
 from arteleop.study.runner import check_new
 from arteleop.study.session import INTERRUPTED_FILE, ServedRun
 from arteleop.study.sites import StudySite
 from arteleop.study.study_writing import study_text
-from arteleop.teleop import PERSON_POINTING, TrialConfig, TrialResult
+from arteleop.teleop import PERSON_POINTING, Outcome, TrialConfig, TrialResult
 from arteleop.teleop.pointing import person_pointing_result, pointing_config
 
-SERVED_POINTING_COLUMNS = (*POINTING_COLUMNS, "block", "trial", "rep", "seed", "slips",
+SERVED_POINTING_COLUMNS = (*POINTING_COLUMNS, "block", "trial", "rep", "seed", "outcome",
                            "trajectory_file")  # fmt: skip
 """``pointing.csv`` of a served pointing run: the analysed columns, then the trial's block and
-number in the person's session (from 1), its repetition and seed, the closures before the
-gripper was over the start cross, and its trace's file."""
+number in the person's session (from 1), its repetition and seed, how it ended (``selected``;
+``not_from_start``: the grip closed before the gripper was over the start cross; else the
+trial's outcome, ``timeout`` or ``dropped``) and its trace's file."""
 INTERRUPTED_COLUMNS = (*POINTING_COLUMNS[:4], "block", "trial", "outcome")
 """``interrupted.csv`` of a served pointing run."""
 TASK_TEXT = (
@@ -64,6 +65,13 @@ TASK_TEXT = (
     "choice of the target, and it ends the trial."
 )
 """What a pointing trial's page asks of the person."""
+
+NOT_CHOSEN = {
+    "not_from_start": "the grip closed before the gripper had been over the cross",
+    "timeout": "the time ran out before the grip closed",
+    "dropped": "the bowl was knocked off the table",
+}
+"""Why a trial counts no selection, by how it ended, as its page says it."""
 
 
 @dataclass(frozen=True)
@@ -106,11 +114,9 @@ class ServedPointingRun(ServedRun):
         folder = RunFolder(out)
         check_new(folder)
         people = participants(study)
-        blocks = pointing_blocks(study, people)
         text = study_text(study)
-        manifest = new_manifest(study, text, blocks, len(people))
-        manifest.update(cohort=REAL, task=study.task,
-                        trials_planned=sum(len(b.trials) for b in blocks))  # fmt: skip
+        manifest = {**pointing_manifest(study, text, pointing_blocks(study, people), people),
+                    "cohort": REAL}  # fmt: skip
         write_atomic(folder.path / STUDY_FILE, text)
         write_atomic(folder.path / PARTICIPANTS_FILE, table_text(PARTICIPANT_COLUMNS, []))
         folder.write_manifest(manifest)
@@ -142,17 +148,20 @@ class ServedPointingRun(ServedRun):
         config = self.trial_config(spec, self.site)
         r = person_pointing_result(result.trace, config.site.workspace)
         t, nan = spec.trial, math.nan
+        selected = "selected" if r.selected else None
+        ended = selected or ("not_from_start" if result.outcome is Outcome.SUCCESS
+                             else result.outcome.value)  # fmt: skip
         row = (spec.participant, spec.round_trip_ms, t.distance_m, t.width_m,
                r.movement_time_s if r.selected else nan, r.along_m if r.selected else nan,
                r.across_m if r.selected else nan, float(r.hit) if r.selected else nan,
-               spec.block, spec.trial_index, t.rep, t.seed, r.slips,
+               spec.block, spec.trial_index, t.rep, t.seed, ended,
                trajectory_file(spec))  # fmt: skip
         write_atomic(self.folder.path / trajectory_file(spec), trace_text(result.trace))
         kept: dict[tuple[str, int], Sequence[object]] = {**self._kept(), spec.key: row}
         order = [s.key for s in self.plan if s.key in kept]
         write_atomic(self._table, table_text(SERVED_POINTING_COLUMNS, [kept[k] for k in order]))
         if not r.selected:
-            return "No target chosen: the grip was not closed after the gripper was over the cross."
+            return f"No target counted: {NOT_CHOSEN.get(ended, ended.replace('_', ' '))}."
         where = "inside" if r.hit else "outside"
         off_mm = 1000 * math.hypot(r.along_m, r.across_m)
         return (f"Chosen in {r.movement_time_s:.2f} s, {off_mm:.0f} mm from the middle: {where} "

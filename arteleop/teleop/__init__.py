@@ -31,7 +31,7 @@ from arteleop.teleop.reconstruction import (
     reconstruct,
 )
 from arteleop.teleop.sensor_calibration import SensorMounting, calibrate, calibrate_from_hold
-from arteleop.teleop.task_monitor import PointingMonitor, TaskMonitor
+from arteleop.teleop.task_monitor import PointingMonitor, SelectionMonitor, TaskMonitor
 from arteleop.teleop.timing import StageStats, StageTimer
 from arteleop.teleop.trace import TRACE_COLUMNS, TrialTrace
 from arteleop.teleop.trial import Outcome, TrialConfig, TrialProgress, TrialResult
@@ -77,6 +77,7 @@ __all__ = [
     "Outcome",
     "PointingMonitor",
     "SampleStatus",
+    "SelectionMonitor",
     "SensorMounting",
     "StageStats",
     "StageTimer",

@@ -21,12 +21,15 @@ from arteleop.robot.mapping import HandToGripper
 from arteleop.scene import RemoteSite, SiteConfig, Workspace
 from arteleop.teleop.loop import run_trial
 from arteleop.teleop.network import NetworkConfig
-from arteleop.teleop.task_monitor import SELECTED_CLOSURE, START_RADIUS_M, START_SPEED_M_S
+from arteleop.teleop.task_monitor import SELECTED_CLOSURE, START_SPEED_M_S
 from arteleop.teleop.trial import TrialConfig
 from arteleop.teleop.trial_task import pointing_task
 
 POINTING_START_XY_M = (0.68, -0.55)
 """Where each pointing movement starts (over the table, m); targets lie along +y from it."""
+START_RADIUS_M = 0.02
+"""A person's pointing movement starts over the start cross: the gripper within this of its
+middle in the table's plane (m), a fifth of the shortest distance a pointing design allows."""
 BOWL_AWAY_XY_M = (0.45, -0.65)
 """The bowl, out of the pointing path and in the arm's reach (the site checks both)."""
 
@@ -118,27 +121,26 @@ def person_pointing_result(
     trace: Mapping[str, NDArray[np.float64]], workspace: Workspace
 ) -> PointingResult:
     """A person's pointing trial (:class:`~arteleop.teleop.task_monitor.SelectionMonitor`)
-    scored from its trace and ``workspace``: NaN where there was no selection.
+    scored from its trace and ``workspace``: NaN where there was no selection, or where the
+    gripper had not been over the start cross (:data:`START_RADIUS_M`) before it, a movement
+    whose distance is not the design's.
 
     The selection is the grip's first closing (the grip received reaching
-    :class:`~arteleop.robot.grip_control.GripHysteresis`'s ``close_at``) after the gripper was
-    over the start cross (:data:`~arteleop.teleop.task_monitor.START_RADIUS_M`); its place is
-    the gripper's where the measured closure then first passes :data:`SELECTED_CLOSURE`, as a
+    :class:`~arteleop.robot.grip_control.GripHysteresis`'s ``close_at``); its place is the
+    gripper's where the measured closure then first passes :data:`SELECTED_CLOSURE`, as a
     simulated participant's is. The movement starts at the gripper's last tick still (below
     ``START_SPEED_M_S``) over the cross before it, or as it came over the cross if it never
     stood still there. Both ends are where the site sees them, a network delay after the person
-    acted: the movement time is the person's, the gripper's tracking lag aside. Closures before
-    the gripper was over the cross are slips."""
+    acted: the movement time is the person's, the gripper's tracking lag aside."""
     t, closure = trace["time_s"], trace["gripper_closure"]
     xy = np.column_stack([trace["gripper_x_m"], trace["gripper_y_m"]])
-    over = np.linalg.norm(xy - np.asarray(workspace.start_xy_m), axis=1) <= START_RADIUS_M
     closed = np.nan_to_num(trace["grip"]) >= GripHysteresis().close_at
     rises = np.flatnonzero(closed & ~np.concatenate([[False], closed[:-1]]))
-    later = rises[rises >= np.argmax(over)] if over.any() else rises[:0]
+    over = np.linalg.norm(xy - np.asarray(workspace.start_xy_m), axis=1) <= START_RADIUS_M
     nan = float("nan")
-    if not len(later):
-        return PointingResult(nan, nan, nan, False, len(rises))
-    s = later[0]
+    if not len(rises) or not over[: rises[0] + 1].any():
+        return PointingResult(nan, nan, nan, False)
+    s = rises[0]
     k, _ = decided_selection(t, closure, t[s])
     last_over = np.flatnonzero(over[: s + 1])[-1]
     back = over[last_over::-1]  # from there back to the trial's start
@@ -147,9 +149,8 @@ def person_pointing_result(
     still = np.flatnonzero(speed[entered : last_over + 1] <= START_SPEED_M_S)
     onset = min(entered + (still[-1] if len(still) else 0), s)
     off = xy[k] - np.asarray(workspace.target_xy_m)
-    return PointingResult(float(t[s] - t[onset]), float(off[1]), float(off[0]),
-                          bool(np.linalg.norm(off) <= workspace.target_circle_radius_m),
-                          int(np.sum(rises < s)))  # fmt: skip
+    hit = bool(np.linalg.norm(off) <= workspace.target_circle_radius_m)
+    return PointingResult(float(t[s] - t[onset]), float(off[1]), float(off[0]), hit)
 
 
 def pointing_config(

@@ -58,9 +58,6 @@ fingers shut (the delay example's P07, trial 8: 8 mm, its centre 41 mm up)."""
 SELECTED_CLOSURE = 0.05
 """Measured closure past which a pointing selection's gripper has begun to close: the
 selection's moment and place."""
-START_RADIUS_M = 0.02
-"""A person's pointing movement starts over the start cross: the gripper within this of its
-middle in the table's plane (m), a fifth of the shortest distance a pointing design allows."""
 
 
 class TaskMonitor:
@@ -153,28 +150,11 @@ class PointingMonitor(TaskMonitor):
 
 
 class SelectionMonitor(PointingMonitor):
-    """A person's pointing trial: it ends as the gripper closes at the person's command once
-    it has been over the start cross (:data:`START_RADIUS_M`), the measured closure past
-    :data:`SELECTED_CLOSURE`: a person says "here" by closing the grip, and does not stop the
-    way a simulated participant does. Closures before the gripper was over the cross end
-    nothing."""
-
-    def __init__(self, workspace: Workspace, tracker: BowlTracker) -> None:
-        super().__init__(workspace, tracker)
-        self.over_start = False
-        """The gripper has been over the start cross."""
-        self.selected = False
-        """The grip was closed after that."""
-
-    def control(
-        self, t: float, moving_hand_m_s: float | None, gripper_closed: bool, state: SiteState
-    ) -> None:
-        closing = gripper_closed and not self._was_closed
-        super().control(t, moving_hand_m_s, gripper_closed, state)
-        start = np.asarray(self._ws.start_xy_m)
-        if np.linalg.norm(state.gripper_m[:2] - start) <= START_RADIUS_M:
-            self.over_start = True
-        self.selected = self.selected or (closing and self.over_start)
+    """A person's pointing trial: it ends at their selection, the grip closed (the measured
+    closure past :data:`SELECTED_CLOSURE`): a person says "here" by closing the grip, and does
+    not stop the way a simulated participant does. Whether the movement began over the start
+    cross is for the scoring to say (:func:`~arteleop.teleop.pointing.person_pointing_result`):
+    a trial that went on after a closure elsewhere would leave the person waiting, not told."""
 
     def camera(
         self,
@@ -183,6 +163,6 @@ class SelectionMonitor(PointingMonitor):
         capture: Callable[[], RGBDFrame],
         sight: Callable[[], BowlTrack] | None = None,
     ) -> Outcome | None:
-        if self.selected and state.gripper_closure > SELECTED_CLOSURE:
+        if self.grasp_attempts and state.gripper_closure > SELECTED_CLOSURE:
             return Outcome.SUCCESS
         return super().camera(t, state, capture, sight)

@@ -133,13 +133,14 @@ def label_lines(rgb: NDArray[np.uint8]) -> list[tuple[int, int, int, int]]:
     ]
 
 
-def find_label(rgb: NDArray[np.uint8], pattern: str) -> tuple[int, Spot] | None:
+def find_label(rgb: NDArray[np.uint8], pattern: str) -> tuple[int, Box] | None:
     """The number of the first label whose text (spaces dropped) is ``pattern``, a regular
-    expression with one group of digits, and where the label is; None where none reads so."""
+    expression with one group of digits, and where its line of text is; None where none reads
+    so."""
     for x, y, w, h in label_lines(rgb):
         found = re.fullmatch(pattern, ocr_line(rgb[y : y + h, x : x + w]))
         if found:
-            return int(found.group(1)), Spot(x + w / 2, y + h / 2)
+            return int(found.group(1)), Box(x + w / 2, y + h / 2, w, h)
     return None
 
 
@@ -238,3 +239,80 @@ def _largest(parts: list[tuple[int, int, int, int, int]], by: int) -> Box | None
 
 def _middle(box: Box | None) -> Spot | None:
     return None if box is None else Spot(box.x_px, box.y_px)
+
+
+def _black(rgb: NDArray[np.uint8]) -> NDArray[np.uint8]:
+    """The near-black pixels: the markers on the table and the depth aids."""
+    return (rgb.max(axis=-1) < 60).astype(np.uint8)
+
+
+def _marker(rgb: NDArray[np.uint8], most_fill: float, middle: bool) -> Spot | None:
+    """The largest black part on the table about as wide as tall, at least 20 px, filling at
+    most ``most_fill`` of its box, black at its middle or not (``middle``)."""
+    black = cv2.morphologyEx(_black(rgb), cv2.MORPH_CLOSE, _CLOSE_GAPS)
+    n, labels, stats, _ = cv2.connectedComponentsWithStats(black)
+    found = []
+    for i in range(1, n):
+        x, y, w, h, area = (int(v) for v in stats[i])
+        if w >= 20 and h >= 20 and 0.5 < w / h < 2 and area < most_fill * w * h:
+            cx, cy = x + w // 2, y + h // 2
+            if (np.mean(labels[cy - 3 : cy + 4, cx - 3 : cx + 4] == i) >= 0.8) == middle:
+                found.append((x, y, w, h, area))
+    return _middle(_largest(found, by=4))
+
+
+def cross_spot(rgb: NDArray[np.uint8]) -> Spot | None:
+    """The start cross on the table: sparse, black where its arms cross; None if not seen."""
+    return _marker(rgb, 0.45, middle=True)
+
+
+def circle_spot(rgb: NDArray[np.uint8]) -> Spot | None:
+    """A pointing target's circle, its line a quarter of its diameter wide (thicker than the
+    pick-and-place target's, :func:`target_ring`): empty at its middle; None if not seen."""
+    return _marker(rgb, 0.7, middle=False)
+
+
+FOOT_RING_SHARE = 0.8
+"""The depth aids' ring under a gripper held low is a ring (its line short): 0.88-0.96 of its
+pixels near the ellipse its box holds, where the arm's dark parts reach 0.45-0.58."""
+
+
+def _new_black(
+    rgb: NDArray[np.uint8], before: NDArray[np.uint8], apart_px: int
+) -> NDArray[np.uint8]:
+    """The black pixels of ``rgb`` that were not black, nor within ``apart_px`` of black, in
+    ``before``."""
+    grown = cv2.dilate(_black(before), np.ones((2 * apart_px + 1,) * 2, np.uint8))
+    return _black(rgb) & (1 - grown)
+
+
+def foot_spot(rgb: NDArray[np.uint8], before: NDArray[np.uint8]) -> Spot | None:
+    """The depth aids' ring on the table under the gripper, held low: the small black ring in
+    ``rgb`` that was not in ``before`` (the scene with the gripper elsewhere: the markers are
+    black too); None if not seen (far off the table's plane its line makes it no ring)."""
+    new = _new_black(rgb, before, 2)
+    n, labels, stats, _ = cv2.connectedComponentsWithStats(new)
+    rings = []
+    for i in range(1, n):
+        x, y, w, h, area = (int(v) for v in stats[i])
+        if 10 <= w <= 60 and 6 <= h <= 60 and area < 0.4 * w * h:
+            ys, xs = np.nonzero(labels[y : y + h, x : x + w] == i)
+            r = np.hypot((xs + 0.5) / (w / 2) - 1, (ys + 0.5) / (h / 2) - 1)
+            if np.mean((r > 0.6) & (r < 1.2)) >= FOOT_RING_SHARE:
+                rings.append((x, y, w, h, area))
+    return _middle(_largest(rings, by=4))
+
+
+FOOT_RADIUS_PX = (5, 14)
+"""The depth aids' ring's radius in the scene at 1280x800 (px)."""
+
+
+def foot_circles(rgb: NDArray[np.uint8], before: NDArray[np.uint8]) -> list[Spot]:
+    """Where circles of the depth aids' ring's size are seen among the black pixels of ``rgb``
+    that were not in ``before``, the likeliest first: the ring where :func:`foot_spot` does not
+    see it apart (its line long, the gripper's dark fingers or a marker's lines on it). The
+    arm's dark parts may give others."""
+    new = cv2.GaussianBlur(255 * _new_black(rgb, before, 1), (5, 5), 1.5)
+    found = cv2.HoughCircles(new, cv2.HOUGH_GRADIENT, dp=1, minDist=15, param1=100, param2=12,
+                             minRadius=FOOT_RADIUS_PX[0], maxRadius=FOOT_RADIUS_PX[1])  # fmt: skip
+    return [] if found is None else [Spot(float(x), float(y)) for x, y, _ in found[0]]

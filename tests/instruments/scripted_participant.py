@@ -32,7 +32,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from operator import attrgetter
 from pathlib import Path
-from typing import Any
+from typing import Any, ClassVar
 
 import cv2
 import numpy as np
@@ -153,6 +153,8 @@ class ScriptedParticipant:
     _at_mm: NDArray[np.float64] = field(default_factory=lambda: np.zeros(3))
     """Where its steps have put the gripper's target, from where it was at Start (mm; along
     right, away and up)."""
+    outcome: ClassVar[re.Pattern[str]] = OUTCOME
+    """The start of the outcome the page shows after its trials."""
 
     def __post_init__(self) -> None:
         # The browser's own capture: playwright's element screenshot waits for the element to
@@ -434,7 +436,7 @@ class ScriptedParticipant:
         try:
             return self._do_trial()
         except (PlaywrightTimeout, AssertionError):
-            ended = self.tab.get_by_text(OUTCOME)
+            ended = self.tab.get_by_text(self.outcome)
             if not ended.is_visible():
                 raise
             return str(ended.inner_text())
@@ -494,12 +496,15 @@ class TrialDone:
 
 
 def take_part(
-    tab: Any, log: Callable[[str], None] = lambda _: None, shots: Path | None = None
+    tab: Any,
+    log: Callable[[str], None] = lambda _: None,
+    shots: Path | None = None,
+    person: type[ScriptedParticipant] = ScriptedParticipant,
 ) -> list[TrialDone]:
     """A participant's whole session in ``tab``, from the consent page to the study's last
-    page: consent, the start page's questions, the tutorial, every trial (practice ones too),
-    the questionnaire as it comes. ``shots``: a folder for a screenshot of every page, named in
-    order."""
+    page: consent, the start page's questions, the tutorial, every trial (practice ones too)
+    done by a ``person``, the questionnaire if it comes. ``shots``: a folder for a screenshot
+    of every page, named in order."""
     taken: list[str] = []
 
     def shot(name: str) -> None:
@@ -528,18 +533,19 @@ def take_part(
         heading = wait(re.compile(rf"^Trial {k} of \d+$")).inner_text()
         n = int(heading.split()[-1])
         shot(f"trial-{k}")
-        person = ScriptedParticipant(tab, log=log, step=step)
-        outcome = person.do_trial()
+        scripted = person(tab, log=log, step=step)
+        outcome = scripted.do_trial()
         log(f"{heading}: {outcome}")
         shot(f"outcome-{k}")
-        done.append(TrialDone(heading, outcome, tuple(person.presses)))
-        step = person.step  # the Step dropdown keeps its choice from trial to trial
+        done.append(TrialDone(heading, outcome, tuple(scripted.presses)))
+        step = scripted.step  # the Step dropdown keeps its choice from trial to trial
         press_button(tab, "Next")
         k += 1
-    wait("Questionnaire")
-    rate_every_item(tab, QUESTIONNAIRE_RATING)
-    shot("questionnaire")
-    press_button(tab, "Submit")
-    wait("Every session of this study is done")
+    end = "Every session of this study is done"
+    if wait(re.compile(f"^Questionnaire$|{end}")).inner_text() == "Questionnaire":
+        rate_every_item(tab, QUESTIONNAIRE_RATING)
+        shot("questionnaire")
+        press_button(tab, "Submit")
+    wait(end)
     shot("end")
     return done

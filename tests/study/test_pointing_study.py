@@ -24,7 +24,7 @@ from arteleop.study.pointing_session import ServedPointingRun
 from arteleop.study.protocol import operator_traits
 from arteleop.study.session import served_run
 from arteleop.study.session_words import consent_text
-from arteleop.teleop import POINTING, PointingMonitor, trial_task
+from arteleop.teleop import POINTING, Outcome, PointingMonitor, trial_task
 from arteleop.teleop.pointing import run_pointing_trial
 
 TINY = """\
@@ -189,14 +189,16 @@ def test_a_pointing_study_served_keeps_each_trial_on_its_plan(tmp_path: Path) ->
         trace = {"time_s": t, "gripper_x_m": np.full_like(t, ws.start_xy_m[0]),
                  "gripper_y_m": y, "grip": (t >= 2.0).astype(float),
                  "gripper_closure": (t >= 2.1).astype(float)}  # fmt: skip
-        said = run.keep_result(second, SimpleNamespace(trace=trace), 3.0)
+        said = run.keep_result(second, SimpleNamespace(trace=trace, outcome=Outcome.SUCCESS), 3.0)
         assert said == "Chosen in 1.00 s, 0 mm from the middle: inside the circle."
         assert [s.key for s in run.pending("F02")][:2] == [first.key, ("F02", 3)]
     with served_run(out) as again:  # a restarted server: the same session
         assert isinstance(again, ServedPointingRun) and again.instructed("F02")
         assert [s.key for s in again.pending("F02")] == [("F02", 1), ("F02", 3), ("F02", 4)]
     (row,) = list(csv.DictReader((out / "pointing.csv").open()))
-    assert (row["participant"], row["trial"], row["block"], row["hit"]) == ("F02", "2", "1", "1.0")
+    assert (row["participant"], row["trial"], row["block"], row["hit"], row["outcome"]) == (
+        "F02", "2", "1", "1.0", "selected"
+    )  # fmt: skip
     assert float(row["movement_time_s"]) == pytest.approx(1.0, abs=0.011)
     assert (out / row["trajectory_file"]).is_file()
     (cut,) = list(csv.DictReader((out / "interrupted.csv").open()))
