@@ -7,13 +7,13 @@ from arteleop.study.definition import StudyConfig
 from arteleop.teleop.trial_task import POINTING
 
 CONSENT = """\
-You are invited to take part in a study of how drawings over a robot's camera view help people
-steer a robot arm from a distance. The robot, the table and the bowl are simulated.
+You are invited to take part in a study of how {about} people steer a robot arm from a
+distance. The robot, the table and the bowl are simulated.
 
 **What you do.** {what_you_do}
 
 **What is recorded.** Your movements, each trial's time and accuracy, your answers about
-yourself and your ratings, under a participant number: never your name.
+yourself{ratings}, under a participant number: never your name.
 
 **Your choice.** Taking part is voluntary. You may stop at any time, without giving a reason,
 by closing this page; what was recorded until then is kept unless you ask the researcher to
@@ -32,9 +32,8 @@ WHAT_YOU_DO = (
 )
 WHAT_YOU_DO_POINTING = (
     "With the mouse or the keyboard you move the gripper of a robot arm over a cross on a "
-    "table, then over a circle, and close its grip there: {trials}, in {blocks}, the robot's "
-    "view late by a different amount in each. Each trial ends when you close the grip, or after "
-    "{limit} at most."
+    "table, then over a circle, and close its grip there: {trials}{blocks}. Each trial ends "
+    "when you close the grip, or after {limit} at most."
 )
 
 
@@ -47,9 +46,12 @@ def consent_text(study: StudyConfig) -> str:
     if study.task == POINTING.name:
         blocks = len(study.planned_conditions)
         trials = _count(blocks * len(study.pointing.block(0)), "measured trial")
-        what = WHAT_YOU_DO_POINTING.format(trials=trials, blocks=_count(blocks, "block"),
+        lags = (f", in {blocks} blocks, the robot's view late by a different amount in each"
+                if blocks > 1 else "")  # fmt: skip
+        what = WHAT_YOU_DO_POINTING.format(trials=trials, blocks=lags,
                                            limit=_limit(study.pointing.timeout_s))  # fmt: skip
-        return CONSENT.format(what_you_do=what)
+        about = "a delay in a robot's camera view changes how"
+        return CONSENT.format(about=about, what_you_do=what, ratings="")
     practice = study.familiarization.trials
     measured = len(study.planned_conditions) * study.trials_per_modality
     displays = len(study.condition_names)
@@ -58,11 +60,13 @@ def consent_text(study: StudyConfig) -> str:
     if displays > 1:
         trials += f", one under each of {displays} different display conditions"
     limit_s = max(study.timeout_s, study.familiarization.timeout_s if practice else 0.0)
-    return CONSENT.format(what_you_do=WHAT_YOU_DO.format(trials=trials, limit=_limit(limit_s)))
+    what = WHAT_YOU_DO.format(trials=trials, limit=_limit(limit_s))
+    about = "drawings over a robot's camera view help"
+    return CONSENT.format(about=about, what_you_do=what, ratings=" and your ratings")
 
 
 def _limit(limit_s: float) -> str:
-    return f"{limit_s / 60:g} minutes" if limit_s >= 120 else f"{limit_s:g} seconds"
+    return f"{round(limit_s / 60, 1):g} minutes" if limit_s >= 120 else f"{limit_s:g} seconds"
 
 
 def instructions_text(study: StudyConfig) -> str:

@@ -7,6 +7,7 @@ from arteleop.study import FamiliarizationConfig, StudyConfig
 from arteleop.study.session_words import (
     CONSENT,
     DRIVE,
+    POINTING_TUTORIAL,
     PRACTICE_FIRST,
     TUTORIAL,
     consent_text,
@@ -32,6 +33,23 @@ def test_the_built_in_consent_says_the_studys_own_trials_and_limit() -> None:
     assert "on a target: 1 measured trial. Each trial ends" in _what_you_do(consent_text(short))
     assert "or after 90 seconds at most." in _what_you_do(consent_text(short))
     assert "half an hour" not in CONSENT and "a few practice" not in CONSENT
+
+
+def test_the_built_in_consent_of_a_pointing_study_says_its_task_and_blocks() -> None:
+    from arteleop.study.study_file import parse_study
+
+    one_lag = parse_study(
+        'task = "pointing"\n[pointing]\nrepetitions = 2\ntimeout_s = 30\n'
+        "[[conditions]]\ncues = []\nround_trip_ms = 0\n"
+    )
+    text = consent_text(one_lag)
+    assert _what_you_do(text) == (
+        "With the mouse or the keyboard you move the gripper of a robot arm over a cross on a "
+        "table, then over a circle, and close its grip there: 18 measured trials. Each trial ends "
+        "when you close the grip, or after 30 seconds at most."
+    )
+    assert "a delay in a robot's camera view" in text and "ratings" not in text
+    assert instructions_text(one_lag) == DRIVE + POINTING_TUTORIAL
 
 
 def test_a_study_files_own_consent_is_shown_as_it_is() -> None:
