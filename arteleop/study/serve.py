@@ -6,7 +6,9 @@ the practice trials, the experimental trials in their counterbalanced order, the
 questionnaire, the end. A trial runs in real time through the same loop as a simulated one,
 driven by the gizmo, the step buttons and the Grip slider
 (:class:`~arteleop.ar_features.live_input.LiveInput`), under its condition's AR layers and
-network delay, its timer from motion onset; it starts when the person presses Start.
+network delay, its timer from motion onset; it starts when the person presses Start. A pointing
+study (:class:`~arteleop.study.pointing_session.ServedPointingRun`) has the same pages without
+practice and questionnaire, its trials ending at the person's selection.
 
 One browser tab controls the session, the first to connect; another sees the robot's view and
 "a session is in progress". Served with links (:attr:`ViewConfig.links`), a browser connects
