@@ -4,6 +4,7 @@ column."""
 from __future__ import annotations
 
 import difflib
+import json
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -129,6 +130,11 @@ def load_study(path: Path, participants_path: Path | None = None) -> StudyData:
     else:
         trials_path, base, questionnaire_path = path, path.parent, None
     if not trials_path.is_file():
+        if _task(base / "manifest.json") == "pointing":
+            raise AnalysisInputError(
+                f"{base}: a pointing study with no trial ended yet: its pointing.csv is written "
+                "as its trials end (a simulated run's once every block is in)"
+            )
         raise AnalysisInputError(f"{trials_path}: no such file; a run folder holds trials.csv")
     trials = read_table(
         trials_path, TRIAL_COLUMNS, TRIAL_REQUIRED, TRIAL_NUMERIC,
@@ -325,3 +331,11 @@ def _check_range(path: Path, df: pd.DataFrame, column: str, lo: float, hi: float
 def questionnaire_items(questionnaire: pd.DataFrame) -> list[str]:
     """The items a questionnaire table rates, in the order they first appear."""
     return list(dict.fromkeys(questionnaire["item"]))
+
+
+def _task(manifest: Path) -> object:
+    """The ``task`` a run folder's manifest names; None if it names none or cannot be read."""
+    try:
+        return json.loads(manifest.read_text(encoding="utf-8")).get("task")
+    except (OSError, ValueError, AttributeError):
+        return None

@@ -76,6 +76,17 @@ def test_a_missing_run_is_named(tmp_path: Path, capsys) -> None:
     assert not (tmp_path / "r").exists()
 
 
+def test_a_pointing_run_with_no_trial_yet_says_so(tmp_path: Path, capsys) -> None:
+    # A served pointing study before its first trial ends: it was "trials.csv: no such file".
+    (served := tmp_path / "served").mkdir()
+    (served / "manifest.json").write_text('{"task": "pointing", "cohort": "real"}')
+    assert main(["analyze", str(served), "--out", str(tmp_path / "r")]) == 2
+    assert capsys.readouterr().err == (
+        f"arteleop: error: {served}: a pointing study with no trial ended yet: its pointing.csv "
+        "is written as its trials end (a simulated run's once every block is in)\n"
+    )
+
+
 @pytest.mark.parametrize(
     ("args", "message"),
     [
