@@ -29,7 +29,9 @@ POINTING_START_XY_M = (0.68, -0.55)
 """Where each pointing movement starts (over the table, m); targets lie along +y from it."""
 START_RADIUS_M = 0.02
 """A person's pointing movement starts over the start cross: the gripper within this of its
-middle in the table's plane (m), a fifth of the shortest distance a pointing design allows."""
+middle in the table's plane (m): a fifth of the default design's shortest distance (0.1 m); a
+design's targets nearer than twice this overlap the start's region, where the movement's start
+is less sure."""
 BOWL_AWAY_XY_M = (0.45, -0.65)
 """The bowl, out of the pointing path and in the arm's reach (the site checks both)."""
 
