@@ -9,6 +9,7 @@ import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -130,7 +131,7 @@ def load_study(path: Path, participants_path: Path | None = None) -> StudyData:
     else:
         trials_path, base, questionnaire_path = path, path.parent, None
     if not trials_path.is_file():
-        if _task(base / "manifest.json") == "pointing":
+        if (read_manifest(base) or {}).get("task") == "pointing":
             raise AnalysisInputError(
                 f"{base}: a pointing study with no trial ended yet: its pointing.csv is written "
                 "as its trials end (a simulated run's once every block is in)"
@@ -333,9 +334,15 @@ def questionnaire_items(questionnaire: pd.DataFrame) -> list[str]:
     return list(dict.fromkeys(questionnaire["item"]))
 
 
-def _task(manifest: Path) -> object:
-    """The ``task`` a run folder's manifest names; None if it names none or cannot be read."""
-    try:
-        return json.loads(manifest.read_text(encoding="utf-8")).get("task")
-    except (OSError, ValueError, AttributeError):
+def read_manifest(folder: Path) -> dict[str, Any] | None:
+    """A run folder's manifest.json; None if it has none."""
+    path = folder / "manifest.json"
+    if not path.is_file():
         return None
+    try:
+        manifest = json.loads(path.read_text(encoding="utf-8"))
+    except (json.JSONDecodeError, UnicodeDecodeError) as err:
+        raise AnalysisInputError(f"{path}: not the manifest study run writes ({err})") from None
+    if not isinstance(manifest, dict):
+        raise AnalysisInputError(f"{path}: not the manifest study run writes (not an object)")
+    return manifest

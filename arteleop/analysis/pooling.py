@@ -13,7 +13,7 @@ from typing import Any
 
 import pandas as pd
 
-from arteleop.analysis.data import StudyData
+from arteleop.analysis.data import StudyData, read_manifest
 from arteleop.analysis.errors import AnalysisInputError
 
 NOT_DESIGN = ("name", "seed", "cohort.size", "participants")
@@ -83,7 +83,7 @@ def changed_constants_notes(folders: Sequence[Path]) -> list[str]:
 
 
 def _check_not_repeated(a: Path, b: Path) -> None:
-    ma, mb = _manifest(a), _manifest(b)
+    ma, mb = read_manifest(a), read_manifest(b)
     if ma is None or mb is None or "real" in (ma.get("cohort"), mb.get("cohort")):
         return  # people served one plan twice are two cohorts; their rows tell a copy
     keys = ("seed", "plan_sha256")
@@ -116,19 +116,6 @@ def _people(trials: pd.DataFrame) -> dict[str, tuple]:
         for p, rows in exp.groupby("participant")
         if (rows["outcome"] == "success").any()
     }
-
-
-def _manifest(folder: Path) -> dict[str, Any] | None:
-    path = folder / "manifest.json"
-    if not path.is_file():
-        return None
-    try:
-        manifest = json.loads(path.read_text(encoding="utf-8"))
-    except (json.JSONDecodeError, UnicodeDecodeError) as err:
-        raise AnalysisInputError(f"{path}: not the manifest study run writes ({err})") from None
-    if not isinstance(manifest, dict):
-        raise AnalysisInputError(f"{path}: not the manifest study run writes (not an object)")
-    return manifest
 
 
 def _design(folder: Path) -> dict[str, Any] | None:

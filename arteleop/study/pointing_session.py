@@ -2,15 +2,16 @@
 
 The plan is a simulated pointing run's (:func:`~arteleop.study.pointing_run.pointing_blocks`):
 the same participant ids, orders of lags and targets. Each person does their blocks' trials in
-order; a trial is theirs to start, and ends when they close the grip over a target after the
-gripper was over the start cross (:class:`~arteleop.teleop.task_monitor.SelectionMonitor`),
-scored as :func:`~arteleop.teleop.pointing.person_pointing_result` says. Beside what every
-served run keeps (:mod:`arteleop.study.session`: ``participants.csv``, ``browser.csv``,
-``links.key``), the folder holds:
+order; a trial is theirs to start, and ends when they close the grip
+(:class:`~arteleop.teleop.task_monitor.SelectionMonitor`), scored as
+:func:`~arteleop.teleop.pointing.person_pointing_result` says: it counts if the gripper had been
+over the start cross before. Beside what every served run keeps (:mod:`arteleop.study.session`:
+``participants.csv``, ``browser.csv``, ``links.key``), the folder holds:
 
 - ``pointing.csv``: a row for each trial that ended, in plan order, with the columns ``arteleop
   analyze`` reports (docs/reference/data-format.md#pointingcsv), then the trial's block, number,
-  repetition, seed, the person's slips and its trajectory file; rewritten whole at each trial;
+  repetition, seed, how it ended and its trajectory file (:data:`SERVED_POINTING_COLUMNS`);
+  rewritten whole at each trial;
 - ``trajectories/<participant>/<trial>.csv``: each trial's trace, as a pick-and-place run's;
 - ``interrupted.csv``: each attempt a lost tab cut short, with the first of those columns and
   the outcome ``interrupted``; the trial runs again from its start.
@@ -37,15 +38,14 @@ from arteleop.study.run_folder import (
     REAL,
     STUDY_FILE,
     RunFolder,
-    csv_line,
     read_table,
     table_text,
     trace_text,
     write_atomic,
 )
-from arteleop.study.run_opening import check_plan, opened_definition, utc_now
+from arteleop.study.run_opening import check_plan, opened_definition
 from arteleop.study.runner import check_new
-from arteleop.study.session import INTERRUPTED_FILE, ServedRun
+from arteleop.study.session import ServedRun
 from arteleop.study.sites import StudySite
 from arteleop.study.study_writing import study_text
 from arteleop.teleop import PERSON_POINTING, Outcome, TrialConfig, TrialResult
@@ -169,20 +169,12 @@ class ServedPointingRun(ServedRun):
 
     def keep_interrupted(self, spec: PointingSpec) -> None:  # type: ignore[override]
         t = spec.trial
-        row = (spec.participant, spec.round_trip_ms, t.distance_m, t.width_m, spec.block,
-               spec.trial_index, "interrupted")  # fmt: skip
-        path = self.folder.path / INTERRUPTED_FILE
-        old = path.read_text(encoding="utf-8") if path.exists() else csv_line(INTERRUPTED_COLUMNS)
-        write_atomic(path, old + csv_line(row))
+        self._add_interrupted(INTERRUPTED_COLUMNS, [spec.participant, spec.round_trip_ms,
+                              t.distance_m, t.width_m, spec.block, spec.trial_index,
+                              "interrupted"])  # fmt: skip
 
-    def finish_if_done(self) -> bool:
-        if self.current() is not None:
-            return False
-        manifest = self.folder.manifest()
-        if not manifest.get("finished"):
-            manifest["finished"] = utc_now()
-            self.folder.write_manifest(manifest)
-        return True
+    def _put_in_order(self) -> None:
+        """Nothing to do: ``pointing.csv`` is kept in plan order as each trial ends."""
 
     @property
     def _table(self) -> Path:

@@ -300,9 +300,13 @@ class ServedRun:
         """An attempt at ``spec`` cut short before it ended: recorded, to be run again."""
         row = trial_row(spec, {"outcome": "interrupted"})
         row["trajectory_file"] = ""  # an attempt cut short keeps no trajectory
+        self._add_interrupted(TRIAL_COLUMNS, [row.get(c) for c in TRIAL_COLUMNS])
+
+    def _add_interrupted(self, columns: tuple[str, ...], row: list[object]) -> None:
+        """``row`` added to ``interrupted.csv``, begun with ``columns`` if new."""
         path = self.folder.path / INTERRUPTED_FILE
-        old = path.read_text(encoding="utf-8") if path.exists() else csv_line(TRIAL_COLUMNS)
-        write_atomic(path, old + csv_line(row.get(c) for c in TRIAL_COLUMNS))
+        old = path.read_text(encoding="utf-8") if path.exists() else csv_line(columns)
+        write_atomic(path, old + csv_line(row))
 
     def answered(self, participant: str) -> bool:
         return participant in self._answered()
@@ -327,12 +331,16 @@ class ServedRun:
         ``finished``; whether it was."""
         if self.current() is not None:
             return False
-        self.folder.finish([spec.key for spec in self.plan])
+        self._put_in_order()
         manifest = self.folder.manifest()
         if not manifest.get("finished"):
             manifest["finished"] = utc_now()
             self.folder.write_manifest(manifest)
         return True
+
+    def _put_in_order(self) -> None:
+        """Every trial is in: its table in plan order."""
+        self.folder.finish([spec.key for spec in self.plan])
 
     def _participant_rows(self) -> dict[str, list[str]]:
         path = self.folder.path / PARTICIPANTS_FILE

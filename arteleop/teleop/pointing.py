@@ -136,8 +136,7 @@ def person_pointing_result(
     acted: the movement time is the person's, the gripper's tracking lag aside."""
     t, closure = trace["time_s"], trace["gripper_closure"]
     xy = np.column_stack([trace["gripper_x_m"], trace["gripper_y_m"]])
-    closed = np.nan_to_num(trace["grip"]) >= GripHysteresis().close_at
-    rises = np.flatnonzero(closed & ~np.concatenate([[False], closed[:-1]]))
+    rises = _rises(np.nan_to_num(trace["grip"]) >= GripHysteresis().close_at)
     over = np.linalg.norm(xy - np.asarray(workspace.start_xy_m), axis=1) <= START_RADIUS_M
     nan = float("nan")
     if not len(rises) or not over[: rises[0] + 1].any():
@@ -200,8 +199,13 @@ def decided_selection(
     rises past :data:`SELECTED_CLOSURE` from then on (or is already past it, with none rising
     later; the last tick if it never closes); and the slips, closures that rose before."""
     closed = closure > SELECTED_CLOSURE
-    rises = np.flatnonzero(closed & ~np.concatenate([[False], closed[:-1]]))
+    rises = _rises(closed)
     later = rises[time_s[rises] >= decided_s]
     held = np.flatnonzero(closed & (time_s >= decided_s))
     k = later[0] if len(later) else held[0] if len(held) else len(time_s) - 1
     return int(k), int(np.sum(time_s[rises] < decided_s))
+
+
+def _rises(on: NDArray[np.bool_]) -> NDArray[np.intp]:
+    """The ticks at which ``on`` turns true (the first too, if it begins true)."""
+    return np.flatnonzero(on & ~np.concatenate([[False], on[:-1]]))

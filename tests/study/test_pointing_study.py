@@ -204,3 +204,16 @@ def test_a_pointing_study_served_keeps_each_trial_on_its_plan(tmp_path: Path) ->
     (cut,) = list(csv.DictReader((out / "interrupted.csv").open()))
     assert (cut["trial"], cut["outcome"]) == ("1", "interrupted")
     assert pointing_table_path(out) == out / "pointing.csv"
+    with served_run(out) as last:  # the rest, each timed out; then the run is finished
+        assert not last.finish_if_done()
+        timed_out = SimpleNamespace(trace={**trace, "grip": np.zeros_like(t)},
+                                    outcome=Outcome.TIMEOUT)  # fmt: skip
+        for spec in last.pending("F02"):
+            said = last.keep_result(spec, timed_out, 3.0)
+        assert said == "No target counted: the time ran out before the grip closed."
+        assert last.current() is None and last.finish_if_done()
+    assert json.loads((out / "manifest.json").read_text())["finished"]
+    rows = list(csv.DictReader((out / "pointing.csv").open()))
+    assert [(r["trial"], r["outcome"]) for r in rows] == [
+        ("1", "timeout"), ("2", "selected"), ("3", "timeout"), ("4", "timeout")
+    ]  # fmt: skip
