@@ -29,7 +29,7 @@ from arteleop.ar_features.live_input import LiveInput
 from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig, Workspace
 from arteleop.teleop import TrialConfig, display_frames_at, trial_operator, view_assets
 from tests.instruments.browser import Browser, chromium, require_chromium
-from tests.instruments.screen_reading import gizmo_red, of_hue
+from tests.instruments.screen_reading import aids_hue, foot_spot, gizmo_red, of_hue
 
 # One headless Chromium at a time in the suite: see tests/conftest.py.
 pytestmark = pytest.mark.xdist_group("chromium")
@@ -272,9 +272,9 @@ def test_live_input_shows_beside_the_docked_panel(
 def test_the_depth_aids_hang_from_the_gripper_to_the_table(
     moment: tuple[DisplayFrame, ViewAssets, NDArray[np.float64]], tmp_path: Path, browser: Browser
 ) -> None:
-    """With the depth aids, near-black pixels lie along the gripper's drop line to the table,
-    where the frame without them has few (the height's label is drawn in the scene's canvas:
-    its text is the layer's test's)."""
+    """With the depth aids, their magenta lies along the gripper's drop line to the table, where
+    the frame without them has none, and the scripted pointer finds their ring where its foot is
+    (the height's label is drawn in the scene's canvas: its text is the layer's test's)."""
     frame, assets, _ = moment
     config = ViewConfig(port=0)
     shots = {}
@@ -290,13 +290,18 @@ def test_the_depth_aids_hang_from_the_gripper_to_the_table(
     assert length_px > 20, "premise: the drop line is long enough to see at this moment"
     near_line = {}
     for aids, shot in shots.items():
-        dark = (shot[:, : int(scene_px[0])].astype(int) < 50).all(axis=2)
-        v, u = np.nonzero(dark)
+        v, u = np.nonzero(aids_hue(shot[:, : int(scene_px[0])]))
         off_px = _distance_to_segment(np.column_stack([u, v]), *ends)
         near_line[aids] = int((off_px <= 2).sum())
     # The line is 3 px wide; the gripper's own points hide some of it (up to half the line's
     # pixels at this moment: 57 near it over 57 px of length in one run).
     assert near_line[True] - near_line[False] >= 0.5 * length_px, (near_line, length_px)
+    ring = foot_spot(shots[True][:, : int(scene_px[0])])
+    assert ring is not None and foot_spot(shots[False]) is None
+    foot = pixel(frame.ring_m())
+    # A circle fitted to the ring seen obliquely, an ellipse: 2.9 px off in one run, about 4 mm
+    # on the table, where the pointer takes the ring within 8 px of a mark to be on it.
+    assert np.hypot(ring.x_px - foot[0], ring.y_px - foot[1]) <= 4.0, (ring, foot)
 
 
 def _amber(shot: NDArray[np.uint8], scene_px: tuple[float, float]) -> NDArray[np.bool_]:

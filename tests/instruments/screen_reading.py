@@ -192,7 +192,7 @@ _CLOSE_GAPS = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (7, 7))
 
 def target_ring(rgb: NDArray[np.uint8]) -> Box | None:
     """The target circle on the table: the largest black ring (its middle empty); None if not
-    seen. The depth aids' ring, near-black too, is smaller and hangs from its line."""
+    seen."""
     black = (rgb.max(axis=-1) < 60).astype(np.uint8)
     # The cloud's points leave gaps in the drawn circle, which broke it in two parts.
     black = cv2.morphologyEx(black, cv2.MORPH_CLOSE, _CLOSE_GAPS)
@@ -242,7 +242,7 @@ def _middle(box: Box | None) -> Spot | None:
 
 
 def _black(rgb: NDArray[np.uint8]) -> NDArray[np.uint8]:
-    """The near-black pixels: the markers on the table and the depth aids."""
+    """The near-black pixels: the markers on the table."""
     return (rgb.max(axis=-1) < 60).astype(np.uint8)
 
 
@@ -272,47 +272,38 @@ def circle_spot(rgb: NDArray[np.uint8]) -> Spot | None:
     return _marker(rgb, 0.7, middle=False)
 
 
-FOOT_RING_SHARE = 0.8
-"""The depth aids' ring under a gripper held low is a ring (its line short): 0.88-0.96 of its
-pixels near the ellipse its box holds, where the arm's dark parts reach 0.45-0.58."""
+MAGENTA_RED_BLUE = 70
+"""The depth aids' magenta has its red and blue within this of each other (0-255): blended into
+the grey table or a black mark at its edges, it keeps that; the gizmo's pink-red handle,
+(249, 45, 104), does not."""
 
 
-def _new_black(
-    rgb: NDArray[np.uint8], before: NDArray[np.uint8], apart_px: int
-) -> NDArray[np.uint8]:
-    """The black pixels of ``rgb`` that were not black, nor within ``apart_px`` of black, in
-    ``before``."""
-    grown = cv2.dilate(_black(before), np.ones((2 * apart_px + 1,) * 2, np.uint8))
-    return _black(rgb) & (1 - grown)
-
-
-def foot_spot(rgb: NDArray[np.uint8], before: NDArray[np.uint8]) -> Spot | None:
-    """The depth aids' ring on the table under the gripper, held low: the small black ring in
-    ``rgb`` that was not in ``before`` (the scene with the gripper elsewhere: the markers are
-    black too); None if not seen (far off the table's plane its line makes it no ring)."""
-    new = _new_black(rgb, before, 2)
-    n, labels, stats, _ = cv2.connectedComponentsWithStats(new)
-    rings = []
-    for i in range(1, n):
-        x, y, w, h, area = (int(v) for v in stats[i])
-        if 10 <= w <= 60 and 6 <= h <= 60 and area < 0.4 * w * h:
-            ys, xs = np.nonzero(labels[y : y + h, x : x + w] == i)
-            r = np.hypot((xs + 0.5) / (w / 2) - 1, (ys + 0.5) / (h / 2) - 1)
-            if np.mean((r > 0.6) & (r < 1.2)) >= FOOT_RING_SHARE:
-                rings.append((x, y, w, h, area))
-    return _middle(_largest(rings, by=4))
+def aids_hue(rgb: NDArray[np.uint8]) -> NDArray[np.bool_]:
+    """Mask of the depth aids' magenta: red and blue both over green by :data:`DOMINANCE`, and
+    alike (:data:`MAGENTA_RED_BLUE`)."""
+    r, g, b = (rgb[..., k].astype(np.int16) for k in range(3))
+    return (np.minimum(r, b) - g > DOMINANCE) & (np.abs(r - b) < MAGENTA_RED_BLUE)
 
 
 FOOT_RADIUS_PX = (5, 14)
 """The depth aids' ring's radius in the scene at 1280x800 (px)."""
+FOOT_SEEN_SHARE = 0.5
+"""A circle is the ring if this share of its rim is of the aids' hue: the gripper's fingers,
+held low, hide part of it."""
 
 
-def foot_circles(rgb: NDArray[np.uint8], before: NDArray[np.uint8]) -> list[Spot]:
-    """Where circles of the depth aids' ring's size are seen among the black pixels of ``rgb``
-    that were not in ``before``, the likeliest first: the ring where :func:`foot_spot` does not
-    see it apart (its line long, the gripper's dark fingers or a marker's lines on it). The
-    arm's dark parts may give others."""
-    new = cv2.GaussianBlur(255 * _new_black(rgb, before, 1), (5, 5), 1.5)
-    found = cv2.HoughCircles(new, cv2.HOUGH_GRADIENT, dp=1, minDist=15, param1=100, param2=12,
+def foot_spot(rgb: NDArray[np.uint8]) -> Spot | None:
+    """The middle of the depth aids' ring on the table, under the gripper: the circle of its
+    size its hue draws (the drop line, which ends at its middle, draws none); None if not seen."""
+    mask = aids_hue(rgb).astype(np.uint8)
+    found = cv2.HoughCircles(cv2.GaussianBlur(255 * mask, (5, 5), 1.5), cv2.HOUGH_GRADIENT,
+                             dp=1, minDist=100, param1=100, param2=12,
                              minRadius=FOOT_RADIUS_PX[0], maxRadius=FOOT_RADIUS_PX[1])  # fmt: skip
-    return [] if found is None else [Spot(float(x), float(y)) for x, y, _ in found[0]]
+    if found is None:
+        return None
+    x, y, r = found[0][0]
+    near = cv2.dilate(mask, np.ones((5, 5), np.uint8))
+    angles = np.linspace(0.0, 2 * np.pi, 48, endpoint=False)
+    u = np.clip(np.round(x + r * np.cos(angles)).astype(int), 0, mask.shape[1] - 1)
+    v = np.clip(np.round(y + r * np.sin(angles)).astype(int), 0, mask.shape[0] - 1)
+    return Spot(float(x), float(y)) if near[v, u].mean() >= FOOT_SEEN_SHARE else None

@@ -5,13 +5,12 @@ does a pick-and-place trial.
 It needs the depth aids (the study's ``depth_aids``). It sees the start cross and the target
 circle on the table, and where the gripper is over the table: the aids' ring, in the table's
 plane, so that lining it up with a mark in the image lines them up on the table
-(:mod:`tests.instruments.screen_reading`). Where the ring is not seen apart (its line long, the
-gripper's dark fingers over it, the cross's arms through it), a circle of its size near where
-the steps should have put it is taken for it. Its way:
+(:mod:`tests.instruments.screen_reading`): a magenta circle, seen over the black marks and with
+part of it under the gripper's fingers. Its way:
 
 - **Down, once.** Two big steps towards the cross as the image shows it (onto the table: at
   rest the gripper is beyond its edge), then down until the height label reads about
-  :data:`LOW_MM`, where the ring is seen apart.
+  :data:`LOW_MM`, the gripper's fingers off most of the ring.
 - **Steps in pixels.** A big step across and one into the image towards the cross, each seen in
   where the ring moved; then a big step up, clear of the bowl, which lies beside the way.
 - **Over the cross, over the circle.** From a fresh look each go, the steps that bring the ring
@@ -34,7 +33,6 @@ from tests.instruments.screen_reading import (
     circle_spot,
     cross_spot,
     find_label,
-    foot_circles,
     foot_spot,
     gizmo_red,
 )
@@ -52,13 +50,7 @@ LOW_MM = 35
 the gripper's dark fingers lie over the ring in the image (the trials held at 25-27 mm lost
 it; those at 31-34 mm did not)."""
 STILL_PX = 3.0
-"""Two looks at the ring seen apart within this (px): the gripper stands."""
-STILL_CIRCLE_PX = 6.0
-"""...at a circle taken for it: found among a marker's lines, its middle jitters more (it
-never stood within 2 px for 20 s over the cross)."""
-NEAR_EXPECTED_PX = 40.0
-"""A circle of the ring's size this near where the steps should have put the ring is the
-ring (px): a big step is 30-45 px."""
+"""Two looks at the ring within this (px): the gripper stands."""
 RING_WAIT_S = 10.0
 """The ring settles within this, or is taken as seen (s)."""
 ON_MARK_PX = 8.0
@@ -79,13 +71,11 @@ class ScriptedPointer(ScriptedParticipant):
     """Does a pointing trial in ``tab``, on the trial's page."""
 
     outcome: ClassVar[re.Pattern[str]] = OUTCOME
-    _before: NDArray[np.uint8] | None = None
-    """The scene before Start: the markers, with the gripper away from them."""
     _per_step_px: NDArray[np.float64] = field(default_factory=lambda: np.eye(2))
     """The ring's move in the image (columns: a big step right, one away; px)."""
 
     def _do_trial(self) -> str:
-        self._before = before = self.look()
+        before = self.look()
         cross, circle = cross_spot(before), circle_spot(before)
         rows, cols = np.nonzero(gizmo_red(before))
         assert cross and circle and len(rows), "the cross, the circle or the gizmo is not seen"
@@ -123,36 +113,17 @@ class ScriptedPointer(ScriptedParticipant):
         self.go_by(np.array([0.0, 0.0, -10 * np.floor((now - LOW_MM) / 10)]))
         self.log(f"down from {now:.0f} mm to about {LOW_MM} mm")
 
-    def _where(
-        self, rgb: NDArray[np.uint8], expected: NDArray[np.float64] | None
-    ) -> tuple[NDArray[np.float64], bool] | None:
-        """The ring's middle in ``rgb`` (px) and whether it was seen apart; else the circle of
-        its size nearest where it is ``expected``, within :data:`NEAR_EXPECTED_PX`; None if
-        neither is seen."""
-        assert self._before is not None
-        ring = foot_spot(rgb, self._before)
-        if ring is not None:
-            return np.array([ring.x_px, ring.y_px]), True
-        if expected is None:
-            return None
-        near = [np.array([c.x_px, c.y_px]) for c in foot_circles(rgb, self._before)]
-        near = [c for c in near if np.linalg.norm(c - expected) <= NEAR_EXPECTED_PX]
-        best = min(near, key=lambda c: float(np.linalg.norm(c - expected)), default=None)
-        return None if best is None else (best, False)
-
     def _ring(self, expected: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
-        """Where the ring stands, once two looks agree (px): seen apart, or a circle near where
-        it is ``expected`` (see :meth:`_where`). Not settled within :data:`RING_WAIT_S`, the
-        median of what was seen; nothing seen, ``expected``, as a person trusts the steps they
-        took."""
+        """Where the ring stands, once two looks agree within :data:`STILL_PX` (px). Not
+        settled within :data:`RING_WAIT_S`, the median of what was seen; nothing seen,
+        ``expected``, as a person trusts the steps they took."""
         end = time.monotonic() + RING_WAIT_S
         seen: list[NDArray[np.float64]] = []
         while time.monotonic() < end:
-            found = self._where(self.look(), expected)
-            if found is not None:
-                now, apart = found
-                still = STILL_PX if apart else STILL_CIRCLE_PX
-                if seen and np.linalg.norm(now - seen[-1]) <= still:
+            ring = foot_spot(self.look())
+            if ring is not None:
+                now = np.array([ring.x_px, ring.y_px])
+                if seen and np.linalg.norm(now - seen[-1]) <= STILL_PX:
                     return (now + seen[-1]) / 2
                 seen.append(now)
         if seen:
