@@ -66,9 +66,8 @@ def _markdown(
     lines = [
         "# Pointing (ISO 9241-9)",
         "",
-        f"{source}: {len(trials)} trials of {trials['participant'].nunique()} participants, "
-        f"{selected} with a selection. Per participant, lag and cell: the median movement time, "
-        "W_e = 4.133 SD of the selections along the task axis, ID_e = log2(D_e / W_e + 1); per "
+        f"{source}: {_counted(trials)}, {selected} with a selection. Per participant, lag and "
+        "cell: the median movement time, W_e = 4.133 SD of the selections along the task axis, ID_e = log2(D_e / W_e + 1); per "
         "cell the medians over participants (docs/reference/data-format.md, pointing.csv).",
         "",
     ]
@@ -150,14 +149,20 @@ def write_pointing_comparison(
     return {name: out_dir / name for name in [*joined, "report.md"]}
 
 
+def _counted(trials: pd.DataFrame) -> str:
+    """How many trials of how many participants ``trials`` holds, in words."""
+    people = trials["participant"].nunique()
+    return (f"{len(trials)} trial{'s' * (len(trials) != 1)} of {people} "
+            f"participant{'s' * (people != 1)}")  # fmt: skip
+
+
 def _comparison(
     names: list[str], tables: list[pd.DataFrame], joined: dict[str, pd.DataFrame]
 ) -> str:
     cells, fits, lags = joined["cells.csv"], joined["fits.csv"], joined["lags.csv"]
     lines = ["# Pointing (ISO 9241-9), side by side", ""]
     for name, trials in zip(names, tables, strict=True):
-        lines.append(f"- **{name}**: {len(trials)} trials of {trials['participant'].nunique()} "
-                     "participants")  # fmt: skip
+        lines.append(f"- **{name}**: {_counted(trials)}")
     lines += ["", "Each source analysed alone, as `arteleop analyze` analyses one; per cell the "
               "medians over its participants.", ""]  # fmt: skip
     for lag in sorted(cells["round_trip_ms"].unique()):

@@ -75,6 +75,10 @@ def test_analyze_reads_a_pointing_table_and_writes_its_report(tmp_path: Path, ca
     assert "analysed 48 pointing trials of 2 participants under 2 lags" in capsys.readouterr().out
     cells = pd.read_csv(tmp_path / "report" / "cells.csv")
     assert len(cells) == 6 and (cells["people"] == 2).all()
+    one = _table()
+    one[one["participant"] == one["participant"].iloc[0]].to_csv(table, index=False)
+    assert main(["analyze", str(table), "--out", str(tmp_path / "one")]) == 0
+    assert ": 24 trials of 1 participant, " in (tmp_path / "one" / "report.md").read_text()
 
 
 @pytest.mark.parametrize(
@@ -106,6 +110,7 @@ def test_a_labs_people_and_simulated_ones_side_by_side(tmp_path: Path, capsys) -
     slower.to_csv(simulated, index=False)
     assert main(["analyze", str(people), str(simulated), "--out", str(tmp_path / "both")]) == 0
     report = (tmp_path / "both" / "report.md").read_text()
+    assert "- **people**: 48 trials of 2 participants\n" in report
     assert "people: MT = 0.20 s + 0.30 s/bit x ID_e, R^2 = 1.00" in report
     assert "simulated: MT = 0.24 s + 0.36 s/bit x ID_e, R^2 = 1.00" in report
     fits = pd.read_csv(tmp_path / "both" / "fits.csv")
