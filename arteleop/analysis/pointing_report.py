@@ -67,8 +67,9 @@ def _markdown(
         "# Pointing (ISO 9241-9)",
         "",
         f"{source}: {_counted(trials)}, {selected} with a selection. Per participant, lag and "
-        "cell: the median movement time, W_e = 4.133 SD of the selections along the task axis, ID_e = log2(D_e / W_e + 1); per "
-        "cell the medians over participants (docs/reference/data-format.md, pointing.csv).",
+        "cell: the median movement time, W_e = 4.133 SD of the selections along the task axis, "
+        "ID_e = log2(D_e / W_e + 1); per cell the medians over participants "
+        "(docs/reference/data-format.md, pointing.csv).",
         "",
     ]
     for lag, here in cells.groupby("round_trip_ms", sort=True):
