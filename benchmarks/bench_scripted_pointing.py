@@ -2,7 +2,7 @@
 analysed, beside the simulated participant on the same trials.
 
 The study (``--out``'s ``study.toml``): one participant, one target 0.2 m from the start cross
-and 60 mm wide, twice under each of two lags (0 and 150 ms round trip), the depth aids on (the
+and 60 mm wide (``--distance-m``, ``--width-m``), twice under each of two lags (0 and 150 ms round trip), the depth aids on (the
 script finds the gripper over the table by their ring), 400 s a trial (the script looks again
 after every go, about 10 s each on two cores). Then, as a researcher types them:
 
@@ -18,7 +18,8 @@ It prints, per trial, the movement time and the selection's distance from the ta
 in the browser against the simulated participant's; it exits non-zero if a step fails, a page's
 outcome is not the file's, or a trial's selection did not count.
 
-    python benchmarks/bench_scripted_pointing.py [--out DIR]
+    python benchmarks/bench_scripted_pointing.py [--out DIR] [--seed N] [--distance-m D]
+        [--width-m W]
 
 Needs Chromium and Tesseract (the tests' system packages). About 12 min on two cores.
 """
@@ -51,8 +52,8 @@ depth_aids = true
 participants = [{{id = "F00"}}]
 
 [pointing]
-distances_m = [0.2]
-widths_m = [0.06]
+distances_m = [{distance_m}]
+widths_m = [{width_m}]
 repetitions = 2
 timeout_s = 400.0
 
@@ -77,11 +78,14 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, default=None, help="a new folder for the files")
     parser.add_argument("--seed", type=int, default=0, help="the study's seed: its trials")
+    parser.add_argument("--distance-m", type=float, default=0.2, help="the target's distance (m)")
+    parser.add_argument("--width-m", type=float, default=0.06, help="the target's width (m)")
     args = parser.parse_args()
     out = args.out or Path(tempfile.mkdtemp(prefix="bench-pointing-"))
     out.mkdir(parents=True, exist_ok=True)
     study, served, simulated = out / "study.toml", out / "served", out / "simulated"
-    study.write_text(STUDY_TOML.format(seed=args.seed), encoding="utf-8")
+    design = {"seed": args.seed, "distance_m": args.distance_m, "width_m": args.width_m}
+    study.write_text(STUDY_TOML.format(**design), encoding="utf-8")
     (shots := out / "shots").mkdir(exist_ok=True)
 
     print(f"serving {study} to the scripted pointer into {served}", flush=True)

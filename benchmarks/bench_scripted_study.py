@@ -19,9 +19,10 @@ of the 120 s (``--conditions manipulation,full`` runs it). Then, each as a resea
 
 It prints, per trial, the time and error in the browser against the simulated participant's,
 and their ratio, and what the stream asked of the connection (``browser.csv``: the cloud's
-frames a second and Mbit/s, the display's round trip); it exits non-zero if a step fails, a
-page's outcome is not the file's, or the script did not place the bowl on the target circle
-(what the suite's test of the scripted participant asserted, until it moved here).
+frames a second and Mbit/s, the display's round trip, the frames a second the page drew); it
+exits non-zero if a step fails, a page's outcome is not the file's, or the script did not place
+the bowl on the target circle (what the suite's test of the scripted participant asserted,
+until it moved here).
 ``--camera`` sets the head camera's image: by default the head camera's own 640x480, as
 ``study serve`` gives people (at 320x240, at 8cbf78f, seed 0's practice target lay where its
 ring came out in pieces and the script found no target);
@@ -258,7 +259,7 @@ def main() -> int:
     behind = f", behind {args.throttle_mbit:g} Mbit/s" if args.throttle_mbit else ""
     print(f"\nthe stream ({args.camera}{behind}):\n")
     print(f"{'trial':<7}{'cloud frames/s':>16}{'held':>6}{'cloud Mbit/s':>14}"
-          f"{'pings (s)':>11}{'round trip (s)':>16}")  # fmt: skip
+          f"{'pings (s)':>11}{'round trip (s)':>16}{'page frames/s':>15}")  # fmt: skip
     for row in stream.itertuples():
         # A server before 0.4 (a baseline's, through PYTHONPATH) did not count its stream,
         # nor one of data format 6 pace it.
@@ -268,7 +269,9 @@ def main() -> int:
             rate += f"{row.cloud_mbit_s:>14.2f}{getattr(row, 'link_latency_s', '-'):>11}"
         else:
             rate = f"{'-':>16}{'-':>6}{'-':>14}{'-':>11}"
-        print(f"{row.trial_index:<7}{rate}{row.display_round_trip_s:>16.3f}")
+        # The page's own count: a server of data format 7 or before did not read it.
+        shown = getattr(row, "page_fps", float("nan"))
+        print(f"{row.trial_index:<7}{rate}{row.display_round_trip_s:>16.3f}{shown:>15.1f}")
     if received is not None:
         print(f"\nthe browser received {received:.2f} Mbit/s on average over the session")
     placed = [(t.outcome == "success").sum() for t in (people, model)]

@@ -30,7 +30,7 @@ from arteleop import files
 from arteleop.analysis.data import TRIAL_COLUMNS
 from arteleop.errors import RunFolderError
 
-FORMAT_VERSION = 7
+FORMAT_VERSION = 8
 """The version of docs/reference/data-format.md that the run folder follows; the analysis reads the
 same columns (``TRIAL_COLUMNS`` and the others come from it)."""
 

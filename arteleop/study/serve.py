@@ -27,6 +27,7 @@ stopped and started again on the folder carries on the same way.
 from __future__ import annotations
 
 import contextlib
+import logging
 import math
 import statistics
 import threading
@@ -35,6 +36,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import replace
 
 from arteleop.ar_features import OperatorView, ViewConfig, modality_cues
+from arteleop.ar_features.page_frames import frames_drawn, read_in_background
 from arteleop.ar_features.view import drew_a_frame
 from arteleop.errors import ArteleopError, RunFolderError
 from arteleop.lifetime import Closeable
@@ -65,6 +67,17 @@ ROUND_TRIPS = 3
 """Frames asked of the browser after each trial: their median is its display round trip."""
 ROUND_TRIP_TIMEOUT_S = 5.0
 """A frame not back by then: the round trip is not known (a tab in the background draws none)."""
+
+
+STARVED = (
+    "participant %s, trial %s: the page drew %.1f frames a second, fewer than the %.1f clouds "
+    "it was sent: the person saw the robot in jumps (a browser drawing without a GPU?). Ask "
+    "them to close other tabs and turn on their browser's hardware acceleration, or serve a "
+    "smaller image (--width-px, --height-px); browser.csv has each trial's figures"
+)
+"""The console's line for a page that could not show the stream it was sent."""
+
+_log = logging.getLogger(__name__)
 
 
 class SessionInterrupted(ArteleopError):
@@ -278,6 +291,8 @@ class StudyServer(Closeable):
             cloud = self.view.cloud
             sent = (cloud.frames_drawn, cloud.payload_bytes, cloud.frames_held)
             self._pace_controller()
+            tab = self.tabs.controller
+            drawn = [None if tab is None else read_in_background(tab)]  # the page's own count
             start = time.perf_counter()
             self.tabs.trial_running.set()
             try:
@@ -288,17 +303,22 @@ class StudyServer(Closeable):
                 return
             finally:
                 self.tabs.trial_running.clear()
+                drawn.append(None if tab is None else read_in_background(tab))
                 pacer, latency_s = self.view.pacer, None
                 if pacer is not None:
                     latency_s = pacer.take_latency_s()
                 self.view.pace(None)
         wall_s = time.perf_counter() - start
         frames, payload = cloud.frames_drawn - sent[0], cloud.payload_bytes - sent[1]
+        page_frames, page_fps = frames_drawn(*drawn)
         stream = {"cloud_frames": frames, "cloud_kbytes": payload / 1e3,
                   "cloud_mbit_s": payload * 8 / 1e6 / max(wall_s, 1e-9),
                   "cloud_frames_held": cloud.frames_held - sent[2],
                   "cloud_fps": frames / max(wall_s, 1e-9),
-                  "link_latency_s": math.nan if latency_s is None else latency_s}  # fmt: skip
+                  "link_latency_s": math.nan if latency_s is None else latency_s,
+                  "page_frames": page_frames, "page_fps": page_fps}  # fmt: skip
+        if page_fps < stream["cloud_fps"]:  # False for NaN: a count not read says nothing
+            _log.warning(STARVED, spec.participant, spec.trial_index, page_fps, stream["cloud_fps"])
         self.view.settle()  # the scene the trial ended on, whole beside its outcome
         result_text = self.run.keep_result(spec, result, wall_s)
         devices = live.take_devices() if (live := self.tabs.live) is not None else ""

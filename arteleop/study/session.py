@@ -75,7 +75,7 @@ BROWSER_FILE = "browser.csv"
 BROWSER_COLUMNS = ("participant", "trial_index", "display_round_trip_s", "scene_width_px",
                    "scene_height_px", "input_device", "cloud_frames", "cloud_kbytes",
                    "cloud_mbit_s", "cloud_frames_held", "cloud_fps",
-                   "link_latency_s")  # fmt: skip
+                   "link_latency_s", "page_frames", "page_fps")  # fmt: skip
 LINKS_KEY_FILE = "links.key"
 LINKS_KEY_BYTES = 32
 
@@ -107,6 +107,10 @@ class BrowserCheck:
         link_latency_s: The median round trip of the pings to the participant's tab during
             the trial (s): the network both ways and what queued before them; NaN if none
             was answered.
+        page_frames: The frames the participant's page drew during the trial, as it counted
+            them (:mod:`arteleop.ar_features.page_frames`); None if its count was not read.
+        page_fps: Those a second of the page's own clock; NaN if its count was not read.
+            Below ``cloud_fps``, the page could not show every cloud it was sent.
     """
 
     display_round_trip_s: float
@@ -119,6 +123,8 @@ class BrowserCheck:
     cloud_frames_held: int = 0
     cloud_fps: float = 0.0
     link_latency_s: float = math.nan
+    page_frames: int | None = None
+    page_fps: float = math.nan
 
 
 Ratings = Mapping[tuple[str, str], int]
@@ -293,7 +299,8 @@ class ServedRun:
         check = (browser.display_round_trip_s, browser.scene_width_px, browser.scene_height_px,
                  browser.input_device, browser.cloud_frames, round(browser.cloud_kbytes, 1),
                  round(browser.cloud_mbit_s, 2), browser.cloud_frames_held,
-                 round(browser.cloud_fps, 2), round(browser.link_latency_s, 4))  # fmt: skip
+                 round(browser.cloud_fps, 2), round(browser.link_latency_s, 4),
+                 browser.page_frames, round(browser.page_fps, 2))  # fmt: skip
         write_atomic(path, table_text(BROWSER_COLUMNS, [*kept, (*key, *check)]))
 
     def keep_interrupted(self, spec: TrialSpec) -> None:

@@ -20,6 +20,7 @@ from numpy.typing import NDArray
 
 from arteleop.ar_features import OperatorView
 from arteleop.ar_features.live_input import LiveInput
+from arteleop.ar_features.page_frames import frame_counter_html
 from arteleop.ar_features.session_pages import SessionPages
 from arteleop.errors import ArteleopError
 from arteleop.operator import HandTarget
@@ -173,6 +174,7 @@ class SessionTabs:
     def _take_control(self, client: viser.ClientHandle) -> None:
         """``client``'s tab controls the session from now on (the caller holds the lock)."""
         self._controller = client
+        client.gui.add_html(frame_counter_html(client.client_id))
         self._pages = SessionPages(client.gui)
         grip = ControllerConfig().grip
         self._live = LiveInput(client, self._rest_gripper_m,

@@ -38,6 +38,7 @@ from tests.instruments.screen_reading import (
 )
 from tests.instruments.scripted_participant import (
     STEPS_MM,
+    STILL_MM,
     ScriptedParticipant,
 )
 
@@ -105,7 +106,9 @@ class ScriptedPointer(ScriptedParticipant):
         """Down to about :data:`LOW_MM` over the table, by the height label."""
 
         def height() -> float:
-            return self.reading(lambda rgb: (found := find_label(rgb, HEIGHT)) and found[0], 5.0)
+            return self.reading(
+                lambda rgb: (found := find_label(rgb, HEIGHT)) and found[0], STILL_MM
+            )
 
         now = height()
         self.go_by(np.array([0.0, 0.0, -50 * np.floor((now - LOW_MM) / 50)]))

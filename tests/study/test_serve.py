@@ -161,7 +161,7 @@ def test_a_trial_run_again_after_a_restart_has_one_row_of_its_browser(tmp_path: 
         run.keep_browser(first, BrowserCheck(0.5, 900, 800, "gizmo"))
         run.keep_browser(second, BrowserCheck(0.4, 900, 800))
         run.keep_browser(first, BrowserCheck(0.25, 900, 800, "buttons", 412, 9876.54, 3.21,
-                                              37, 11.438, 0.08123))  # fmt: skip
+                                              37, 11.438, 0.08123, 203, 5.678))  # fmt: skip
     shown = _rows(tmp_path / "run" / BROWSER_FILE)
     assert [(b["trial_index"], b["display_round_trip_s"], b["input_device"]) for b in shown] == [
         ("2", "0.4", ""), ("1", "0.25", "buttons")
@@ -172,6 +172,7 @@ def test_a_trial_run_again_after_a_restart_has_one_row_of_its_browser(tmp_path: 
     assert [(b["cloud_frames_held"], b["cloud_fps"], b["link_latency_s"]) for b in shown] == [
         ("0", "0.0", ""), ("37", "11.44", "0.0812")
     ]  # fmt: skip
+    assert [(b["page_frames"], b["page_fps"]) for b in shown] == [("", ""), ("203", "5.68")]
 
 
 def test_a_served_run_is_not_resumed_as_a_simulated_one(tmp_path: Path) -> None:
@@ -405,6 +406,8 @@ def test_a_participant_goes_through_the_study_in_a_real_browser(
         # Its socket pinged during the trial, and the cloud sent at a rate the link carried.
         assert 0 < float(b["link_latency_s"]) < PING_TIMEOUT_S, b
         assert float(b["cloud_fps"]) > 0 and int(b["cloud_frames_held"]) >= 0, b
+        # The page counted the frames it drew, and the server read its count.
+        assert int(b["page_frames"]) > 0 and float(b["page_fps"]) > 0, b
         assert (
             600 < int(b["scene_width_px"]) < 1280
             and int(b["scene_height_px"]) == VIEWPORT["height"]
