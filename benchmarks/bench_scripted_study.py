@@ -128,7 +128,8 @@ def serve_to_script(
         for line in server.stdout or ():
             lines.put(line)
 
-    threading.Thread(target=listen, daemon=True).start()
+    listener = threading.Thread(target=listen, daemon=True)
+    listener.start()
     try:
         end = time.monotonic() + SERVE_START_S
         url = None
@@ -166,6 +167,9 @@ def serve_to_script(
             throttle.close()
         if server.wait(timeout=SERVE_END_S) != 0:
             raise BenchmarkFailed(f"the server exited {server.returncode}")
+        listener.join(timeout=5.0)
+        while not lines.empty():  # what the experimenter's console said during the session
+            print(f"  server: {lines.get().rstrip()}", flush=True)
         return done, session_s, received
     finally:
         if server.poll() is None:

@@ -534,7 +534,11 @@ def take_part(
         n = int(heading.split()[-1])
         shot(f"trial-{k}")
         scripted = person(tab, log=log, step=step)
-        outcome = scripted.do_trial()
+        try:
+            outcome = scripted.do_trial()
+        except Exception:
+            shot(f"stopped-{k}")  # what the page showed when the script gave up
+            raise
         log(f"{heading}: {outcome}")
         shot(f"outcome-{k}")
         done.append(TrialDone(heading, outcome, tuple(scripted.presses)))
