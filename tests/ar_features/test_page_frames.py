@@ -45,7 +45,7 @@ def test_what_is_not_a_count_counts_nothing(reply: object) -> None:
     assert parse_count(reply) is None
 
 
-@pytest.mark.parametrize("raised", [TimeoutError, RuntimeError])
+@pytest.mark.parametrize("raised", [TimeoutError, RuntimeError, KeyError])
 def test_a_page_that_does_not_answer_counts_nothing(raised: type[Exception]) -> None:
     def get_item(key: str, timeout: float) -> str:
         raise raised("gone")
@@ -70,10 +70,13 @@ def test_reads_in_the_background_never_raise_nor_wait_past_their_time(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     def get_item(key: str, timeout: float) -> str:
-        raise KeyError("a reply viser did not expect")
+        return "40 1000.0" if key.endswith(".1") else "240 11000.0"
 
-    client = SimpleNamespace(client_id=1, local_storage=SimpleNamespace(get_item=get_item))
-    frames, fps = frames_drawn(read_in_background(client), None)  # type: ignore[arg-type]
+    first, last = (SimpleNamespace(client_id=k, local_storage=SimpleNamespace(get_item=get_item))
+                   for k in (1, 2))  # fmt: skip
+    both = read_in_background(first), read_in_background(last)  # type: ignore[arg-type]
+    assert frames_drawn(*both) == (200, 20.0)
+    frames, fps = frames_drawn(both[0], None)
     assert frames is None and math.isnan(fps)
     monkeypatch.setattr(page_frames, "READ_TIMEOUT_S", 0.2)
     never: Future[FrameCount | None] = Future()

@@ -14,8 +14,9 @@ part of it under the gripper's fingers. Its way:
 - **Steps in pixels.** A big step across and one into the image towards the cross, each seen in
   where the ring moved; then a big step up, clear of the bowl, which lies beside the way.
 - **Over the cross, over the circle.** From a fresh look each go, the steps that bring the ring
-  onto the mark (big ones, then 1 cm ones) until the next would be none; over the circle, down
-  again for a last go; then the grip closes.
+  onto the mark (big ones, then 1 cm ones) until the next would be none, what a step is in
+  pixels corrected after each by where the ring went; over the circle, down again for a last
+  go; then the grip closes.
 """
 
 from __future__ import annotations
@@ -162,5 +163,12 @@ class ScriptedPointer(ScriptedParticipant):
             if not offset_mm.any() or np.linalg.norm(goal - at) <= ON_MARK_PX:
                 break
             self.go_by(np.array([*offset_mm, 0.0]))
-            at = self._ring(expected=at + self._per_step_px @ offset_mm / STEPS_MM["5 cm"])
+            step = offset_mm / STEPS_MM["5 cm"]
+            moved = self._ring(expected=at + self._per_step_px @ step)
+            # Broyden's update: what a step is in pixels, corrected by where this go moved the
+            # ring (a step learnt while the arm was still moving sent it astray, on a loaded
+            # machine); a ring not seen moved as expected, and corrects nothing.
+            missed_px = moved - at - self._per_step_px @ step
+            self._per_step_px += np.outer(missed_px, step) / (step @ step)
+            at = moved
         return at
