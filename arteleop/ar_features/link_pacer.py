@@ -11,9 +11,7 @@ frames the browser would draw seconds late.
 
 The rule is a delay-based congestion control's (as LEDBAT's, RFC 6817, in spirit): over
 :data:`QUEUE_HIGH_S` the interval between sent frames doubles, under :data:`QUEUE_LOW_S` it
-shrinks by one frame (:class:`QueueRule`). A page that draws fewer frames than it is sent is
-sent fewer too, as its own count of its frames says (:class:`~.page_frames.PageRule`); the
-interval is the longer of the two.
+shrinks by one frame (:class:`QueueRule`).
 """
 
 from __future__ import annotations
@@ -23,15 +21,12 @@ import logging
 import math
 import statistics
 import threading
-import time
-from collections.abc import Callable
 from concurrent.futures import CancelledError, Future
 
 import viser
 from websockets.asyncio.server import ServerConnection
 from websockets.exceptions import ConnectionClosed
 
-from arteleop.ar_features.page_frames import PageRule, read_count
 from arteleop.lifetime import Closeable
 
 PING_EVERY_S = 0.25
@@ -45,8 +40,6 @@ QUEUE_LOW_S = 0.05
 """A queue shorter than this (s) lets one more frame in each interval through."""
 MAX_INTERVAL = 8
 """The cloud goes at least every this many camera frames (about 2 a second at 15 Hz)."""
-PAGE_EVERY_S = 1.0
-"""The pause between two reads of the page's count of its frames (s)."""
 
 _log = logging.getLogger(__name__)
 
@@ -98,29 +91,16 @@ class QueueRule:
 class LinkPacer(Closeable):
     """Pings one tab of ``server`` (its ``client_id``) on viser's own event loop and keeps
     :attr:`interval` for its connection; a context manager. ``least_s``: the least round trip
-    known of that tab from before (s). With ``offered`` (the camera frames offered so far, with
-    a cloud), it also reads the page's count of the frames it drew, every
-    :data:`PAGE_EVERY_S`. A tab already gone, or a server stopping, is paced at every frame and
-    measured not at all."""
+    known of that tab from before (s). A tab already gone, or a server stopping, is paced at
+    every frame and measured not at all."""
 
-    def __init__(
-        self,
-        server: viser.ViserServer,
-        client_id: int,
-        least_s: float = math.inf,
-        offered: Callable[[], int] | None = None,
-    ):
+    def __init__(self, server: viser.ViserServer, client_id: int, least_s: float = math.inf):
         self.client_id = client_id
         """The tab paced."""
         self.rule = QueueRule(least_s)
-        self.page = PageRule(MAX_INTERVAL)
         self._latencies_s: list[float] = []
         self._lock = threading.Lock()
         self._task: Future[None] | None = None
-        self._closed = threading.Event()
-        client = server.get_clients().get(client_id)
-        if offered is not None and client is not None:
-            threading.Thread(target=self._read_page, args=(client, offered), daemon=True).start()
         # viser's internals, as the pinned 1.1.1 has them: the tab's socket and the loop it
         # is served from.
         websock = getattr(server, "_websock_server", None)
@@ -138,14 +118,8 @@ class LinkPacer(Closeable):
 
     @property
     def interval(self) -> int:
-        """Camera frames between two clouds sent to this tab (1: every frame): the longer of
-        its connection's and its page's."""
-        return max(self.rule.interval, self.page.interval)
-
-    def _read_page(self, client: viser.ClientHandle, offered: Callable[[], int]) -> None:
-        while not self._closed.wait(PAGE_EVERY_S):
-            count = read_count(client)
-            self.page.counted(count, offered(), time.monotonic())
+        """Camera frames between two clouds sent to this tab (1: every frame)."""
+        return self.rule.interval
 
     async def _ping(self, connection: ServerConnection) -> None:
         loop = asyncio.get_running_loop()
@@ -184,7 +158,6 @@ class LinkPacer(Closeable):
         return statistics.median(taken) if taken else None
 
     def close(self) -> None:
-        self._closed.set()
         if self._task is not None:
             self._task.cancel()
 

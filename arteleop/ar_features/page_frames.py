@@ -6,11 +6,10 @@ second than the clouds it is sent, and its person then sees the robot late or in
 the socket's pings, answered by the browser's network stack, see no queue. So a short script on
 the page (with an HTML element of the panel, as :mod:`.keys`' is) counts the page's animation
 frames and keeps the count, with the page's clock, in its localStorage under the tab's own key,
-which viser lets the server read (``ClientHandle.local_storage``): at a trial's start and end,
-for its record, and every second for the pacer (:class:`PageRule`). While a trial runs, viser
-draws the scene in every animation frame (it draws on demand, for 250 ms after each update, and
-the layers update at the camera's rate), so the count is the frames the person was shown; a tab
-in the background counts none.
+which viser lets the server read (``ClientHandle.local_storage``), at a trial's start and end.
+While a trial runs, viser draws the scene in every animation frame (it draws on demand, for
+250 ms after each update, and the layers update at the camera's rate), so the count is the
+frames the person was shown; a tab in the background counts none.
 """
 
 from __future__ import annotations
@@ -120,36 +119,3 @@ def frames_drawn(
         except TimeoutError:
             counts.append(None)
     return frames_between(*counts)
-
-
-class PageRule:
-    """The camera frames between two clouds sent that a page's drawing allows: clouds no
-    oftener than it draws frames. A page drawing fewer frames than it is sent clouds spends its
-    time taking in clouds it never shows, and draws fewer still; sent fewer, it shows each.
-
-    Fed a count of the page's (:meth:`counted`) and of the camera frames offered (with a cloud,
-    whether sent or not) at each read: over the time between two reads, the interval is the
-    offered frames a second over the frames the page drew a second, rounded up, at most
-    ``most``; a page that drew none (in the background) gets ``most``. A read that failed
-    keeps the interval.
-    """
-
-    def __init__(self, most: int) -> None:
-        self.interval = 1
-        """Camera frames between two clouds sent (1: every frame)."""
-        self._most = most
-        self._last: tuple[FrameCount, int, float] | None = None
-
-    def counted(self, count: FrameCount | None, offered: int, now_s: float) -> None:
-        """The page counted ``count`` (None: not read) when ``offered`` camera frames had been
-        offered, at ``now_s`` on the server's clock (s)."""
-        if count is None:
-            return
-        if self._last is not None:
-            first, offered_before, before_s = self._last
-            frames, fps = frames_between(first, count)
-            if frames is not None and now_s > before_s:
-                offered_fps = (offered - offered_before) / (now_s - before_s)
-                wanted = math.ceil(offered_fps / fps) if fps > 0 else self._most
-                self.interval = min(max(wanted, 1), self._most)
-        self._last = (count, offered, now_s)

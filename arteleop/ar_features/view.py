@@ -209,8 +209,8 @@ class OperatorView(Closeable):
         self._least_s: dict[int, float] = {}  # each paced tab's least round trip (s)
 
     def pace(self, client_id: int | None) -> None:
-        """Send the cloud at the pace the tab ``client_id``'s connection carries and its page
-        draws (:class:`LinkPacer`), or, with None, at every frame. The other tabs get the same
+        """Send the cloud at the pace the tab ``client_id``'s connection carries
+        (:class:`LinkPacer`), or, with None, at every frame. The other tabs get the same
         frames, or fewer (viser drops a tile's update a newer one replaces). A tab paced again
         starts from the least round trip it was measured at before."""
         if (pacer := self.pacer) is not None:
@@ -219,9 +219,7 @@ class OperatorView(Closeable):
         self.pacer = None
         if client_id is not None:
             least_s = self._least_s.get(client_id, math.inf)
-            cloud = self.cloud
-            self.pacer = LinkPacer(self.server, client_id, least_s,
-                                   lambda: cloud.frames_drawn + cloud.frames_held)  # fmt: skip
+            self.pacer = LinkPacer(self.server, client_id, least_s)
         self.cloud.interval = 1
 
     @property

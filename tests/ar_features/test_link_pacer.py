@@ -1,5 +1,4 @@
-"""The cloud goes to a tab at the pace its connection carries, measured by pinging it, and no
-oftener than its page draws frames, as the page counts them."""
+"""The cloud goes to a tab at the pace its connection carries, measured by pinging it."""
 
 from __future__ import annotations
 
@@ -16,7 +15,6 @@ from arteleop.ar_features.link_pacer import (
     QueueRule,
     next_interval,
 )
-from arteleop.ar_features.page_frames import FrameCount, PageRule
 from tests.ar_features.frames import CAMERA_M, display_frame
 from tests.instruments.throttle import Throttle
 from tests.instruments.view_probe import ViewProbe, until
@@ -99,42 +97,3 @@ def test_a_tab_behind_a_slow_link_is_sent_fewer_clouds() -> None:
     # A tab no longer paced gets every frame.
     view.pace(None)
     assert view.cloud.interval == 1 and view.pacer is None
-
-
-def test_a_page_is_sent_no_more_clouds_than_it_draws_frames() -> None:
-    rule = PageRule(MAX_INTERVAL)
-    rule.counted(FrameCount(100, 0.0), offered=0, now_s=10.0)
-    assert rule.interval == 1  # one count: no rate yet
-    rule.counted(FrameCount(105, 2000.0), offered=16, now_s=12.0)  # 2.5 frames/s drawn, 8 offered
-    assert rule.interval == 4
-    rule.counted(None, offered=30, now_s=13.0)  # not read: kept
-    assert rule.interval == 4
-    rule.counted(FrameCount(165, 3000.0), offered=38, now_s=13.0)  # 60 drawn, 8 offered
-    assert rule.interval == 1
-    rule.counted(FrameCount(165, 4000.0), offered=46, now_s=14.0)  # none drawn: in the background
-    assert rule.interval == MAX_INTERVAL
-    rule.counted(FrameCount(3, 4500.0), offered=50, now_s=14.5)  # reloaded: counts from 0 again
-    assert rule.interval == MAX_INTERVAL
-    rule.counted(FrameCount(33, 5500.0), offered=58, now_s=15.5)
-    assert rule.interval == 1
-
-
-def test_a_tab_whose_page_draws_few_frames_is_sent_fewer_clouds() -> None:
-    # Ten frames a second offered to a tab whose page draws two: a cloud every fifth frame.
-    rng = np.random.default_rng(0)
-    with OperatorView(ViewConfig(port=0)) as view:
-        with ViewProbe(view.url, page_fps=2.0):
-            assert until(lambda: len(view.server.get_clients()) == 1)
-            (client_id,) = view.server.get_clients()
-            view.pace(client_id)
-            intervals = []
-            for _ in range(40):
-                points = CAMERA_M + rng.uniform(-0.3, 0.3, (500, 3)) + [0.0, 0.0, 1.5]
-                colors = rng.integers(0, 256, (500, 3), dtype=np.uint8)
-                view.show(display_frame(cloud_points_m=points.astype(np.float32),
-                                        cloud_colors=colors, cloud_spacing_rad=0.004))  # fmt: skip
-                intervals.append(view.cloud.interval)
-                time.sleep(0.1)
-            view.pace(None)
-    assert intervals[0] == 1 and 4 <= intervals[-1] <= 6, intervals
-    assert view.cloud.frames_held >= 10, view.cloud.frames_held

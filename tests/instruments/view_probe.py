@@ -51,18 +51,9 @@ class ViewProbe(Closeable):
 
     ``render_reply``, if given, makes it a client the server lists (it sends a camera, as a
     browser does on connecting) that answers each frame the server asks it to draw with
-    ``render_reply``, as a hostile client would (a browser answers an image's bytes).
-    ``page_fps``, if given, makes it a listed client whose page draws that many frames a second:
-    asked for its count of them (:mod:`arteleop.ar_features.page_frames`), it answers as the
-    page's script would have counted them since it connected."""
+    ``render_reply``, as a hostile client would (a browser answers an image's bytes)."""
 
-    def __init__(
-        self,
-        url: str,
-        timeout_s: float = 5.0,
-        render_reply: object = None,
-        page_fps: float | None = None,
-    ) -> None:
+    def __init__(self, url: str, timeout_s: float = 5.0, render_reply: object = None) -> None:
         ws_url = url.replace("http://", "ws://", 1)
         self._ws = websocket_client.connect(
             ws_url,
@@ -74,12 +65,10 @@ class ViewProbe(Closeable):
         self.render_replies = 0
         """Frame requests answered with ``render_reply``."""
         self._render_reply = render_reply
-        self._page_fps = page_fps
-        self._begun_s = time.perf_counter()
         self._lock = threading.Lock()
         self._thread = threading.Thread(target=self._read, daemon=True)
         self._thread.start()
-        if render_reply is not None or page_fps is not None:
+        if render_reply is not None:
             self.send(CAMERA)
 
     def _read(self) -> None:
@@ -91,23 +80,16 @@ class ViewProbe(Closeable):
             if isinstance(message, bytes):
                 with self._lock:
                     self.received.append(Received(time.perf_counter(), message))
-                if self._render_reply is not None or self._page_fps is not None:
-                    self._answer(message)
+                if self._render_reply is not None:
+                    self._answer_renders(message)
 
-    def _answer(self, packet: bytes) -> None:
+    def _answer_renders(self, packet: bytes) -> None:
         for m in _messages(packet):
-            if m.get("type") == "GetRenderRequestMessage" and self._render_reply is not None:
+            if m.get("type") == "GetRenderRequestMessage":
                 reply = {"type": "GetRenderResponseMessage", "payload": self._render_reply,
                          "render_uuid": m["render_uuid"]}  # fmt: skip
                 self.render_replies += 1  # counted first: the server may act on the reply at once
                 self.send(reply)
-            elif m.get("type") == "LocalStorageGetItemRequestMessage":
-                if self._page_fps is None:
-                    continue
-                page_s = time.perf_counter() - self._begun_s
-                count = f"{int(self._page_fps * page_s)} {1000 * page_s:.1f}"
-                self.send({"type": "LocalStorageGetItemResponseMessage", "value": count,
-                           "error": None, "request_uuid": m["request_uuid"]})  # fmt: skip
 
     def sent(self) -> list[dict[str, object]]:
         """Every message the server sent so far, decoded."""
