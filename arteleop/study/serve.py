@@ -310,23 +310,24 @@ class StudyServer(Closeable):
                 self.view.pace(None)
         wall_s = time.perf_counter() - start
         frames, payload = cloud.frames_drawn - sent[0], cloud.payload_bytes - sent[1]
-        page_frames, page_fps = frames_drawn(*drawn)
         stream = {"cloud_frames": frames, "cloud_kbytes": payload / 1e3,
                   "cloud_mbit_s": payload * 8 / 1e6 / max(wall_s, 1e-9),
                   "cloud_frames_held": cloud.frames_held - sent[2],
                   "cloud_fps": frames / max(wall_s, 1e-9),
-                  "link_latency_s": math.nan if latency_s is None else latency_s,
-                  "page_frames": page_frames, "page_fps": page_fps}  # fmt: skip
-        if page_fps < stream["cloud_fps"]:  # False for NaN: a count not read says nothing
-            _log.warning(STARVED, spec.participant, spec.trial_index, page_fps, stream["cloud_fps"])
+                  "link_latency_s": math.nan if latency_s is None else latency_s}  # fmt: skip
         self.view.settle()  # the scene the trial ended on, whole beside its outcome
         result_text = self.run.keep_result(spec, result, wall_s)
         devices = live.take_devices() if (live := self.tabs.live) is not None else ""
         self.tabs.show(
             lambda p: p.message(heading, result_text, "Next", lambda: self.tabs.act("next"))
         )
-        # While the person reads the outcome.
-        self.run.keep_browser(spec, replace(self._check_browser(), input_device=devices, **stream))
+        # While the person reads the outcome: a silent page's count is waited for up to 5 s.
+        page_frames, page_fps = frames_drawn(*drawn)
+        if page_fps < stream["cloud_fps"]:  # False for NaN: a count not read says nothing
+            _log.warning(STARVED, spec.participant, spec.trial_index, page_fps, stream["cloud_fps"])
+        check = replace(self._check_browser(), input_device=devices, page_frames=page_frames,
+                        page_fps=page_fps, **stream)  # fmt: skip
+        self.run.keep_browser(spec, check)
         self.tabs.wait("next")
 
     def _check_browser(self) -> BrowserCheck:
