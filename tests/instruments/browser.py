@@ -20,9 +20,12 @@ from numpy.typing import NDArray
 from arteleop.errors import ArteleopError
 
 VIEWPORT = {"width": 1280, "height": 800}
-# WebGL without a GPU: SwiftShader. Background networking off: this machine has no network.
+# WebGL without a GPU: Mesa's llvmpipe through ANGLE's GL ES backend, which Chromium blocks
+# by default (a still viser page cost half the processor SwiftShader's did, and a page drew
+# twice its frames: benchmarks/README.md); SwiftShader where Mesa's drivers are missing.
+# Background networking off: this machine has no network.
 CHROMIUM_ARGS = [
-    "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--no-sandbox",
+    "--use-angle=gl-egl", "--ignore-gpu-blocklist", "--enable-unsafe-swiftshader", "--no-sandbox",
     "--disable-background-networking", "--disable-component-update", "--disable-sync",
     "--no-first-run",
 ]  # fmt: skip

@@ -1,0 +1,139 @@
+"""What a headless Chromium without a GPU costs to show the operator's view, per WebGL backend:
+Mesa's llvmpipe (ANGLE's GL ES backend, the suite's browser) against Chromium's SwiftShader,
+side by side.
+
+A seeded full-AR trial (seed 0) gives 30 display frames from 5 s on, at 320x240 (the browser
+tests' camera). Each backend's Chromium opens one tab of an :class:`OperatorView` at the
+suite's 1280x800. Still: the first frame shown and left, Chromium's processor time (all its
+processes, from ``/proc``) over ``--windows`` windows of 5 s, after 5 s to settle. Streaming:
+the frames shown in turn at 15 a second for 10 s, the page's animation frames counted by a
+script on it and Chromium's processor time meanwhile. Medians of the windows; the backends run
+one after the other, ``--rounds`` times, alternating.
+
+    python benchmarks/bench_browser_gl.py [--rounds 2] [--windows 3]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import sys
+import time
+from dataclasses import replace
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))  # the checkout's tests/instruments
+
+SWIFTSHADER = ["--use-angle=swiftshader", "--enable-unsafe-swiftshader"]
+"""Chromium's own software WebGL, the suite's browser before."""
+COUNT_FRAMES = (
+    "() => { window.__frames = 0; const f = () => { window.__frames++; "
+    "requestAnimationFrame(f); }; requestAnimationFrame(f); }"
+)
+RENDERER = (
+    "() => { const gl = document.createElement('canvas').getContext('webgl2');"
+    " const info = gl.getExtension('WEBGL_debug_renderer_info');"
+    " return gl.getParameter(info.UNMASKED_RENDERER_WEBGL); }"
+)
+
+
+def chromium_cpu_s() -> float:
+    """Processor time (user and system, s) of every Chromium process now running."""
+    tick = os.sysconf("SC_CLK_TCK")
+    total = 0.0
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            stat = Path(f"/proc/{pid}/stat").read_text()
+        except OSError:
+            continue
+        name = stat[stat.index("(") + 1 : stat.rindex(")")]
+        if "chrom" in name:
+            fields = stat[stat.rindex(")") + 2 :].split()
+            total += (int(fields[11]) + int(fields[12])) / tick
+    return total
+
+
+def measure(view, frames, args: list[str], windows: int) -> dict[str, object]:
+    """One backend (Chromium ``args``) on ``view``: its still and streaming costs."""
+    import tests.instruments.browser as browser
+
+    with_backend = [a for a in browser.CHROMIUM_ARGS if a not in (
+        "--use-angle=gl-egl", "--ignore-gpu-blocklist", "--enable-unsafe-swiftshader"
+    )] + args  # fmt: skip
+    view.show_still(frames[0])
+    original = browser.CHROMIUM_ARGS
+    browser.CHROMIUM_ARGS = with_backend
+    try:
+        with browser.chromium() as launched:
+            page = launched.open(view.url, for_pictures=False).playwright
+            renderer = page.evaluate(RENDERER)
+            time.sleep(5.0)
+            still = []
+            for _ in range(windows):
+                before, start = chromium_cpu_s(), time.monotonic()
+                time.sleep(5.0)
+                still.append((chromium_cpu_s() - before) / (time.monotonic() - start))
+            page.evaluate(COUNT_FRAMES)
+            before, start, k = chromium_cpu_s(), time.monotonic(), 0
+            counted = page.evaluate("() => window.__frames")
+            while time.monotonic() - start < 10.0:
+                view.show(frames[k % len(frames)])
+                k += 1
+                time.sleep(1 / 15)
+            elapsed_s = time.monotonic() - start
+            drawn = page.evaluate("() => window.__frames") - counted
+            streaming = (chromium_cpu_s() - before) / elapsed_s
+    finally:
+        browser.CHROMIUM_ARGS = original
+    return {"renderer": renderer, "still": statistics.median(still),
+            "streaming": streaming, "page_fps": drawn / elapsed_s, "sent_fps": k / elapsed_s}  # fmt: skip
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--rounds", type=int, default=2, help="each backend this many times")
+    parser.add_argument("--windows", type=int, default=3, help="5 s windows of the still page")
+    options = parser.parse_args()
+
+    import tests.instruments.browser as browser
+    from arteleop.ar_features import OperatorView, ViewConfig
+    from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
+    from arteleop.teleop import TrialConfig, display_frames_at, trial_operator, view_assets
+
+    site = replace(SiteConfig(), camera=HeadCameraConfig(width_px=320, height_px=240))
+    config = TrialConfig(seed=0, site=site)
+    times = tuple(5.0 + k / 15 for k in range(30))
+    with RemoteSite(config.site) as running:
+        frames = display_frames_at(trial_operator(running, config), config, times, running)
+        assets = view_assets(running)
+    suite = [
+        a for a in browser.CHROMIUM_ARGS if a in ("--use-angle=gl-egl", "--ignore-gpu-blocklist")
+    ]
+    backends = {"llvmpipe (the suite's)": suite, "SwiftShader": SWIFTSHADER}
+    runs: dict[str, list[dict[str, object]]] = {name: [] for name in backends}
+    with OperatorView(ViewConfig(port=0), assets) as view:
+        for _ in range(options.rounds):
+            for name, args in backends.items():
+                runs[name].append(measure(view, frames, args, options.windows))
+                print(name, runs[name][-1], flush=True)
+    rows = {name: {key: statistics.median(float(r[key]) for r in got)  # type: ignore[arg-type]
+                   for key in ("still", "streaming", "page_fps", "sent_fps")}
+            for name, got in runs.items()}  # fmt: skip
+    first, second = rows.values()
+    print("\n| measure | " + " | ".join(backends) + " | ratio |")
+    print("|---|---|---|---|")
+    for key, label in (("still", "still page: Chromium's cores"),
+                       ("streaming", "streaming: Chromium's cores"),
+                       ("page_fps", "streaming: page frames/s"),
+                       ("sent_fps", "streaming: frames sent/s")):  # fmt: skip
+        print(
+            f"| {label} | {first[key]:.2f} | {second[key]:.2f} | {first[key] / second[key]:.2f} |"
+        )
+    for name, got in runs.items():
+        print(f"{name}: {got[0]['renderer']}")
+
+
+if __name__ == "__main__":
+    main()
