@@ -6,8 +6,9 @@ A seeded full-AR trial (seed 0) gives 30 display frames from 5 s on, at 320x240 
 tests' camera). Each backend's Chromium opens one tab of an :class:`OperatorView` at the
 suite's 1280x800. Still: the first frame shown and left, Chromium's processor time (all its
 processes, from ``/proc``) over ``--windows`` windows of 5 s, after 5 s to settle. Streaming:
-the frames shown in turn at 15 a second for 10 s, the page's animation frames counted by a
-script on it and Chromium's processor time meanwhile. Medians of the windows; the backends run
+the frames shown in turn for 10 s, a fifteenth of a second's pause after each (the server's own
+time to send one comes on top: the rate reached is reported), the page's animation frames
+counted by a script on it and Chromium's processor time meanwhile. Medians of the windows; the backends run
 one after the other, ``--rounds`` times, alternating.
 
     python benchmarks/bench_browser_gl.py [--rounds 2] [--windows 3]
@@ -26,8 +27,6 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # the checkout's tests/instruments
 
-SWIFTSHADER = ["--use-angle=swiftshader", "--enable-unsafe-swiftshader"]
-"""Chromium's own software WebGL, the suite's browser before."""
 COUNT_FRAMES = (
     "() => { window.__frames = 0; const f = () => { window.__frames++; "
     "requestAnimationFrame(f); }; requestAnimationFrame(f); }"
@@ -55,38 +54,31 @@ def chromium_cpu_s() -> float:
     return total
 
 
-def measure(view, frames, args: list[str], windows: int) -> dict[str, object]:
-    """One backend (Chromium ``args``) on ``view``: its still and streaming costs."""
-    import tests.instruments.browser as browser
+def measure(view, frames, webgl: list[str], windows: int) -> dict[str, object]:
+    """One backend (Chromium's ``webgl`` arguments) on ``view``: its still and streaming
+    costs."""
+    from tests.instruments.browser import chromium
 
-    with_backend = [a for a in browser.CHROMIUM_ARGS if a not in (
-        "--use-angle=gl-egl", "--ignore-gpu-blocklist", "--enable-unsafe-swiftshader"
-    )] + args  # fmt: skip
     view.show_still(frames[0])
-    original = browser.CHROMIUM_ARGS
-    browser.CHROMIUM_ARGS = with_backend
-    try:
-        with browser.chromium() as launched:
-            page = launched.open(view.url, for_pictures=False).playwright
-            renderer = page.evaluate(RENDERER)
+    with chromium(webgl) as launched:
+        page = launched.open(view.url, for_pictures=False).playwright
+        renderer = page.evaluate(RENDERER)
+        time.sleep(5.0)
+        still = []
+        for _ in range(windows):
+            before, start = chromium_cpu_s(), time.monotonic()
             time.sleep(5.0)
-            still = []
-            for _ in range(windows):
-                before, start = chromium_cpu_s(), time.monotonic()
-                time.sleep(5.0)
-                still.append((chromium_cpu_s() - before) / (time.monotonic() - start))
-            page.evaluate(COUNT_FRAMES)
-            before, start, k = chromium_cpu_s(), time.monotonic(), 0
-            counted = page.evaluate("() => window.__frames")
-            while time.monotonic() - start < 10.0:
-                view.show(frames[k % len(frames)])
-                k += 1
-                time.sleep(1 / 15)
-            elapsed_s = time.monotonic() - start
-            drawn = page.evaluate("() => window.__frames") - counted
-            streaming = (chromium_cpu_s() - before) / elapsed_s
-    finally:
-        browser.CHROMIUM_ARGS = original
+            still.append((chromium_cpu_s() - before) / (time.monotonic() - start))
+        page.evaluate(COUNT_FRAMES)
+        before, start, k = chromium_cpu_s(), time.monotonic(), 0
+        counted = page.evaluate("() => window.__frames")
+        while time.monotonic() - start < 10.0:
+            view.show(frames[k % len(frames)])
+            k += 1
+            time.sleep(1 / 15)
+        elapsed_s = time.monotonic() - start
+        drawn = page.evaluate("() => window.__frames") - counted
+        streaming = (chromium_cpu_s() - before) / elapsed_s
     return {"renderer": renderer, "still": statistics.median(still),
             "streaming": streaming, "page_fps": drawn / elapsed_s, "sent_fps": k / elapsed_s}  # fmt: skip
 
@@ -97,10 +89,10 @@ def main() -> None:
     parser.add_argument("--windows", type=int, default=3, help="5 s windows of the still page")
     options = parser.parse_args()
 
-    import tests.instruments.browser as browser
     from arteleop.ar_features import OperatorView, ViewConfig
     from arteleop.scene import HeadCameraConfig, RemoteSite, SiteConfig
     from arteleop.teleop import TrialConfig, display_frames_at, trial_operator, view_assets
+    from tests.instruments.browser import LLVMPIPE, SWIFTSHADER
 
     site = replace(SiteConfig(), camera=HeadCameraConfig(width_px=320, height_px=240))
     config = TrialConfig(seed=0, site=site)
@@ -108,10 +100,7 @@ def main() -> None:
     with RemoteSite(config.site) as running:
         frames = display_frames_at(trial_operator(running, config), config, times, running)
         assets = view_assets(running)
-    suite = [
-        a for a in browser.CHROMIUM_ARGS if a in ("--use-angle=gl-egl", "--ignore-gpu-blocklist")
-    ]
-    backends = {"llvmpipe (the suite's)": suite, "SwiftShader": SWIFTSHADER}
+    backends = {"llvmpipe (the suite's)": LLVMPIPE, "SwiftShader": SWIFTSHADER}
     runs: dict[str, list[dict[str, object]]] = {name: [] for name in backends}
     with OperatorView(ViewConfig(port=0), assets) as view:
         for _ in range(options.rounds):

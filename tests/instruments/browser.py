@@ -20,14 +20,17 @@ from numpy.typing import NDArray
 from arteleop.errors import ArteleopError
 
 VIEWPORT = {"width": 1280, "height": 800}
-# WebGL without a GPU: Mesa's llvmpipe through ANGLE's GL ES backend, which Chromium blocks
-# by default (a still viser page cost half the processor SwiftShader's did, and a page drew
-# twice its frames: benchmarks/README.md); SwiftShader where Mesa's drivers are missing.
+LLVMPIPE = ["--use-angle=gl-egl", "--ignore-gpu-blocklist", "--enable-unsafe-swiftshader"]
+"""WebGL without a GPU: Mesa's llvmpipe through ANGLE's GL ES backend, which Chromium blocks by
+default; SwiftShader where Mesa's drivers are missing. A still viser page cost a quarter of the
+processor SwiftShader's did, and a page drew a third more frames
+(benchmarks/bench_browser_gl.py)."""
+SWIFTSHADER = ["--use-angle=swiftshader", "--enable-unsafe-swiftshader"]
+"""Chromium's own software WebGL."""
 # Background networking off: this machine has no network.
 CHROMIUM_ARGS = [
-    "--use-angle=gl-egl", "--ignore-gpu-blocklist", "--enable-unsafe-swiftshader", "--no-sandbox",
-    "--disable-background-networking", "--disable-component-update", "--disable-sync",
-    "--no-first-run",
+    "--no-sandbox", "--disable-background-networking", "--disable-component-update",
+    "--disable-sync", "--no-first-run",
 ]  # fmt: skip
 
 
@@ -138,12 +141,13 @@ class Browser:
 
 
 @contextmanager
-def chromium() -> Iterator[Browser]:
-    """Headless Chromium, closed on leaving."""
+def chromium(webgl: list[str] = LLVMPIPE) -> Iterator[Browser]:
+    """Headless Chromium drawing WebGL as ``webgl`` says, closed on leaving."""
     from playwright.sync_api import sync_playwright
 
     with sync_playwright() as pw:
-        browser = pw.chromium.launch(executable_path=chromium_path(), args=CHROMIUM_ARGS)
+        args = [*webgl, *CHROMIUM_ARGS]
+        browser = pw.chromium.launch(executable_path=chromium_path(), args=args)
         try:
             yield Browser(browser)
         finally:
