@@ -45,8 +45,8 @@ LABEL_SIZE_M = (0.10, 0.03)
 and "grip 0 %" were 38-40 px wide, 12 px tall, beside a 10 cm bar drawn 45 px long, in an
 800x500 screenshot of the view; "height 150 mm" is about as wide."""
 LABEL_CLEARANCE_M = 0.02
-"""The height's label keeps this far clear of the target and the bowl in the image plane (m):
-drawn over them, it hid the very things a person places by."""
+"""The labels (the height's, the bars') keep this far clear of the target and the bowl in the
+image plane (m): drawn over them, they hid the very things a person places by."""
 
 
 @dataclass(frozen=True)
@@ -276,12 +276,25 @@ class DisplayFrame:
 
     def distance_label_m(self) -> NDArray[np.float64]:
         """Where the distance bar's label is drawn (base frame, m), its right end."""
-        x, y = DISTANCE_BAR_OFFSET_M
-        return self.beside_gripper_m((x - BAR_LABEL_GAP_M, y))
+        return self.bar_label_m(DISTANCE_BAR_OFFSET_M)
+
+    def bar_label_m(self, offset_m: tuple[float, float]) -> NDArray[np.float64]:
+        """Where the label of the bar whose left end is ``offset_m`` from the gripper is drawn
+        (base frame, m; the label's right end): :data:`BAR_LABEL_GAP_M` left of the bar, and
+        further left, beyond the target and the bowl where they lie level with it, by
+        :data:`LABEL_CLEARANCE_M` (near the end of a carry it sat on the target being placed
+        on). Always left: right of the gripper at rest, at the image's right edge, the bars
+        went under the side panel."""
+        x, y = offset_m
+        right = x - BAR_LABEL_GAP_M
+        w, h = LABEL_SIZE_M
+        discs = discs_in_plane(self.T_base_camera, self.gripper_m, self._kept_clear())
+        out = pushed_out_m((right - w, right, y - h / 2, y + h / 2), discs, LABEL_CLEARANCE_M)
+        return self.beside_gripper_m((right - out, y))
 
     def _kept_clear(self) -> list[tuple[NDArray[np.float64], float]]:
-        """What the height's label keeps clear of, as drawn (centre, radius; base frame, m): the
-        target circle, the target mesh over it, the tracked bowl (its ring of grasp points)."""
+        """What the labels keep clear of, as drawn (centre, radius; base frame, m): the target
+        circle, the target mesh over it, the tracked bowl (its ring of grasp points)."""
         up = np.array([0.0, 0.0, self.grasp_height_m])
         things = [(self.target_m, self.target_radius_m)]
         if self.cues.target_mesh:

@@ -1,4 +1,5 @@
-"""The depth aids' height label keeps clear of the target and the bowl on screen."""
+"""The labels (the depth aids' height, the bars') keep clear of the target and the bowl on
+screen."""
 
 from __future__ import annotations
 
@@ -6,7 +7,10 @@ import numpy as np
 import pytest
 
 from arteleop.ar_features import (
+    BAR_LABEL_GAP_M,
+    DISTANCE_BAR_OFFSET_M,
     FOOT_RADIUS_M,
+    GRIP_BAR_OFFSET_M,
     HEIGHT_LABEL_GAP_M,
     LABEL_CLEARANCE_M,
 )
@@ -54,6 +58,32 @@ def test_the_height_label_is_pushed_beyond_the_target_it_would_sit_on() -> None:
     aside = _frame(0.4, T_base_gripper=over, depth_aids=True)
     out = np.linalg.norm((aside.height_label_m() - aside.ring_m())[:2])
     assert out == pytest.approx(FOOT_RADIUS_M + HEIGHT_LABEL_GAP_M)
+
+
+@pytest.mark.parametrize("offset", [DISTANCE_BAR_OFFSET_M, GRIP_BAR_OFFSET_M])
+def test_a_bars_label_is_pushed_left_beyond_the_target_and_the_bowl(offset) -> None:
+    # The gripper 20 cm above the table, 1 m from the camera; the target 20 cm left of it on
+    # the table (1.2 m away), seen in the gripper's plane 1/1.2 as far and as large: its circle
+    # spans 0.15-0.25 m left, where the label (0.17-0.27 m left) would lie on it.
+    over = _frame(-0.24)
+    label = over.bar_label_m(offset)
+    left = GRIPPER[0, 3] - label[0]  # the label's right end, left of the gripper (m)
+    assert left == pytest.approx((0.24 + 0.06) / 1.2 + LABEL_CLEARANCE_M)
+    np.testing.assert_allclose(label[1:], over.beside_gripper_m(offset)[1:], atol=1e-12)
+    # A tracked bowl there, its ring of grasp points at its grasp height, likewise.
+    bowl = _frame(0.6, bowl_m=np.array([0.26, -0.3, TABLE_Z]))
+    up = bowl.grasp_height_m
+    (seen,) = discs_in_plane(LOOKING_DOWN, GRIPPER[:3, 3], [(bowl.bowl_m + [0, 0, up],
+                                                            bowl.grasp_radius_m)])  # fmt: skip
+    assert GRIPPER[0, 3] - bowl.bar_label_m(offset)[0] == pytest.approx(
+        -seen[0][0] + seen[1] + LABEL_CLEARANCE_M
+    )
+    # Clear of both, it sits where it always did; the distance bar's is where perception reads.
+    aside = _frame(0.4)
+    assert GRIPPER[0, 3] - aside.bar_label_m(offset)[0] == pytest.approx(
+        -offset[0] + BAR_LABEL_GAP_M
+    )
+    np.testing.assert_allclose(over.distance_label_m(), over.bar_label_m(DISTANCE_BAR_OFFSET_M))
 
 
 def test_a_box_is_pushed_past_each_disc_level_with_it_in_turn() -> None:

@@ -9,7 +9,7 @@ import numpy as np
 import viser
 from numpy.typing import NDArray
 
-from arteleop.ar_features.display_frame import BAR_LABEL_GAP_M, DisplayFrame
+from arteleop.ar_features.display_frame import DisplayFrame
 from arteleop.ar_features.layers.colors import NO_ESTIMATE_RGB
 from arteleop.transforms import transform_to_pose
 
@@ -27,7 +27,8 @@ a laptop's screen, and by OCR (at 0.9 Tesseract misread one label in three)."""
 class Bar:
     """One bar; ``offset_m`` places its left end in the camera's frame (x right, y down)
     relative to the gripper, so it sits beside the gripper on screen whatever the arm does. The
-    label sits left of the bar, away from the gripper."""
+    label sits left of the bar, away from the gripper, and beyond the target and the bowl
+    (:meth:`DisplayFrame.bar_label_m`)."""
 
     def __init__(
         self,
@@ -64,8 +65,7 @@ class Bar:
         self._place(self._frame, start + R[:, 0] * BAR_LENGTH_M / 2, wxyz)
         self._place(self._fill, start + R[:, 0] * length / 2, wxyz)
         self._fill.dimensions = (length, BAR_WIDTH_M * 1.2, BAR_WIDTH_M * 1.2)
-        x, y = self._offset
-        self._label.position = frame.beside_gripper_m((x - BAR_LABEL_GAP_M, y))
+        self._label.position = frame.bar_label_m(self._offset)
         self._label.text = text
 
     @staticmethod
