@@ -8,8 +8,9 @@ suite's 1280x800. Still: the first frame shown and left, Chromium's processor ti
 processes, from ``/proc``) over ``--windows`` windows of 5 s, after 5 s to settle. Streaming:
 the frames shown in turn for 10 s, a fifteenth of a second's pause after each (the server's own
 time to send one comes on top: the rate reached is reported), the page's animation frames
-counted by a script on it and Chromium's processor time meanwhile. Medians of the windows; the backends run
-one after the other, ``--rounds`` times, alternating.
+counted as a served participant's page counts them (:mod:`arteleop.ar_features.page_frames`)
+and Chromium's processor time meanwhile. Medians of the windows; the backends run one after the
+other, ``--rounds`` times, alternating.
 
     python benchmarks/bench_browser_gl.py [--rounds 2] [--windows 3]
 """
@@ -27,10 +28,6 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))  # the checkout's tests/instruments
 
-COUNT_FRAMES = (
-    "() => { window.__frames = 0; const f = () => { window.__frames++; "
-    "requestAnimationFrame(f); }; requestAnimationFrame(f); }"
-)
 RENDERER = (
     "() => { const gl = document.createElement('canvas').getContext('webgl2');"
     " const info = gl.getExtension('WEBGL_debug_renderer_info');"
@@ -54,33 +51,46 @@ def chromium_cpu_s() -> float:
     return total
 
 
+def newest_client(view, wait_s: float = 30.0):
+    """The view's last tab to connect (viser lists a tab once it has sent its camera)."""
+    deadline = time.monotonic() + wait_s
+    while not (clients := view.server.get_clients()) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    if not clients:
+        sys.exit(f"bench_browser_gl: no tab connected to {view.url} within {wait_s:.0f} s")
+    return clients[max(clients)]
+
+
 def measure(view, frames, webgl: list[str], windows: int) -> dict[str, object]:
     """One backend (Chromium's ``webgl`` arguments) on ``view``: its still and streaming
     costs."""
+    from arteleop.ar_features.page_frames import frame_counter_html, frames_between, read_count
     from tests.instruments.browser import chromium
 
     view.show_still(frames[0])
     with chromium(webgl) as launched:
         page = launched.open(view.url, for_pictures=False).playwright
         renderer = page.evaluate(RENDERER)
+        # The page counts its frames as a served participant's does (browser.csv's page_fps).
+        client = newest_client(view)
+        client.gui.add_html(frame_counter_html(client.client_id))
         time.sleep(5.0)
         still = []
         for _ in range(windows):
             before, start = chromium_cpu_s(), time.monotonic()
             time.sleep(5.0)
             still.append((chromium_cpu_s() - before) / (time.monotonic() - start))
-        page.evaluate(COUNT_FRAMES)
         before, start, k = chromium_cpu_s(), time.monotonic(), 0
-        counted = page.evaluate("() => window.__frames")
+        first = read_count(client)
         while time.monotonic() - start < 10.0:
             view.show(frames[k % len(frames)])
             k += 1
             time.sleep(1 / 15)
         elapsed_s = time.monotonic() - start
-        drawn = page.evaluate("() => window.__frames") - counted
         streaming = (chromium_cpu_s() - before) / elapsed_s
+        _, page_fps = frames_between(first, read_count(client))
     return {"renderer": renderer, "still": statistics.median(still),
-            "streaming": streaming, "page_fps": drawn / elapsed_s, "sent_fps": k / elapsed_s}  # fmt: skip
+            "streaming": streaming, "page_fps": page_fps, "sent_fps": k / elapsed_s}  # fmt: skip
 
 
 def main() -> None:

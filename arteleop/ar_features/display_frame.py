@@ -12,7 +12,7 @@ from typing import Protocol
 import numpy as np
 from numpy.typing import NDArray
 
-from arteleop.ar_features.clearance import discs_in_plane, pushed_out_m
+from arteleop.ar_features.clearance import Box, discs_in_plane, pushed_out_m
 from arteleop.ar_features.modalities import ArCues
 from arteleop.arrays import frozen_array
 from arteleop.errors import DisplayFrameError
@@ -260,8 +260,7 @@ class DisplayFrame:
         near = FOOT_RADIUS_M + HEIGHT_LABEL_GAP_M
         w, h = LABEL_SIZE_M
         box = (near, near + w, -h / 2, h / 2) if side > 0 else (-near - w, -near, -h / 2, h / 2)
-        discs = discs_in_plane(self.T_base_camera, ring, self._kept_clear())
-        out = near + pushed_out_m(box, discs, LABEL_CLEARANCE_M)
+        out = near + self._kept_clear_by_m(ring, box)
         return ring + side * self.T_base_camera[:3, 0] * out
 
     @property
@@ -288,20 +287,21 @@ class DisplayFrame:
         x, y = offset_m
         right = x - BAR_LABEL_GAP_M
         w, h = LABEL_SIZE_M
-        discs = discs_in_plane(self.T_base_camera, self.gripper_m, self._kept_clear())
-        out = pushed_out_m((right - w, right, y - h / 2, y + h / 2), discs, LABEL_CLEARANCE_M)
+        out = self._kept_clear_by_m(self.gripper_m, (right - w, right, y - h / 2, y + h / 2))
         return self.beside_gripper_m((right - out, y))
 
-    def _kept_clear(self) -> list[tuple[NDArray[np.float64], float]]:
-        """What the labels keep clear of, as drawn (centre, radius; base frame, m): the target
-        circle, the target mesh over it, the tracked bowl (its ring of grasp points)."""
+    def _kept_clear_by_m(self, anchor_m: NDArray[np.float64], box: Box) -> float:
+        """How far a label's ``box``, in the image plane through ``anchor_m`` (m, relative to
+        it), moves outwards to keep :data:`LABEL_CLEARANCE_M` from the target circle, the
+        target mesh over it and the tracked bowl (its ring of grasp points), as drawn (m)."""
         up = np.array([0.0, 0.0, self.grasp_height_m])
         things = [(self.target_m, self.target_radius_m)]
         if self.cues.target_mesh:
             things.append((self.target_m + up, self.grasp_radius_m))
         if self.bowl_m is not None:
             things.append((self.bowl_m + up, self.grasp_radius_m))
-        return things
+        discs = discs_in_plane(self.T_base_camera, anchor_m, things)
+        return pushed_out_m(box, discs, LABEL_CLEARANCE_M)
 
     def in_cloud(self, point_m: NDArray[np.float64]) -> NDArray[np.float64]:
         """Where the point cloud shows the real scene's ``point_m`` (base frame, m)."""
