@@ -35,11 +35,11 @@ SAME_AS_PINNED = frozenset({PINNED_KERNEL, "Zen"})
 """Kernels that compute as the pinned one: OpenBLAS's Zen target runs the Haswell kernels (asked
 for Zen, numpy's OpenBLAS 0.3.31 reports Haswell; the same trials to the bit)."""
 
-_CPU_INFO = Path("/proc/cpuinfo")
+CPU_INFO = Path("/proc/cpuinfo")
 
 
 def choose_blas_kernel(
-    environ: MutableMapping[str, str] = os.environ, cpu_info: Path = _CPU_INFO
+    environ: MutableMapping[str, str] = os.environ, cpu_info: Path = CPU_INFO
 ) -> str | None:
     """Set ``OPENBLAS_CORETYPE`` in ``environ`` as the module describes; return what it holds
     afterwards (None where it is unset). Imports nothing that loads OpenBLAS."""
@@ -94,14 +94,20 @@ def _numpy_blas() -> dict[str, object] | None:
     )  # fmt: skip
 
 
-def cpu_runs_pinned_kernel(cpu_info: Path = _CPU_INFO) -> bool:
+def cpu_runs_pinned_kernel(cpu_info: Path = CPU_INFO) -> bool:
     """Whether this is x86-64 Linux on a CPU with AVX2 and FMA, by ``cpu_info``'s flags."""
     if platform.machine().lower() not in ("x86_64", "amd64"):
         return False
+    return {"avx2", "fma"} <= cpu_flags(cpu_info)
+
+
+def cpu_flags(cpu_info: Path = CPU_INFO) -> frozenset[str]:
+    """The CPU's feature flags as ``cpu_info`` (Linux's ``/proc/cpuinfo``) lists them; empty
+    where it cannot be read."""
     try:
         with cpu_info.open(encoding="ascii", errors="replace") as lines:
             # The first processor's flags: every core of a machine has the same.
             flags = next((line for line in lines if line.startswith("flags")), "")
     except OSError:
-        return False
-    return {"avx2", "fma"} <= set(flags.partition(":")[2].split())
+        return frozenset()
+    return frozenset(flags.partition(":")[2].split())

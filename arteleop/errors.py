@@ -12,6 +12,11 @@ class BlasKernelWarning(UserWarning):
     seeded trials will differ from those of other machines (:mod:`arteleop.blas_kernel`)."""
 
 
+class NumpyLoopsWarning(UserWarning):
+    """numpy was loaded before arteleop with its AVX-512 math loops on: seeded trials may differ
+    from those of other machines (:mod:`arteleop.numpy_loops`)."""
+
+
 class RobotDataNotFoundError(ArteleopError):
     """The robot description (URDF, meshes) could not be found in the installed packages."""
 

@@ -14,6 +14,7 @@ from typing import Any
 
 from arteleop.blas_kernel import blas_description
 from arteleop.errors import RunFolderError, StudyDefinitionError
+from arteleop.numpy_loops import numpy_loops_description
 from arteleop.scene.gl_renderer import renderer_description, resolve_renderer
 from arteleop.study.cohort import participants
 from arteleop.study.definition import StudyConfig
@@ -42,6 +43,8 @@ def new_manifest(
         "python": platform.python_version(),
         # OpenBLAS's kernels round in their own way: trials differ between them.
         "blas": blas_description(),
+        # So do numpy's AVX-512 math loops and its others.
+        "numpy_loops": numpy_loops_description(),
         # The final tracker looks are rendered: a GPU and Mesa may differ in a pixel's last bit.
         "head_camera": renderer_description(resolve_renderer("auto")),
         "started": utc_now(),

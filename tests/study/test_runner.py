@@ -19,6 +19,7 @@ import pytest
 from arteleop.blas_kernel import blas_description
 from arteleop.cli import main
 from arteleop.errors import RunFolderError
+from arteleop.numpy_loops import numpy_loops_description
 from arteleop.operator import OperatorParams, SeenOutcomes
 from arteleop.study import (
     CohortConfig,
@@ -339,6 +340,7 @@ def test_a_replay_shows_the_recorded_states_with_the_modalitys_layers(tmp_path: 
     # The manifest names the BLAS kernel that the recorded states were computed with.
     manifest = json.loads((tmp_path / "run" / "manifest.json").read_text())
     assert manifest["blas"] == blas_description()
+    assert manifest["numpy_loops"] == numpy_loops_description()
     source = load_replay(tmp_path / "run", "P01", 1)
     shown = []
 

@@ -1,0 +1,95 @@
+"""numpy's math loops without AVX-512, so that a seed gives the same trial on every x86-64 machine.
+
+numpy picks its vector loops by the CPU as it loads. On a CPU with AVX-512 it computes float64
+sine, cosine, exponential, logarithm and their kin with Intel's SVML (its AVX-512 targets),
+elsewhere with the C library's; the two differ in the last bit, and a trial is chaotic. On the
+first AVX-512 machine checked (2026-12-01), one of ``benchmarks/trace_hashes.py``'s five seeded
+trials differed from the AVX2 machines' (0.13 mm of placement error); with numpy's AVX-512
+targets turned off, all five were theirs to the bit.
+
+Importing :mod:`arteleop` before numpy turns those targets off where the CPU has them (x86-64
+Linux with AVX-512), through ``NPY_DISABLE_CPU_FEATURES``, which numpy reads as it loads and
+which the processes a run starts inherit. The AVX2 loops stay: they compute these trials as
+numpy's baseline loops do (see ``docs/results/reproducibility.md``).
+
+A user's own ``NPY_DISABLE_CPU_FEATURES`` or ``NPY_ENABLE_CPU_FEATURES`` is left alone (numpy
+refuses both at once). Where numpy was imported first with its AVX-512 targets on, a
+:class:`~arteleop.errors.NumpyLoopsWarning` says so. Elsewhere nothing is set.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import warnings
+from collections.abc import MutableMapping
+from importlib import metadata
+from pathlib import Path
+
+from arteleop.blas_kernel import CPU_INFO, cpu_flags, cpu_runs_pinned_kernel
+from arteleop.errors import NumpyLoopsWarning
+
+LOOPS_VARIABLE = "NPY_DISABLE_CPU_FEATURES"
+ENABLE_VARIABLE = "NPY_ENABLE_CPU_FEATURES"
+AVX512_TARGETS = ("X86_V4", "AVX512_ICL", "AVX512_SPR")
+"""numpy's AVX-512 dispatch targets, as numpy 2.4 and later name them."""
+AVX512_TARGETS_BEFORE_2_4 = ("AVX512F", "AVX512CD", "AVX512_KNL", "AVX512_KNM", "AVX512_SKX",
+                             "AVX512_CLX", "AVX512_CNL", "AVX512_ICL", "AVX512_SPR")  # fmt: skip
+"""The same targets as numpy 1.26 to 2.3 name them (2.4 grouped them by x86-64 level)."""
+
+
+def choose_numpy_loops(
+    environ: MutableMapping[str, str] = os.environ, cpu_info: Path = CPU_INFO
+) -> str | None:
+    """Set ``NPY_DISABLE_CPU_FEATURES`` in ``environ`` as the module describes; return what it
+    holds afterwards (None where it is unset). Imports nothing that loads numpy."""
+    if environ.get(LOOPS_VARIABLE) or environ.get(ENABLE_VARIABLE):
+        return environ.get(LOOPS_VARIABLE) or None
+    if "numpy" in sys.modules:
+        running = running_avx512_targets()
+        if running:
+            warnings.warn(
+                f"numpy was imported before arteleop and runs its AVX-512 loops "
+                f"({' '.join(running)}): seeded trials may differ from other machines'. Import "
+                f'arteleop before numpy, or set {LOOPS_VARIABLE}="{" ".join(_targets())}".',
+                NumpyLoopsWarning,
+                stacklevel=2,
+            )
+        return None
+    if cpu_runs_pinned_kernel(cpu_info) and "avx512f" in cpu_flags(cpu_info):
+        environ[LOOPS_VARIABLE] = " ".join(_targets())
+    return environ.get(LOOPS_VARIABLE)
+
+
+def running_avx512_targets() -> tuple[str, ...]:
+    """numpy's AVX-512 targets that run in this process, loading numpy if it is not loaded."""
+    avx512 = {*AVX512_TARGETS, *AVX512_TARGETS_BEFORE_2_4}
+    return tuple(t for t in _running_targets() if t in avx512)
+
+
+def numpy_loops_description() -> str:
+    """numpy's dispatched loops that run here, as a run's manifest records them, e.g. ``X86_V3``
+    (``baseline`` where none does)."""
+    return " ".join(_running_targets()) or "baseline"
+
+
+def _running_targets() -> tuple[str, ...]:
+    """numpy's dispatch targets that this CPU runs and nothing turned off (numpy reads a
+    disabled one as absent)."""
+    umath = _umath()
+    return tuple(t for t in umath.__cpu_dispatch__ if umath.__cpu_features__.get(t))
+
+
+def _umath():  # numpy's private extension module, untyped
+    import numpy as np
+
+    return (getattr(np, "_core", None) or np.core)._multiarray_umath
+
+
+def _targets() -> tuple[str, ...]:
+    """The AVX-512 target names the installed numpy knows, read without loading numpy."""
+    try:
+        major, minor = (int(p) for p in metadata.version("numpy").split(".")[:2])
+    except (metadata.PackageNotFoundError, ValueError):
+        return AVX512_TARGETS
+    return AVX512_TARGETS if (major, minor) >= (2, 4) else AVX512_TARGETS_BEFORE_2_4
