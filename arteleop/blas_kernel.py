@@ -20,12 +20,12 @@ trials are then the same from run to run on one machine, not necessarily across 
 from __future__ import annotations
 
 import os
-import platform
 import sys
 import warnings
 from collections.abc import MutableMapping
 from pathlib import Path
 
+from arteleop.cpu import CPU_INFO, cpu_flags
 from arteleop.errors import BlasKernelWarning
 
 BLAS_KERNEL_VARIABLE = "OPENBLAS_CORETYPE"
@@ -34,8 +34,6 @@ PINNED_KERNEL = "Haswell"
 SAME_AS_PINNED = frozenset({PINNED_KERNEL, "Zen"})
 """Kernels that compute as the pinned one: OpenBLAS's Zen target runs the Haswell kernels (asked
 for Zen, numpy's OpenBLAS 0.3.31 reports Haswell; the same trials to the bit)."""
-
-CPU_INFO = Path("/proc/cpuinfo")
 
 
 def choose_blas_kernel(
@@ -96,18 +94,4 @@ def _numpy_blas() -> dict[str, object] | None:
 
 def cpu_runs_pinned_kernel(cpu_info: Path = CPU_INFO) -> bool:
     """Whether this is x86-64 Linux on a CPU with AVX2 and FMA, by ``cpu_info``'s flags."""
-    if platform.machine().lower() not in ("x86_64", "amd64"):
-        return False
     return {"avx2", "fma"} <= cpu_flags(cpu_info)
-
-
-def cpu_flags(cpu_info: Path = CPU_INFO) -> frozenset[str]:
-    """The CPU's feature flags as ``cpu_info`` (Linux's ``/proc/cpuinfo``) lists them; empty
-    where it cannot be read."""
-    try:
-        with cpu_info.open(encoding="ascii", errors="replace") as lines:
-            # The first processor's flags: every core of a machine has the same.
-            flags = next((line for line in lines if line.startswith("flags")), "")
-    except OSError:
-        return frozenset()
-    return frozenset(flags.partition(":")[2].split())
