@@ -108,8 +108,8 @@ wall. Move the Grip slider to *closed* to close the gripper on the bowl (it clos
 first mark) and back to *open* to let go (it opens below the second mark); or press G, once
 to close, again to open.
 
-**The timer** starts when your hand first moves towards the bowl and stops when the bowl,
-released, stands still. Be as quick and as accurate as you can: put the bowl's centre on the
+**The timer** starts when you first move the handle and stops when the bowl, released,
+stands still. Be as quick and as accurate as you can: put the bowl's centre on the
 target.
 """
 """The rest of the built-in page on driving the robot in a pick-and-place study, before
