@@ -50,7 +50,13 @@ from arteleop.study.run_folder import (
     write_atomic,
 )
 from arteleop.study.run_lock import run_lock
-from arteleop.study.run_opening import check_plan, new_manifest, opened_definition, utc_now
+from arteleop.study.run_opening import (
+    arithmetic_notes,
+    check_plan,
+    new_manifest,
+    opened_definition,
+    utc_now,
+)
 from arteleop.study.runner import (
     Progress,
     RunComplete,
@@ -268,6 +274,7 @@ def resume_pointing_study(
         raise RunComplete(f"{folder.path} is complete: all its blocks are in; nothing to resume.")
     blocks = pointing_blocks(recorded)
     check_plan(folder, manifest, blocks)
+    folder.notes.extend(arithmetic_notes(folder, manifest))
     return _execute(folder, blocks, workers, executor, progress)
 
 

@@ -103,6 +103,24 @@ def opened_definition(
     return recorded, manifest
 
 
+def arithmetic_notes(folder: RunFolder, manifest: dict[str, object]) -> list[str]:
+    """What a run resumed here computes otherwise than where it began: numpy's BLAS kernel or
+    its math loops, as the manifest recorded them (a key it lacks is not compared). Not a
+    refusal: the trials still left then run as this machine computes them, each a trial of the
+    same design, not the one the first machine would have written."""
+    here = {"blas": blas_description(), "numpy_loops": numpy_loops_description()}
+    differ = [f"{key} {began!r} there, {here[key]!r} here" for key in here
+              if isinstance(began := manifest.get(key), str) and began != here[key]]  # fmt: skip
+    if not differ:
+        return []
+    return [
+        f"{folder.path / 'manifest.json'}: the run began on a machine that computes otherwise "
+        f"({'; '.join(differ)}): the trials run now differ from those it would have written, "
+        "as another seed's do (docs/results/reproducibility.md). To keep them its, resume it "
+        "there, or with the same OPENBLAS_CORETYPE and NPY_DISABLE_CPU_FEATURES."
+    ]
+
+
 def check_plan(folder: RunFolder, manifest: dict[str, object], plan: Sequence[Any]) -> None:
     """Refuse to continue a run whose ``plan`` (trials, or a pointing study's blocks: frozen
     dataclasses) this arteleop makes otherwise than the version that began it."""

@@ -42,7 +42,14 @@ from arteleop.study.run_folder import (
     table_text,
 )
 from arteleop.study.run_lock import LOCK_FILE, after_fork_in_child, run_lock
-from arteleop.study.run_opening import new_manifest, open_run, plan_run, require_run_folder, utc_now
+from arteleop.study.run_opening import (
+    arithmetic_notes,
+    new_manifest,
+    open_run,
+    plan_run,
+    require_run_folder,
+    utc_now,
+)
 from arteleop.study.sites import StudySite
 from arteleop.study.study_writing import study_text
 from arteleop.teleop.trial_task import POINTING
@@ -173,6 +180,7 @@ def resume_study(
                 f"{folder.path} is complete: all {len(plan)} trials are in; nothing to resume."
                 + notes
             )
+        folder.notes.extend(arithmetic_notes(folder, manifest))
         return _execute(recorded, site, folder, plan, people, workers, executor, progress)
 
 

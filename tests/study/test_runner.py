@@ -223,9 +223,32 @@ def test_resume_carries_on_through_a_trial_run_again(
     trials.write_text("\n".join([header, rows[0], rows[1], *rows[3:]]) + "\n")
     again: list = []
     with _brought_to(again):
-        resume_study(folder, workers=1)
+        run = resume_study(folder, workers=1)
     assert again == [given[0], given[2]]
     assert {k: v for k, v in _files(folder).items() if k != "trials-set-aside.csv"} == files
+    assert not [n for n in run.notes if "computes otherwise" in n], "the same machine"
+
+
+def test_resume_on_a_machine_that_computes_otherwise_says_so(
+    chained: tuple[dict[str, bytes], list, Path], tmp_path: Path
+) -> None:
+    _, _, original = chained
+    folder = tmp_path / "run"
+    shutil.copytree(original, folder)
+    trials = folder / "trials.csv"
+    trials.write_text("".join(trials.read_text().splitlines(keepends=True)[:-1]))
+    manifest = json.loads((folder / "manifest.json").read_text())
+    manifest["numpy_loops"] = "X86_V3 X86_V4 AVX512_ICL AVX512_SPR"
+    (folder / "manifest.json").write_text(json.dumps(manifest))
+    run = resume_study(folder, workers=1)
+    assert run.ran == 1
+    assert list(run.notes) == [
+        f"{folder / 'manifest.json'}: the run began on a machine that computes otherwise "
+        f"(numpy_loops 'X86_V3 X86_V4 AVX512_ICL AVX512_SPR' there, "
+        f"{numpy_loops_description()!r} here): the trials run now differ from those it would "
+        "have written, as another seed's do (docs/results/reproducibility.md). To keep them its, "
+        "resume it there, or with the same OPENBLAS_CORETYPE and NPY_DISABLE_CPU_FEATURES."
+    ]
 
 
 def test_resume_removes_what_a_write_cut_short_left(
