@@ -13,12 +13,15 @@ which the processes a run starts inherit. The AVX2 loops stay: they compute thes
 numpy's baseline loops do (see ``docs/results/reproducibility.md``). The targets' names are
 numpy 2.4's (checked) or, for an older numpy, those its documentation gives (not checked here);
 a numpy whose version cannot be read is taken for 2.4 or later. A numpy built with AVX-512 as
-its baseline cannot turn it off, and refuses to load with the variable set: unset it there.
+its baseline cannot turn it off, and refuses to load with the variable set: there, set
+``NPY_ENABLE_CPU_FEATURES`` yourself (to the features that build runs), which is left alone.
 
 A user's own ``NPY_DISABLE_CPU_FEATURES`` or ``NPY_ENABLE_CPU_FEATURES`` is left alone (numpy
 refuses both at once; an empty one counts as unset, as for numpy). Where numpy was imported
 first with its AVX-512 targets on, a :class:`~arteleop.errors.NumpyLoopsWarning` says so and
-names the targets to turn off. Elsewhere nothing is set.
+names the targets to turn off, and ``NPY_ENABLE_CPU_FEATURES`` is set to the targets it runs,
+so that the processes a run starts compute as this one does (they import arteleop first, and
+would turn them off). Elsewhere nothing is set.
 """
 
 from __future__ import annotations
@@ -41,7 +44,8 @@ AVX512_TARGETS_BEFORE_2_4 = ("AVX512F", "AVX512_SKX", "AVX512_CLX", "AVX512_CNL"
 """The targets with float64 math loops as numpy 1.26 to 2.3 name them (2.4 grouped them by
 x86-64 level). Only names every such numpy dispatches: numpy warns of another
 (``ImportWarning``), and fails to load where warnings are errors."""
-_ANY_AVX512_TARGET = frozenset(AVX512_TARGETS + AVX512_TARGETS_BEFORE_2_4)
+ANY_AVX512_TARGET = frozenset(AVX512_TARGETS + AVX512_TARGETS_BEFORE_2_4)
+"""Every AVX-512 target's name, in any numpy's naming."""
 
 
 def choose_numpy_loops(
@@ -61,6 +65,7 @@ def choose_numpy_loops(
                 NumpyLoopsWarning,
                 stacklevel=2,
             )
+            environ[ENABLE_VARIABLE] = " ".join(_running_targets())
         return None
     if "avx512f" not in cpu_flags(cpu_info):  # x86-64 Linux with AVX-512 only
         return None
@@ -70,7 +75,7 @@ def choose_numpy_loops(
 
 def running_avx512_targets() -> tuple[str, ...]:
     """numpy's AVX-512 targets that run in this process, loading numpy if it is not loaded."""
-    return tuple(t for t in _running_targets() if t in _ANY_AVX512_TARGET)
+    return tuple(t for t in _running_targets() if t in ANY_AVX512_TARGET)
 
 
 def numpy_loops_description() -> str:

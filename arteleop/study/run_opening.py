@@ -12,9 +12,13 @@ from datetime import UTC, datetime
 from importlib import metadata
 from typing import Any
 
-from arteleop.blas_kernel import blas_description
+from arteleop.blas_kernel import SAME_AS_PINNED, blas_description
 from arteleop.errors import RunFolderError, StudyDefinitionError
-from arteleop.numpy_loops import numpy_loops_description
+from arteleop.numpy_loops import (
+    ANY_AVX512_TARGET,
+    numpy_loops_description,
+    running_avx512_targets,
+)
 from arteleop.scene.gl_renderer import renderer_description, resolve_renderer
 from arteleop.study.cohort import participants
 from arteleop.study.definition import StudyConfig
@@ -104,21 +108,53 @@ def opened_definition(
 
 
 def arithmetic_notes(folder: RunFolder, manifest: dict[str, object]) -> list[str]:
-    """What a run resumed here computes otherwise than where it began: numpy's BLAS kernel or
-    its math loops, as the manifest recorded them (a key it lacks is not compared). Not a
-    refusal: the trials still left then run as this machine computes them, each a trial of the
-    same design, not the one the first machine would have written."""
-    here = {"blas": blas_description(), "numpy_loops": numpy_loops_description()}
-    differ = [f"{key} {began!r} there, {here[key]!r} here" for key in here
-              if isinstance(began := manifest.get(key), str) and began != here[key]]  # fmt: skip
-    if not differ:
-        return []
-    return [
-        f"{folder.path / 'manifest.json'}: the run began on a machine that computes otherwise "
-        f"({'; '.join(differ)}): the trials run now differ from those it would have written, "
-        "as another seed's do (docs/results/reproducibility.md). To keep them its, resume it "
-        "there, or with the same OPENBLAS_CORETYPE and NPY_DISABLE_CPU_FEATURES."
-    ]
+    """What a run resumed here computes otherwise than where it began, as its manifest recorded
+    it (a key it lacks is not compared): numpy's BLAS kernel or whether its AVX-512 loops ran
+    (what ``OPENBLAS_CORETYPE`` and ``NPY_DISABLE_CPU_FEATURES`` set), and the packages'
+    versions (what an install sets). Not a refusal: the trials left run as this machine computes
+    them, each a trial of the same design, not the one the first machine would have written."""
+    path = folder.path / "manifest.json"
+    notes = []
+    began_blas, began_loops = manifest.get("blas"), manifest.get("numpy_loops")
+    differ = []
+    if isinstance(began_blas, str) and began_blas.split():
+        there, here = began_blas.split()[-1], blas_description().split()[-1]
+        if here != there and not {here, there} <= SAME_AS_PINNED:
+            differ.append(f"BLAS kernel {there} there, {here} here")
+    if isinstance(began_loops, str):
+        there_on, here_on = _avx512_named(began_loops), bool(running_avx512_targets())
+        if there_on != here_on:
+            differ.append(f"numpy's AVX-512 loops {_on(there_on)} there, {_on(here_on)} here")
+    if differ:
+        notes.append(
+            f"{path}: the run began on a machine that computes otherwise ({'; '.join(differ)}): "
+            "the trials run now are this machine's, and differ from those the first would have "
+            "written as another seed's do (docs/results/reproducibility.md). For a run computed "
+            "alike throughout, resume it where it began, or set OPENBLAS_CORETYPE and "
+            "NPY_DISABLE_CPU_FEATURES as there."
+        )
+    began_packages = manifest.get("packages")
+    if isinstance(began_packages, dict):
+        here_packages = _versions()
+        changed = [f"{name} {began_packages[name]} there, {version} here"
+                   for name, version in here_packages.items()
+                   if name in began_packages and began_packages[name] != version]  # fmt: skip
+        if changed:
+            notes.append(
+                f"{path}: the run began with other versions ({'; '.join(changed)}): the trials "
+                "run now may differ from those it would have written. For a run computed alike "
+                "throughout, install the versions its 'packages' lists."
+            )
+    return notes
+
+
+def _avx512_named(loops: str) -> bool:
+    """Whether a manifest's ``numpy_loops`` names an AVX-512 target."""
+    return bool(set(loops.split()) & ANY_AVX512_TARGET)
+
+
+def _on(on: bool) -> str:
+    return "on" if on else "off"
 
 
 def check_plan(folder: RunFolder, manifest: dict[str, object], plan: Sequence[Any]) -> None:

@@ -19,7 +19,7 @@ import pytest
 from arteleop.blas_kernel import blas_description
 from arteleop.cli import main
 from arteleop.errors import RunFolderError
-from arteleop.numpy_loops import numpy_loops_description
+from arteleop.numpy_loops import numpy_loops_description, running_avx512_targets
 from arteleop.operator import OperatorParams, SeenOutcomes
 from arteleop.study import (
     CohortConfig,
@@ -33,6 +33,7 @@ from arteleop.study import (
 )
 from arteleop.study.carry import Carried
 from arteleop.study.protocol import run_planned_trial
+from arteleop.study.run_opening import arithmetic_notes, new_manifest
 
 # Two participants, two modalities, one practice trial: six trials of a few simulated seconds,
 # long enough for the second and third to teach the operator something of the display's lag.
@@ -238,17 +239,42 @@ def test_resume_on_a_machine_that_computes_otherwise_says_so(
     trials = folder / "trials.csv"
     trials.write_text("".join(trials.read_text().splitlines(keepends=True)[:-1]))
     manifest = json.loads((folder / "manifest.json").read_text())
-    manifest["numpy_loops"] = "X86_V3 X86_V4 AVX512_ICL AVX512_SPR"
+    here_on = bool(running_avx512_targets())
+    manifest["numpy_loops"] = "X86_V3" if here_on else "X86_V3 X86_V4 AVX512_ICL AVX512_SPR"
     (folder / "manifest.json").write_text(json.dumps(manifest))
     run = resume_study(folder, workers=1)
     assert run.ran == 1
+    there, here = ("off", "on") if here_on else ("on", "off")
     assert list(run.notes) == [
         f"{folder / 'manifest.json'}: the run began on a machine that computes otherwise "
-        f"(numpy_loops 'X86_V3 X86_V4 AVX512_ICL AVX512_SPR' there, "
-        f"{numpy_loops_description()!r} here): the trials run now differ from those it would "
-        "have written, as another seed's do (docs/results/reproducibility.md). To keep them its, "
-        "resume it there, or with the same OPENBLAS_CORETYPE and NPY_DISABLE_CPU_FEATURES."
+        f"(numpy's AVX-512 loops {there} there, {here} here): the trials run now are this "
+        "machine's, and differ from those the first would have written as another seed's do "
+        "(docs/results/reproducibility.md). For a run computed alike throughout, resume it where "
+        "it began, or set OPENBLAS_CORETYPE and NPY_DISABLE_CPU_FEATURES as there."
     ]
+
+
+def test_a_blas_or_package_version_is_told_apart_from_the_machines_arithmetic(
+    tmp_path: Path,
+) -> None:
+    folder = RunFolder(tmp_path)
+    *_, kernel = blas_description().split()
+    same = {"blas": blas_description(), "numpy_loops": numpy_loops_description(),
+            "packages": dict(new_manifest(SMALL, "", [], 0)["packages"])}  # fmt: skip
+    assert arithmetic_notes(folder, same) == []
+    # Another OpenBLAS build of the same kernel computes alike: nothing to set.
+    assert arithmetic_notes(folder, same | {"blas": f"openblas 0.3.1 {kernel}"}) == []
+    other = "Sandybridge" if kernel != "Sandybridge" else "Haswell"
+    (note,) = arithmetic_notes(folder, same | {"blas": f"openblas 0.3.1 {other}"})
+    assert f"(BLAS kernel {other} there, {kernel} here)" in note
+    older = same["packages"] | {"pybullet": "0.0.1"}
+    (note,) = arithmetic_notes(folder, same | {"packages": older})
+    here_version = same["packages"]["pybullet"]
+    assert note == (
+        f"{tmp_path / 'manifest.json'}: the run began with other versions (pybullet 0.0.1 "
+        f"there, {here_version} here): the trials run now may differ from those it would have "
+        "written. For a run computed alike throughout, install the versions its 'packages' lists."
+    )
 
 
 def test_resume_removes_what_a_write_cut_short_left(
