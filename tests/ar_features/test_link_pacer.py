@@ -88,12 +88,20 @@ def test_a_tab_behind_a_slow_link_is_sent_fewer_clouds() -> None:
                 time.sleep(0.1)
             pacer = view.pacer
             assert pacer is not None
-            latency_s = pacer.take_latency_s()
+            # A ping sent behind the queue comes back late; on a busy machine the ones answered
+            # by the last frame may all have gone before the queue grew.
+            answered: list[float] = []
+
+            def late_ping() -> bool:
+                answered.append(pacer.take_latency_s() or 0.0)
+                return max(answered) > QUEUE_HIGH_S
+
+            queued = until(late_ping, wait_s=20.0)
         assert len(tab.messages()) > 0
     # Its queue grew: the clouds went every few frames, the most the pacer allows by the end.
     assert max(intervals) == MAX_INTERVAL and view.cloud.frames_held >= 15
     assert view.cloud.frames_drawn + view.cloud.frames_held == 30
-    assert latency_s is not None and latency_s > QUEUE_HIGH_S
+    assert queued, f"no ping's round trip over {QUEUE_HIGH_S} s: {max(answered):.3f} s"
     # A tab no longer paced gets every frame.
     view.pace(None)
     assert view.cloud.interval == 1 and view.pacer is None
