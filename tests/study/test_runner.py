@@ -231,7 +231,7 @@ def test_resume_carries_on_through_a_trial_run_again(
 
 
 def test_resume_on_a_machine_that_computes_otherwise_says_so(
-    chained: tuple[dict[str, bytes], list, Path], tmp_path: Path
+    chained: tuple[dict[str, bytes], list, Path], tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     _, _, original = chained
     folder = tmp_path / "run"
@@ -242,16 +242,20 @@ def test_resume_on_a_machine_that_computes_otherwise_says_so(
     here_on = bool(running_avx512_targets())
     manifest["numpy_loops"] = "X86_V3" if here_on else "X86_V3 X86_V4 AVX512_ICL AVX512_SPR"
     (folder / "manifest.json").write_text(json.dumps(manifest))
-    run = resume_study(folder, workers=1)
-    assert run.ran == 1
+    assert main(["study", "resume", str(folder), "--workers", "1", "--quiet"]) == 0
     there, here = ("off", "on") if here_on else ("on", "off")
-    assert list(run.notes) == [
-        f"{folder / 'manifest.json'}: the run began on a machine that computes otherwise "
+    note = (
+        f"note: {folder / 'manifest.json'}: the run began on a machine that computes otherwise "
         f"(numpy's AVX-512 loops {there} there, {here} here): the trials run now are this "
         "machine's, and differ from those the first would have written as another seed's do "
         "(docs/results/reproducibility.md). For a run computed alike throughout, resume it where "
         "it began, or set OPENBLAS_CORETYPE and NPY_DISABLE_CPU_FEATURES as there."
-    ]
+    )
+    out = capsys.readouterr().out.splitlines()
+    # Said once, before the trials run (their summary follows).
+    assert out.count(note) == 1 and out.index(note) < next(
+        k for k, line in enumerate(out) if line.endswith("(1 run now)")
+    )
 
 
 def test_a_blas_or_package_version_is_told_apart_from_the_machines_arithmetic(
