@@ -5,7 +5,7 @@ from __future__ import annotations
 import contextlib
 import sys
 import time
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Annotated, Any
@@ -85,39 +85,17 @@ def study_resume(cmd: StudyResumeCommand) -> int:
     from arteleop.study import RunComplete, RunFolder, resume_study
 
     _check_workers(cmd.workers)
-    said = _machine_notes(cmd.run_dir)
-    for note in said:  # before the trials, which may take hours
-        print(f"note: {note}")
     try:
         with _study_progress(cmd.run_dir, cmd.quiet) as progress:
-            run = resume_study(cmd.run_dir, workers=cmd.workers or None, progress=progress)
+            run = resume_study(cmd.run_dir, workers=cmd.workers or None, progress=progress,
+                               tell=lambda note: print(f"note: {note}"))  # fmt: skip
     except RunComplete as done:
         print(done)
         if RunFolder(cmd.run_dir).report_finished():
             return 0
         print("its report is not whole: writing it")
         return _write_run_report(cmd.run_dir)
-    return _study_done(run, said)
-
-
-def _machine_notes(run_dir: Path) -> list[str]:
-    """What the trials a resume of ``run_dir`` would run compute otherwise than its first
-    machine did (:func:`~arteleop.study.run_opening.arithmetic_notes`); none for a folder that
-    resume refuses or that has every trial (resume says why)."""
-    from arteleop.errors import RunFolderError
-    from arteleop.study import RunFolder
-    from arteleop.study.run_folder import REAL
-    from arteleop.study.run_opening import arithmetic_notes
-
-    folder = RunFolder(run_dir)
-    try:
-        manifest = folder.manifest() if folder.is_run_folder() else {}
-        complete = len(folder.done_rows()) == manifest.get("trials_planned")
-    except RunFolderError:
-        return []
-    if not manifest or complete or manifest.get("cohort") == REAL:
-        return []
-    return arithmetic_notes(folder, manifest)
+    return _study_done(run)
 
 
 def _check_workers(workers: int) -> None:
@@ -152,12 +130,11 @@ def _study_progress(run_dir: Path, quiet: bool) -> Iterator[Any]:
             bar.close()
 
 
-def _study_done(run: Any, said: Sequence[str] = ()) -> int:
-    """The run's summary, its notes not already ``said``, then its report."""
+def _study_done(run: Any) -> int:
     from arteleop.teleop import POINTING
 
     if run.task == POINTING.name:
-        return _pointing_done(run, said)
+        return _pointing_done(run)
     trials = run.trials
     experimental = trials[trials["phase"] == "experimental"]
     print(f"{len(trials)} trials in {run.folder} ({run.ran} run now)")
@@ -169,17 +146,12 @@ def _study_done(run: Any, said: Sequence[str] = ()) -> int:
         print(f"{modality:<14}{len(group):>7}{len(ok):>9}"
               f"{ok['completion_time_s'].median():>17.1f}"
               f"{1000 * ok['placement_error_m'].median():>19.1f}")  # fmt: skip
-    _print_notes(run, said)
+    for note in run.notes:
+        print(f"note: {note}")
     return _write_run_report(run.folder)
 
 
-def _print_notes(run: Any, said: Sequence[str]) -> None:
-    for note in run.notes:
-        if note not in said:
-            print(f"note: {note}")
-
-
-def _pointing_done(run: Any, said: Sequence[str] = ()) -> int:
+def _pointing_done(run: Any) -> int:
     trials = run.trials
     print(f"{len(trials)} pointing trials in {run.folder} ({run.ran} run now)")
     print(f"{'lag (ms)':>8}{'trials':>8}{'selected':>10}{'hits':>6}{'median MT (s)':>15}")
@@ -187,7 +159,8 @@ def _pointing_done(run: Any, said: Sequence[str] = ()) -> int:
         selected = group["movement_time_s"].notna()
         print(f"{lag:>8g}{len(group):>8}{int(selected.sum()):>10}{int(group['hit'].sum()):>6}"
               f"{group['movement_time_s'].median():>15.2f}")  # fmt: skip
-    _print_notes(run, said)
+    for note in run.notes:
+        print(f"note: {note}")
     return _write_run_report(run.folder)
 
 

@@ -263,6 +263,7 @@ def resume_pointing_study(
     workers: int | None = None,
     executor: Executor | None = None,
     progress: Progress | None = None,
+    tell: Callable[[str], None] | None = None,
 ) -> StudyRun:
     """Run the blocks a pointing run cut short lacks, keeping those it finished; the folder
     checked as a pick-and-place run's is (:func:`~arteleop.study.run_opening.opened_definition`),
@@ -274,7 +275,8 @@ def resume_pointing_study(
         raise RunComplete(f"{folder.path} is complete: all its blocks are in; nothing to resume.")
     blocks = pointing_blocks(recorded)
     check_plan(folder, manifest, blocks)
-    folder.notes.extend(arithmetic_notes(folder, manifest))
+    for note in arithmetic_notes(folder, manifest):  # ``tell``: as resume_study's
+        (tell or folder.notes.append)(note)
     return _execute(folder, blocks, workers, executor, progress)
 
 

@@ -157,9 +157,13 @@ def resume_study(
     workers: int | None = None,
     executor: Executor | None = None,
     progress: Progress | None = None,
+    tell: Callable[[str], None] | None = None,
 ) -> StudyRun:
     """Continue the run in ``out`` after a crash, Ctrl-C or ``kill -9``: the trials it lacks
-    run, the rest are kept. With ``study``, refuses a folder made from another definition."""
+    run, the rest are kept. With ``study``, refuses a folder made from another definition.
+    ``tell`` gets what the user should know before the trials run (this machine computes
+    otherwise than the run's first: :func:`~arteleop.study.run_opening.arithmetic_notes`);
+    without it, the run's :attr:`StudyRun.notes` keep it."""
     folder = RunFolder(out)
     require_run_folder(folder)
     with run_lock(folder.path):
@@ -171,7 +175,7 @@ def resume_study(
         if folder.manifest().get("task") == POINTING.name:
             from arteleop.study.pointing_run import resume_pointing_study  # it imports this
 
-            return resume_pointing_study(folder, study, workers, executor, progress)
+            return resume_pointing_study(folder, study, workers, executor, progress, tell)
         site = StudySite()  # plans the run, then runs its trials: its robot model loads once
         recorded, plan, people, manifest = open_run(folder, study, site)
         if manifest.get("finished") and len(folder.done_rows(repair=True)) == len(plan):
@@ -180,7 +184,8 @@ def resume_study(
                 f"{folder.path} is complete: all {len(plan)} trials are in; nothing to resume."
                 + notes
             )
-        folder.notes.extend(arithmetic_notes(folder, manifest))
+        for note in arithmetic_notes(folder, manifest):
+            (tell or folder.notes.append)(note)
         return _execute(recorded, site, folder, plan, people, workers, executor, progress)
 
 
