@@ -235,12 +235,14 @@ class DisplayFeed:
         self.colocation_px.append(float(px[0]))
         self.colocation_m.append(float(m[0]))
         if self._background:
-            if not self._site.frame_pending:
+            if not self._site.frame_pending and self._is_new(frame.time_s):
                 self._request(frame, applied_sample_time_s)
             elif self._owed:
                 self.frames_skipped += 1  # two ticks while one frame renders: drop one
             else:
-                self._owed = True  # render it as soon as the current frame is in
+                # Render it once the current frame is in, or (the owed frame of a control tick
+                # just before, this same physics instant) once the physics has moved on.
+                self._owed = True
         elif self._render:
             with self._timer.stage("camera"):
                 rgbd = self._site.capture()
@@ -255,8 +257,7 @@ class DisplayFeed:
         finished = self._requested if rgbd is not None else None
         if self._owed and not self._site.frame_pending:
             state = self._site.observe()
-            last = self._requested
-            if last is None or state.time_s > last[2].time_s:
+            if self._is_new(state.time_s):
                 track = self._track or self._site.sight_bowl()
                 owed = display_frame(
                     state, track, self._site.frames, self._workspace, self._cues, engaged,
@@ -293,6 +294,10 @@ class DisplayFeed:
     def last_frame(self) -> DisplayFrame | None:
         """The newest camera frame's display content; None before the first."""
         return self._history[-1] if self._history else None
+
+    def _is_new(self, time_s: float) -> bool:
+        """No frame of the physics instant ``time_s`` (s) has been asked for yet."""
+        return self._requested is None or time_s > self._requested[2].time_s
 
     def _request(self, frame: DisplayFrame, applied_sample_time_s: float) -> None:
         # Thinned in the render process: the display shows no more, and a quarter of the
