@@ -55,6 +55,7 @@ from arteleop.study.run_opening import (
     check_plan,
     new_manifest,
     opened_definition,
+    record_resume,
     utc_now,
 )
 from arteleop.study.runner import (
@@ -277,7 +278,7 @@ def resume_pointing_study(
     check_plan(folder, manifest, blocks)
     for note in arithmetic_notes(folder, manifest):  # ``tell``: as resume_study's
         (tell or folder.notes.append)(note)
-    return _execute(folder, blocks, workers, executor, progress)
+    return _execute(folder, blocks, workers, executor, progress, resumed=True)
 
 
 def _execute(
@@ -286,6 +287,7 @@ def _execute(
     workers: int | None,
     executor: Executor | None,
     progress: Progress | None,
+    resumed: bool = False,
 ) -> StudyRun:
     """The blocks not yet kept in ``folder`` run, each kept as it ends; then pointing.csv, in
     plan order, and the manifest says the run is finished; last the kept blocks go."""
@@ -300,6 +302,8 @@ def _execute(
         bodies[n] = text.split("\n", 1)[1]
 
     done_before = sum(len(blocks[n].trials) for n in range(len(blocks)) if n not in pending)
+    if resumed:
+        record_resume(folder, done_before)
     run_blocks([blocks[n] for n in pending], workers, executor, progress,
                lambda k, rows: keep(pending[k], rows), done_before)  # fmt: skip
     write_atomic(folder.path / POINTING_FILE, csv_line(RUN_COLUMNS) + "".join(map(str, bodies)))

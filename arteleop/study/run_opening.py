@@ -43,14 +43,7 @@ def new_manifest(
         "seed": study.seed,
         "trials_planned": len(plan),
         "participants": participants,
-        "packages": _versions(),
-        "python": platform.python_version(),
-        # OpenBLAS's kernels round in their own way: trials differ between them.
-        "blas": blas_description(),
-        # So do numpy's AVX-512 math loops and its others.
-        "numpy_loops": numpy_loops_description(),
-        # The final tracker looks are rendered: a GPU and Mesa may differ in a pixel's last bit.
-        "head_camera": renderer_description(resolve_renderer("auto")),
+        **machine_record(),
         "started": utc_now(),
         "finished": None,
         # What the run is, so that resume can refuse a folder whose definition was edited or
@@ -60,6 +53,33 @@ def new_manifest(
         "plan_sha256": _plan_digest(plan),
         "report_finished": None,
     }
+
+
+def machine_record() -> dict[str, object]:
+    """What this machine computes a trial with, as a manifest records it."""
+    return {
+        "packages": _versions(),
+        "python": platform.python_version(),
+        # OpenBLAS's kernels round in their own way: trials differ between them.
+        "blas": blas_description(),
+        # So do numpy's AVX-512 math loops and its others.
+        "numpy_loops": numpy_loops_description(),
+        # The final tracker looks are rendered: a GPU and Mesa may differ in a pixel's last bit.
+        "head_camera": renderer_description(resolve_renderer("auto")),
+    }
+
+
+def record_resume(folder: RunFolder, trials_in: int) -> None:
+    """Adds a resume, on this machine, to the manifest's ``resumed`` list: when, the trials
+    already in then, and what the trials run now are computed with (a run resumed elsewhere
+    mixes two machines' trials; :func:`arithmetic_notes` tells the user)."""
+    manifest = folder.manifest()
+    resumed = manifest.get("resumed")
+    manifest["resumed"] = [
+        *(resumed if isinstance(resumed, list) else []),
+        {"started": utc_now(), "trials_in": trials_in, **machine_record()},
+    ]
+    folder.write_manifest(manifest)
 
 
 def open_run(

@@ -47,6 +47,7 @@ from arteleop.study.run_opening import (
     new_manifest,
     open_run,
     plan_run,
+    record_resume,
     require_run_folder,
     utc_now,
 )
@@ -186,7 +187,9 @@ def resume_study(
             )
         for note in arithmetic_notes(folder, manifest):
             (tell or folder.notes.append)(note)
-        return _execute(recorded, site, folder, plan, people, workers, executor, progress)
+        return _execute(
+            recorded, site, folder, plan, people, workers, executor, progress, resumed=True
+        )
 
 
 def _begun_only(folder: RunFolder) -> bool:
@@ -209,12 +212,15 @@ def _execute(
     workers: int | None,
     executor: Executor | None,
     progress: Progress | None,
+    resumed: bool = False,
 ) -> StudyRun:
     folder.remove_cut_writes()
     done = folder.done_rows(repair=True)
     pending = [spec for spec in plan if spec.key not in done]
     by_id = {p.id: p for p in people}
     count = len(plan) - len(pending)
+    if resumed:
+        record_resume(folder, count)
     speed: list[tuple[float, float]] = []
     previous = _previous_trials(plan)
     following = {before: key for key, before in previous.items() if before is not None}

@@ -91,7 +91,10 @@ def test_a_pointing_study_runs_each_trial_as_the_pointing_trial_and_keeps_what_a
         assert float(row["movement_time_s"]) == trial.movement_time_s
         assert (float(row["along_m"]), float(row["across_m"])) == (trial.along_m, trial.across_m)
         assert float(row["hit"]) == float(trial.hit)
-    assert json.loads((out / "manifest.json").read_text())["task"] == "pointing"
+    manifest = json.loads((out / "manifest.json").read_text())
+    assert manifest["task"] == "pointing"
+    (resumed,) = manifest["resumed"]  # resumed once, with the first block's two trials in
+    assert resumed["trials_in"] == 2 and resumed["numpy_loops"] == manifest["numpy_loops"]
     assert parse_study((out / "study.toml").read_text()) == study
     assert "## Lag 150 ms (round trip)" in (out / "report" / "report.md").read_text()
     with pytest.raises(RunComplete, match="is complete"):

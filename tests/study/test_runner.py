@@ -237,8 +237,10 @@ def test_resume_on_a_machine_that_computes_otherwise_says_so(
     folder = tmp_path / "run"
     shutil.copytree(original, folder)
     trials = folder / "trials.csv"
-    trials.write_text("".join(trials.read_text().splitlines(keepends=True)[:-1]))
+    lines = trials.read_text().splitlines(keepends=True)
+    trials.write_text("".join(lines[:-1]))
     manifest = json.loads((folder / "manifest.json").read_text())
+    assert "resumed" not in manifest  # a run that never stopped
     here_on = bool(running_avx512_targets())
     manifest["numpy_loops"] = "X86_V3" if here_on else "X86_V3 X86_V4 AVX512_ICL AVX512_SPR"
     (folder / "manifest.json").write_text(json.dumps(manifest))
@@ -256,6 +258,16 @@ def test_resume_on_a_machine_that_computes_otherwise_says_so(
     assert out.count(note) == 1 and out.index(note) < next(
         k for k, line in enumerate(out) if line.endswith("(1 run now)")
     )
+    # The manifest keeps what the run began on, and adds where it was resumed and from where.
+    after = json.loads((folder / "manifest.json").read_text())
+    assert after["numpy_loops"] == manifest["numpy_loops"]
+    (resumed,) = after["resumed"]
+    assert resumed["trials_in"] == len(lines) - 2  # the header and the trial run again
+    assert (resumed["blas"], resumed["numpy_loops"]) == (
+        blas_description(),
+        numpy_loops_description(),
+    )
+    assert resumed["packages"] == manifest["packages"] and resumed["started"] >= manifest["started"]
 
 
 def test_a_blas_or_package_version_is_told_apart_from_the_machines_arithmetic(
