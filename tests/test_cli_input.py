@@ -319,6 +319,25 @@ def test_ctrl_c_during_the_report_says_how_to_write_it(tmp_path, monkeypatch, ca
     )
 
 
+def test_a_studys_progress_times_its_first_trial_from_the_runs_start(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The bar appears at the first trial's end: timed from then, it gave that trial no time
+    and a rate of 65536 trials a second."""
+    import re
+    from types import SimpleNamespace
+
+    from arteleop.cli.study import _study_progress
+
+    with _study_progress(tmp_path, quiet=False) as update:
+        time.sleep(0.25)  # the first trial
+        update(SimpleNamespace(participant="P01", trial_index=1), 1, 4)
+    shown = capsys.readouterr().err
+    rates = [float(r) for r in re.findall(r"([\d.]+)trial/s", shown)]
+    assert rates and all(0 < r <= 4.0 for r in rates), shown  # a trial in 0.25 s or more
+    assert "last: P01 trial 1" in shown
+
+
 def test_progress_is_shown_unless_quiet() -> None:
     args = [*ARTELEOP, "trial", "--timeout-s", "3", "--seed", "1"]
     loud = subprocess.run(args, capture_output=True, text=True, timeout=120)

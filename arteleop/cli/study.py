@@ -110,14 +110,18 @@ def _study_progress(run_dir: Path, quiet: bool) -> Iterator[Any]:
     from tqdm import tqdm
 
     bars: list[tqdm] = []  # made at the first trial, after the definition has been checked
+    began_s = time.time()  # tqdm's clock
 
     def update(spec: Any, done: int, total: int) -> None:
         check_ctrl_c()
         if quiet:
             return
         if not bars:
-            bars.append(tqdm(desc="trials", unit="trial", total=total, initial=done - 1,
-                             leave=False))  # fmt: skip
+            bar = tqdm(desc="trials", unit="trial", total=total, initial=done - 1, leave=False)
+            # Timed from the run's start: made at the first trial's end, it would give that
+            # trial no time, and the rate thousands of trials a second.
+            bar.start_t = bar.last_print_t = began_s
+            bars.append(bar)
         bars[0].update(done - bars[0].n)
         bars[0].set_postfix_str(f"last: {spec.participant} trial {spec.trial_index}")
 
