@@ -290,7 +290,9 @@ def _execute(
     resumed: bool = False,
 ) -> StudyRun:
     """The blocks not yet kept in ``folder`` run, each kept as it ends; then pointing.csv, in
-    plan order, and the manifest says the run is finished; last the kept blocks go."""
+    plan order, and the manifest says the run is finished; last the kept blocks go.
+    ``resumed``: the manifest records this resume first
+    (:func:`~arteleop.study.run_opening.record_resume`)."""
     kept = folder.path / BLOCKS_DIR
     kept.mkdir(exist_ok=True)
     bodies = [_kept_body(folder, kept / _block_file(n), block) for n, block in enumerate(blocks)]

@@ -70,15 +70,19 @@ def machine_record() -> dict[str, object]:
 
 
 def record_resume(folder: RunFolder, trials_in: int) -> None:
-    """Adds a resume, on this machine, to the manifest's ``resumed`` list: when, the trials
-    already in then, and what the trials run now are computed with (a run resumed elsewhere
-    mixes two machines' trials; :func:`arithmetic_notes` tells the user)."""
+    """Adds a resume begun on this machine, before its first trial, to the manifest's
+    ``resumed`` list: when, the trials already in then, and what the trials it runs are
+    computed with (a run resumed elsewhere mixes two machines' trials; :func:`arithmetic_notes`
+    tells the user)."""
     manifest = folder.manifest()
-    resumed = manifest.get("resumed")
-    manifest["resumed"] = [
-        *(resumed if isinstance(resumed, list) else []),
-        {"started": utc_now(), "trials_in": trials_in, **machine_record()},
-    ]
+    resumed = manifest.get("resumed", [])
+    if not isinstance(resumed, list):
+        raise RunFolderError(
+            f"{folder.path / 'manifest.json'}: 'resumed' is {resumed!r}, expected a list of "
+            "the run's resumes; restore manifest.json from a backup, or delete the key."
+        )
+    entry = {"started": utc_now(), "trials_in": trials_in, **machine_record()}
+    manifest["resumed"] = [*resumed, entry]
     folder.write_manifest(manifest)
 
 
@@ -128,44 +132,60 @@ def opened_definition(
 
 
 def arithmetic_notes(folder: RunFolder, manifest: dict[str, object]) -> list[str]:
-    """What a run resumed here computes otherwise than where it began, as its manifest recorded
-    it (a key it lacks is not compared): numpy's BLAS kernel or whether its AVX-512 loops ran
-    (what ``OPENBLAS_CORETYPE`` and ``NPY_DISABLE_CPU_FEATURES`` set), and the packages'
-    versions (what an install sets). Not a refusal: the trials left run as this machine computes
-    them, each a trial of the same design, not the one the first machine would have written."""
+    """What a run resumed here computes otherwise than where it began, or, if not, than where it
+    was last resumed (the manifest's ``resumed``), as its manifest recorded it (a key it lacks
+    is not compared): numpy's BLAS kernel or whether its AVX-512 loops ran (what
+    ``OPENBLAS_CORETYPE`` and ``NPY_DISABLE_CPU_FEATURES`` set), and the packages' versions
+    (what an install sets). Not a refusal: the trials left run as this machine computes them,
+    each a trial of the same design, not the one the first machine would have written."""
     path = folder.path / "manifest.json"
+    resumed = manifest.get("resumed")
+    last = resumed[-1] if isinstance(resumed, list) and resumed else None
     notes = []
-    began_blas, began_loops = manifest.get("blas"), manifest.get("numpy_loops")
-    differ = []
-    if isinstance(began_blas, str) and began_blas.split():
-        there, here = began_blas.split()[-1], blas_description().split()[-1]
-        if here != there and not {here, there} <= SAME_AS_PINNED:
-            differ.append(f"BLAS kernel {there} there, {here} here")
-    if isinstance(began_loops, str):
-        there_on, here_on = _avx512_named(began_loops), bool(running_avx512_targets())
-        if there_on != here_on:
-            differ.append(f"numpy's AVX-512 loops {_on(there_on)} there, {_on(here_on)} here")
-    if differ:
-        notes.append(
-            f"{path}: the run began on a machine that computes otherwise ({'; '.join(differ)}): "
-            "the trials run now are this machine's, and differ from those the first would have "
-            "written as another seed's do (docs/results/reproducibility.md). For a run computed "
-            "alike throughout, resume it where it began, or set OPENBLAS_CORETYPE and "
-            "NPY_DISABLE_CPU_FEATURES as there."
-        )
-    began_packages = manifest.get("packages")
-    if isinstance(began_packages, dict):
-        here_packages = _versions()
-        changed = [f"{name} {began_packages[name]} there, {version} here"
-                   for name, version in here_packages.items()
-                   if name in began_packages and began_packages[name] != version]  # fmt: skip
-        if changed:
+    for where, record in (("began on", manifest), ("was last resumed on", last)):
+        if isinstance(record, dict) and (differ := _arithmetic_differences(record)):
             notes.append(
-                f"{path}: the run began with other versions ({'; '.join(changed)}): the trials "
+                f"{path}: the run {where} a machine that computes otherwise ({'; '.join(differ)}): "
+                "the trials run now are this machine's, and differ from those that one would "
+                "have written as another seed's do (docs/results/reproducibility.md). For a run "
+                "computed alike throughout, resume it where it began, or set OPENBLAS_CORETYPE "
+                "and NPY_DISABLE_CPU_FEATURES as there."
+            )
+            break
+    for where, record in (("began", manifest), ("was last resumed", last)):
+        if isinstance(record, dict) and (changed := _version_differences(record)):
+            notes.append(
+                f"{path}: the run {where} with other versions ({'; '.join(changed)}): the trials "
                 "run now may differ from those it would have written. For a run computed alike "
                 "throughout, install the versions its 'packages' lists."
             )
+            break
     return notes
+
+
+def _arithmetic_differences(record: dict[str, object]) -> list[str]:
+    """How this machine's arithmetic differs from a manifest's (or a resume's) record of it."""
+    blas, loops = record.get("blas"), record.get("numpy_loops")
+    differ = []
+    if isinstance(blas, str) and blas.split():
+        there, here = blas.split()[-1], blas_description().split()[-1]
+        if here != there and not {here, there} <= SAME_AS_PINNED:
+            differ.append(f"BLAS kernel {there} there, {here} here")
+    if isinstance(loops, str):
+        there_on, here_on = _avx512_named(loops), bool(running_avx512_targets())
+        if there_on != here_on:
+            differ.append(f"numpy's AVX-512 loops {_on(there_on)} there, {_on(here_on)} here")
+    return differ
+
+
+def _version_differences(record: dict[str, object]) -> list[str]:
+    """The packages whose versions here differ from a manifest's (or a resume's) record."""
+    there = record.get("packages")
+    if not isinstance(there, dict):
+        return []
+    return [f"{name} {there[name]} there, {version} here"
+            for name, version in _versions().items()
+            if name in there and there[name] != version]  # fmt: skip
 
 
 def _avx512_named(loops: str) -> bool:

@@ -214,6 +214,10 @@ def _execute(
     progress: Progress | None,
     resumed: bool = False,
 ) -> StudyRun:
+    """The trials of ``plan`` not yet in ``folder`` run, each row appended as it ends (each
+    participant's in order, bringing what the last one left); then trials.csv in plan order,
+    the questionnaire, and the manifest says the run is finished. ``resumed``: the manifest
+    records this resume first (:func:`~arteleop.study.run_opening.record_resume`)."""
     folder.remove_cut_writes()
     done = folder.done_rows(repair=True)
     pending = [spec for spec in plan if spec.key not in done]

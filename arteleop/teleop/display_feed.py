@@ -214,7 +214,7 @@ class DisplayFeed:
         self.colocation_m: list[float] = []
         """The same in space (m)."""
         self.frames_skipped = 0
-        """Real time: camera ticks dropped because two came while one frame rendered."""
+        """Real time: camera ticks dropped because two came while one frame rendered or was owed."""
 
     def camera_tick(
         self, state: SiteState, engaged: bool, reachable: bool, applied_sample_time_s: float
@@ -238,10 +238,11 @@ class DisplayFeed:
             if not self._site.frame_pending and self._is_new(frame.time_s):
                 self._request(frame, applied_sample_time_s)
             elif self._owed:
-                self.frames_skipped += 1  # two ticks while one frame renders: drop one
+                self.frames_skipped += 1  # two ticks while one frame is owed: drop one
             else:
-                # Render it once the current frame is in, or (the owed frame of a control tick
-                # just before, this same physics instant) once the physics has moved on.
+                # Render it once the current frame is in, or (a base tick's poll since the last
+                # physics step started the owed frame, of this same instant) once the physics
+                # has moved on.
                 self._owed = True
         elif self._render:
             with self._timer.stage("camera"):
@@ -251,7 +252,7 @@ class DisplayFeed:
 
     def poll(self, engaged: bool, reachable: bool, applied_sample_time_s: float) -> None:
         """Real time: start the frame owed, of the site's state now, once the renderer is free
-        and the physics has moved on from the last frame asked for (a control tick between two
+        and the physics has moved on from the last frame asked for (a base tick between two
         physics steps would render the same instant twice); show the finished frame, if any."""
         rgbd = self._site.poll_frame()
         finished = self._requested if rgbd is not None else None

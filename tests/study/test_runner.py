@@ -33,7 +33,7 @@ from arteleop.study import (
 )
 from arteleop.study.carry import Carried
 from arteleop.study.protocol import run_planned_trial
-from arteleop.study.run_opening import arithmetic_notes, new_manifest
+from arteleop.study.run_opening import arithmetic_notes, new_manifest, record_resume
 
 # Two participants, two modalities, one practice trial: six trials of a few simulated seconds,
 # long enough for the second and third to teach the operator something of the display's lag.
@@ -249,7 +249,7 @@ def test_resume_on_a_machine_that_computes_otherwise_says_so(
     note = (
         f"note: {folder / 'manifest.json'}: the run began on a machine that computes otherwise "
         f"(numpy's AVX-512 loops {there} there, {here} here): the trials run now are this "
-        "machine's, and differ from those the first would have written as another seed's do "
+        "machine's, and differ from those that one would have written as another seed's do "
         "(docs/results/reproducibility.md). For a run computed alike throughout, resume it where "
         "it began, or set OPENBLAS_CORETYPE and NPY_DISABLE_CPU_FEATURES as there."
     )
@@ -291,6 +291,35 @@ def test_a_blas_or_package_version_is_told_apart_from_the_machines_arithmetic(
         f"there, {here_version} here): the trials run now may differ from those it would have "
         "written. For a run computed alike throughout, install the versions its 'packages' lists."
     )
+
+
+def test_each_resume_is_recorded_and_the_last_one_compared_with(tmp_path: Path) -> None:
+    """Begun and resumed here, then resumed elsewhere: the next resume here says so, though the
+    run began on this machine's arithmetic."""
+    folder = RunFolder(tmp_path)
+    here = dict(new_manifest(SMALL, "", [], 0))
+    folder.write_manifest(here)
+    record_resume(folder, 2)
+    record_resume(folder, 5)
+    manifest = folder.manifest()
+    assert [r["trials_in"] for r in manifest["resumed"]] == [2, 5]
+    assert arithmetic_notes(folder, manifest) == []
+    on = bool(running_avx512_targets())
+    manifest["resumed"][-1] |= {"numpy_loops": "X86_V3" if on else "X86_V3 X86_V4",
+                                "packages": here["packages"] | {"numpy": "0.0.1"}}  # fmt: skip
+    loops, versions = arithmetic_notes(folder, manifest)
+    assert loops.startswith(
+        f"{tmp_path / 'manifest.json'}: the run was last resumed on a machine that computes "
+        f"otherwise (numpy's AVX-512 loops {'off' if on else 'on'} there, {'on' if on else 'off'} "
+        "here)"
+    )
+    assert versions.startswith(
+        f"{tmp_path / 'manifest.json'}: the run was last resumed with other versions (numpy "
+        f"0.0.1 there, {here['packages']['numpy']} here)"
+    )
+    folder.write_manifest(here | {"resumed": "twice"})
+    with pytest.raises(RunFolderError, match=r"'resumed' is 'twice', expected a list"):
+        record_resume(folder, 7)
 
 
 def test_resume_removes_what_a_write_cut_short_left(

@@ -54,10 +54,11 @@ class _Shown:
 def test_a_camera_tick_at_the_instant_of_an_owed_frame_waits_for_the_physics(
     site_config: SiteConfig,
 ) -> None:
-    """At 1200 Hz of base ticks, a control tick falls between two physics steps: the frame owed
-    since the last camera tick starts there, and a fast render is in before the camera tick
-    that follows, at the same physics instant. That tick must not render the instant again
-    (two frames with one time); it is owed until the physics moves on."""
+    """The loop polls the renderer at each of its 1200 Hz of base ticks, four between two
+    physics steps: the frame owed since the last camera tick starts at one of them, and a fast
+    render is in before the camera tick that follows, at the same physics instant. That tick
+    must not render the instant again (two frames with one time); it is owed until the physics
+    moves on."""
     small = SiteConfig(robot=site_config.robot, camera=HeadCameraConfig(width_px=80, height_px=60))
     shown = _Shown()
     with RemoteSite(small) as real:
@@ -83,7 +84,7 @@ def test_a_camera_tick_at_the_instant_of_an_owed_frame_waits_for_the_physics(
         real.step()
         p2 = real.time_s
         site.finish()
-        poll()  # a control tick at P2: P0 shown, the owed frame starts
+        poll()  # a base tick at P2: P0 shown, the owed frame starts
         site.finish()
         poll()  # the next base tick: it is in
         camera_tick()  # still P2
