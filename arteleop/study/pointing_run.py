@@ -65,9 +65,9 @@ from arteleop.study.runner import (
     check_new,
     make_folder,
     participants_text,
-    worker_pool,
 )
 from arteleop.study.study_writing import study_text
+from arteleop.study.worker_pool import worker_pool
 from arteleop.teleop.trial_task import POINTING
 
 BLOCKS_DIR = "pointing-blocks"

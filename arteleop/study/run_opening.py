@@ -7,7 +7,7 @@ from __future__ import annotations
 import dataclasses
 import hashlib
 import platform
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from datetime import UTC, datetime
 from importlib import metadata
 from typing import Any
@@ -141,26 +141,36 @@ def arithmetic_notes(folder: RunFolder, manifest: dict[str, object]) -> list[str
     path = folder.path / "manifest.json"
     resumed = manifest.get("resumed")
     last = resumed[-1] if isinstance(resumed, list) and resumed else None
+    sources = (("began", manifest), ("was last resumed", last))
     notes = []
-    for where, record in (("began on", manifest), ("was last resumed on", last)):
-        if isinstance(record, dict) and (differ := _arithmetic_differences(record)):
-            notes.append(
-                f"{path}: the run {where} a machine that computes otherwise ({'; '.join(differ)}): "
-                "the trials run now are this machine's, and differ from those that one would "
-                "have written as another seed's do (docs/results/reproducibility.md). For a run "
-                "computed alike throughout, resume it where it began, or set OPENBLAS_CORETYPE "
-                "and NPY_DISABLE_CPU_FEATURES as there."
-            )
-            break
-    for where, record in (("began", manifest), ("was last resumed", last)):
-        if isinstance(record, dict) and (changed := _version_differences(record)):
-            notes.append(
-                f"{path}: the run {where} with other versions ({'; '.join(changed)}): the trials "
-                "run now may differ from those it would have written. For a run computed alike "
-                "throughout, install the versions its 'packages' lists."
-            )
-            break
+    if found := _first_difference(sources, _arithmetic_differences):
+        where, differ = found
+        notes.append(
+            f"{path}: the run {where} on a machine that computes otherwise ({'; '.join(differ)}): "
+            "the trials run now are this machine's, and differ from those that one would have "
+            "written as another seed's do (docs/results/reproducibility.md). For a run computed "
+            "alike throughout, resume it where it began, or set OPENBLAS_CORETYPE and "
+            "NPY_DISABLE_CPU_FEATURES as there."
+        )
+    if found := _first_difference(sources, _version_differences):
+        where, changed = found
+        notes.append(
+            f"{path}: the run {where} with other versions ({'; '.join(changed)}): the trials run "
+            "now may differ from those it would have written. For a run computed alike "
+            "throughout, install the versions its 'packages' lists."
+        )
     return notes
+
+
+def _first_difference(
+    sources: Sequence[tuple[str, object]], differences: Callable[[dict[str, object]], list[str]]
+) -> tuple[str, list[str]] | None:
+    """The first of ``sources`` (where the run began, then its last resume, as the manifest
+    records them) whose record ``differences`` finds this machine differs from, and how."""
+    for where, record in sources:
+        if isinstance(record, dict) and (found := differences(record)):
+            return where, found
+    return None
 
 
 def _arithmetic_differences(record: dict[str, object]) -> list[str]:

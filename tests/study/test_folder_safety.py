@@ -243,16 +243,16 @@ def test_workers_end_when_their_parent_is_killed(tmp_path: Path, sig: signal.Sig
 
 
 def test_the_workers_are_no_more_than_the_trials(tmp_path: Path, monkeypatch) -> None:
-    import arteleop.study.runner as runner
+    import arteleop.study.worker_pool as worker_pool
 
     made = []
-    real = runner.ProcessPoolExecutor
+    real = worker_pool.ProcessPoolExecutor
 
     def pool(workers: int, **kwargs):
         made.append(workers)
         return real(workers, **kwargs)
 
-    monkeypatch.setattr(runner, "ProcessPoolExecutor", pool)
+    monkeypatch.setattr(worker_pool, "ProcessPoolExecutor", pool)
     run_study(TINY, tmp_path / "run", workers=64)
     assert made == [2]
 
