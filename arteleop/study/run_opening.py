@@ -142,23 +142,21 @@ def arithmetic_notes(folder: RunFolder, manifest: dict[str, object]) -> list[str
     resumed = manifest.get("resumed")
     last = resumed[-1] if isinstance(resumed, list) and resumed else None
     sources = (("began", manifest), ("was last resumed", last))
+    checks = (
+        (_arithmetic_differences, "on a machine that computes otherwise",
+         "the trials run now are this machine's, and differ from those that one would have "
+         "written as another seed's do (docs/results/reproducibility.md). For a run computed "
+         "alike throughout, resume it where it began, or set OPENBLAS_CORETYPE and "
+         "NPY_DISABLE_CPU_FEATURES as there."),
+        (_version_differences, "with other versions",
+         "the trials run now may differ from those it would have written. For a run computed "
+         "alike throughout, install the versions its 'packages' lists."),
+    )  # fmt: skip
     notes = []
-    if found := _first_difference(sources, _arithmetic_differences):
-        where, differ = found
-        notes.append(
-            f"{path}: the run {where} on a machine that computes otherwise ({'; '.join(differ)}): "
-            "the trials run now are this machine's, and differ from those that one would have "
-            "written as another seed's do (docs/results/reproducibility.md). For a run computed "
-            "alike throughout, resume it where it began, or set OPENBLAS_CORETYPE and "
-            "NPY_DISABLE_CPU_FEATURES as there."
-        )
-    if found := _first_difference(sources, _version_differences):
-        where, changed = found
-        notes.append(
-            f"{path}: the run {where} with other versions ({'; '.join(changed)}): the trials run "
-            "now may differ from those it would have written. For a run computed alike "
-            "throughout, install the versions its 'packages' lists."
-        )
+    for differences, how, consequence in checks:
+        if found := _first_difference(sources, differences):
+            where, differ = found
+            notes.append(f"{path}: the run {where} {how} ({'; '.join(differ)}): {consequence}")
     return notes
 
 
