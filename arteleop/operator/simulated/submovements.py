@@ -84,10 +84,10 @@ def _ending_outside(scatter: MovementScatter) -> tuple[NDArray[np.intp], NDArray
     at each of the quadrature's points (flat indices into (nX, nD, nQ)), and the log of the
     error each leaves, as a multiple of the criterion: every look cost's table iterates over
     them. In rising order of the error, in which np.interp (it looks for each point's interval
-    from the last one's) finds the intervals at once, for the same values in half the time."""
+    from the last one's) finds each at once: the same values in a third to half the time."""
     left = _X[:, None, None] * _share_left(scatter)[None, :, :]
     outside = left > 1.0
-    log_left = np.log(np.maximum(left[outside], _X[0]))
+    log_left = np.log(left[outside])
     order = np.argsort(log_left)
     grid = np.flatnonzero(outside)[order], log_left[order]
     for array in grid:  # shared by every table of the scatter law
