@@ -21,8 +21,8 @@ It prints, per trial, the time and error in the browser against the simulated pa
 and their ratio, and what the stream asked of the connection (``browser.csv``: the cloud's
 frames a second and Mbit/s, the display's round trip, the frames a second the page drew); it
 exits non-zero if a step fails, a page's outcome is not the file's, or the script did not place
-the bowl on the target circle (what the suite's test of the scripted participant asserts of
-its one trial).
+the bowl on the target circle (what the suite's test of the scripted participant asserted,
+until it moved here).
 ``--camera`` sets the head camera's image: by default the head camera's own 640x480, as
 ``study serve`` gives people (at 320x240, at 8cbf78f, seed 0's practice target lay where its
 ring came out in pieces and the script found no target);
@@ -284,8 +284,8 @@ def main() -> int:
         "simulated; median time ratio, browser / simulated, over trials both placed: "
         + (f"{pd.Series(ratios).median():.2f}" if ratios else "-")
     )
-    # What the suite's test asserts of its one trial (tests/study/test_scripted_participant.py):
-    # a person has what they need.
+    # What the suite's test asserted until it moved here (a served trial at a script's pace,
+    # 90 s on an idle machine and 270 s in a busy suite): a person has what they need.
     off = people[(people.outcome != "success") | ~(people.placement_error_m < TARGET_RADIUS_M)]
     if len(off):
         raise BenchmarkFailed(
