@@ -65,8 +65,9 @@ def _policy(
     log_x = np.log(_X)
     where, log_left = _ending_outside(scatter)
     future = np.zeros((len(_X), len(_D), len(_ALONG_Q)))
+    flat = future.reshape(-1)  # a view: what goes in is in ``future``
     for _ in range(60):
-        future.reshape(-1)[where] = np.interp(log_left, log_x, value)
+        flat[where] = np.interp(log_left, log_x, value)
         expected = future.mean(axis=2)  # (nX, nD)
         total = durations + look_cost_s + expected
         choice = _rising_argmin(total)
